@@ -1,0 +1,214 @@
+//! Cameras: pinhole, fisheye and spherical panorama (the book's chapter 9-11 cameras), each
+//! turning a film position into a world-space ray.
+
+use crate::math::{Ray, RayDifferential, Vec2, Vec3A};
+
+/// A camera with its orthonormal frame already computed.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Camera {
+    /// Eye position.
+    pub eye: Vec3A,
+    /// Right, up and backward axes (u, v, w in the book: w points from the look-at to the eye).
+    pub frame: [Vec3A; 3],
+    /// Projection.
+    pub projection: Projection,
+    /// Film width in pixels.
+    pub width: u32,
+    /// Film height in pixels.
+    pub height: u32,
+}
+
+/// How film positions become directions.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Projection {
+    /// Perspective with a vertical field of view (radians).
+    Pinhole {
+        /// Vertical field of view in radians.
+        fov_y: f32,
+    },
+    /// Equidistant fisheye: the angle from the view axis grows linearly to `psi_max` at the
+    /// edge of the inscribed circle; outside it nothing is seen.
+    Fisheye {
+        /// Half-angle at the circle's edge, radians.
+        psi_max: f32,
+    },
+    /// Equirectangular panorama: x spans longitude +-`lambda_max`, y latitude +-`psi_max`.
+    Spherical {
+        /// Half horizontal angle, radians.
+        lambda_max: f32,
+        /// Half vertical angle, radians.
+        psi_max: f32,
+    },
+}
+
+impl Camera {
+    /// A camera at `eye` looking at `look_at` with `up` as the approximate up direction.
+    #[must_use]
+    pub fn new(
+        eye: Vec3A,
+        look_at: Vec3A,
+        up: Vec3A,
+        projection: Projection,
+        width: u32,
+        height: u32,
+    ) -> Self {
+        let w = (eye - look_at).normalize_or(Vec3A::Z);
+        let mut u = up.cross(w);
+        if u.length_squared() < 1e-12 {
+            // Looking straight along `up`: pick any perpendicular (the book's singularity fix).
+            u = if w.x.abs() < 0.9 {
+                Vec3A::X.cross(w)
+            } else {
+                Vec3A::Z.cross(w)
+            };
+        }
+        let u = u.normalize();
+        let v = w.cross(u);
+        Self {
+            eye,
+            frame: [u, v, w],
+            projection,
+            width,
+            height,
+        }
+    }
+
+    /// The direction (unnormalised) through film position `pos` in pixels (x right, y down,
+    /// (0, 0) the top-left corner), or `None` where the projection sees nothing.
+    #[must_use]
+    #[inline]
+    pub fn direction(&self, pos: Vec2) -> Option<Vec3A> {
+        let (w, h) = (self.width as f32, self.height as f32);
+        let [u, v, back] = self.frame;
+        match self.projection {
+            Projection::Pinhole { fov_y } => {
+                let scale = (fov_y * 0.5).tan() * 2.0 / h;
+                let x = (pos.x - 0.5 * w) * scale;
+                let y = (0.5 * h - pos.y) * scale;
+                Some(x * u + y * v - back)
+            }
+            Projection::Fisheye { psi_max } => {
+                let radius = 0.5 * w.min(h);
+                let x = (pos.x - 0.5 * w) / radius;
+                let y = (0.5 * h - pos.y) / radius;
+                let r2 = x * x + y * y;
+                if r2 > 1.0 {
+                    return None;
+                }
+                let r = r2.sqrt();
+                let psi = r * psi_max;
+                let (sin_psi, cos_psi) = psi.sin_cos();
+                let (sa, ca) = if r > 0.0 { (y / r, x / r) } else { (0.0, 1.0) };
+                Some(sin_psi * ca * u + sin_psi * sa * v - cos_psi * back)
+            }
+            Projection::Spherical {
+                lambda_max,
+                psi_max,
+            } => {
+                let x = (pos.x / w) * 2.0 - 1.0;
+                let y = 1.0 - (pos.y / h) * 2.0;
+                let lambda = x * lambda_max;
+                let psi = y * psi_max;
+                let (sl, cl) = lambda.sin_cos();
+                let (sp, cp) = psi.sin_cos();
+                Some(cp * sl * u + sp * v - cp * cl * back)
+            }
+        }
+    }
+
+    /// The ray through `pos`, with its neighbours one pixel right and one pixel down as ray
+    /// differentials scaled by `spacing` (1 for one sample per pixel; smaller when a pixel is
+    /// covered by several samples).
+    #[must_use]
+    #[inline]
+    pub fn ray(&self, pos: Vec2, spacing: f32) -> Option<(Ray, RayDifferential)> {
+        let d = self.direction(pos)?;
+        let dx = self.direction(pos + Vec2::new(spacing, 0.0)).unwrap_or(d);
+        let dy = self.direction(pos + Vec2::new(0.0, spacing)).unwrap_or(d);
+        let ray = Ray::new(self.eye, d);
+        // Differentials are expressed per whole pixel.
+        let inv = 1.0 / spacing;
+        let diff = RayDifferential {
+            rx_origin: self.eye,
+            rx_dir: d + (dx - d) * inv,
+            ry_origin: self.eye,
+            ry_dir: d + (dy - d) * inv,
+        };
+        Some((ray, diff))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pinhole_centre_looks_at_target_and_fov_is_vertical() {
+        let cam = Camera::new(
+            Vec3A::new(0.0, 0.0, 5.0),
+            Vec3A::ZERO,
+            Vec3A::Y,
+            Projection::Pinhole {
+                fov_y: 90f32.to_radians(),
+            },
+            200,
+            100,
+        );
+        let d = cam.direction(Vec2::new(100.0, 50.0)).unwrap().normalize();
+        assert!((d - Vec3A::NEG_Z).length() < 1e-6);
+        // Top edge at 45 degrees up.
+        let d = cam.direction(Vec2::new(100.0, 0.0)).unwrap().normalize();
+        assert!((d.y - std::f32::consts::FRAC_1_SQRT_2).abs() < 1e-5);
+        // x right is +x in the world.
+        assert!(cam.direction(Vec2::new(199.0, 50.0)).unwrap().x > 0.0);
+    }
+
+    #[test]
+    fn looking_straight_down_has_a_frame() {
+        let cam = Camera::new(
+            Vec3A::Y * 5.0,
+            Vec3A::ZERO,
+            Vec3A::Y,
+            Projection::Pinhole { fov_y: 1.0 },
+            10,
+            10,
+        );
+        assert!(
+            cam.frame
+                .iter()
+                .all(|a| a.is_finite() && (a.length() - 1.0).abs() < 1e-5)
+        );
+    }
+
+    #[test]
+    fn fisheye_and_spherical() {
+        let fish = Camera::new(
+            Vec3A::ZERO,
+            Vec3A::NEG_Z,
+            Vec3A::Y,
+            Projection::Fisheye {
+                psi_max: std::f32::consts::PI,
+            },
+            100,
+            100,
+        );
+        assert!(fish.direction(Vec2::new(0.0, 0.0)).is_none());
+        let d = fish.direction(Vec2::new(100.0, 50.0)).unwrap();
+        assert!((d - Vec3A::Z).length() < 1e-5, "{d:?}"); // rim of a 360 fisheye looks backwards
+        let pano = Camera::new(
+            Vec3A::ZERO,
+            Vec3A::NEG_Z,
+            Vec3A::Y,
+            Projection::Spherical {
+                lambda_max: std::f32::consts::PI,
+                psi_max: std::f32::consts::FRAC_PI_2,
+            },
+            200,
+            100,
+        );
+        let d = pano.direction(Vec2::new(100.0, 0.0)).unwrap();
+        assert!((d - Vec3A::Y).length() < 1e-5);
+        let d = pano.direction(Vec2::new(150.0, 50.0)).unwrap();
+        assert!((d - Vec3A::X).length() < 1e-5);
+    }
+}

@@ -1,0 +1,68 @@
+//! The library's error type: every error names the file it is about and, where a parser stopped,
+//! the position.
+
+use std::path::{Path, PathBuf};
+
+/// Why a preset, image or mesh could not be used.
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// The file could not be read or written.
+    #[error("{}: {source}", path.display())]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// What the OS said.
+        source: std::io::Error,
+    },
+    /// An image could not be decoded or was refused by the decode limits.
+    #[error("{}: cannot load image: {message}", path.display())]
+    Image {
+        /// The image file.
+        path: PathBuf,
+        /// What went wrong.
+        message: String,
+    },
+    /// A preset did not parse: line and column (1-based) where parsing stopped.
+    #[error("{}:{line}:{column}: {message}", path.display())]
+    Preset {
+        /// The preset file.
+        path: PathBuf,
+        /// 1-based line.
+        line: usize,
+        /// 1-based column.
+        column: usize,
+        /// What was expected.
+        message: String,
+    },
+    /// A value is out of range or inconsistent (a zero scale, spp = 0, an absurd resolution).
+    #[error("{}: {message}", path.display())]
+    Invalid {
+        /// The file the value came from.
+        path: PathBuf,
+        /// Which value, and why.
+        message: String,
+    },
+}
+
+impl Error {
+    /// An [`Error::Io`] for `path`.
+    #[must_use]
+    pub fn io(path: &Path, source: std::io::Error) -> Self {
+        Self::Io {
+            path: path.to_path_buf(),
+            source,
+        }
+    }
+
+    /// An [`Error::Invalid`] for `path`.
+    #[must_use]
+    pub fn invalid(path: &Path, message: impl Into<String>) -> Self {
+        Self::Invalid {
+            path: path.to_path_buf(),
+            message: message.into(),
+        }
+    }
+}
+
+/// The library's result type.
+pub type Result<T, E = Error> = std::result::Result<T, E>;

@@ -1,0 +1,26 @@
+//! texplore: an interactive texture-mapping explorer built on a progressive CPU ray tracer.
+//!
+//! The path of a ray: [`camera`] makes it (with differentials), [`scene::Scene::hit`] finds the
+//! nearest [`geometry`] hit in the object's generic space, a [`mapping`] turns the local hit
+//! point into (u, v) with analytic derivatives, a [`texture`] filters texels, a [`material`]
+//! shades with the [`scene`]'s lights, and the [`render`] film accumulates the samples that a
+//! [`sampler`] placed.
+
+pub mod camera;
+pub mod cli;
+pub mod error;
+pub mod geometry;
+pub mod mapping;
+pub mod material;
+pub mod math;
+pub mod probe;
+pub mod render;
+pub mod sampler;
+pub mod scene;
+pub mod snapshot;
+pub mod texture;
+
+#[cfg(feature = "gui")]
+pub mod gui;
+
+pub use error::{Error, Result};

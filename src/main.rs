@@ -1,0 +1,31 @@
+//! The `texplore` binary: no subcommand opens the window; subcommands run headless.
+
+use clap::Parser;
+use texplore::cli::{Cli, run};
+
+fn main() -> std::process::ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Some(command) => run(command),
+        None => open_window(cli.open),
+    };
+    match result {
+        Ok(()) => std::process::ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            std::process::ExitCode::FAILURE
+        }
+    }
+}
+
+#[cfg(feature = "gui")]
+fn open_window(open: Option<std::path::PathBuf>) -> anyhow::Result<()> {
+    texplore::gui::run(open)
+}
+
+#[cfg(not(feature = "gui"))]
+fn open_window(_open: Option<std::path::PathBuf>) -> anyhow::Result<()> {
+    anyhow::bail!(
+        "this texplore was built without the `gui` feature; see `texplore --help` for the headless commands"
+    )
+}

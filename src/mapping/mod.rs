@@ -1,0 +1,415 @@
+//! Mappings: the lecture's `Mapping::get_texel_coordinates`, split into (u, v) with analytic
+//! derivatives (this module) and the texel lookup (in [`crate::texture`]).
+//!
+//! Every mapping takes the hit point in the generic object's space and returns (u, v) in the
+//! lecture's convention (v = 0 at the bottom of the image) together with their gradients with
+//! respect to that point, by the chain rule; the screen-space derivatives follow from the hit's
+//! dp/dx and dp/dy. No finite differences: those jump across the seam (u going 1 -> 0).
+
+mod explain;
+
+pub use explain::{explain_lookup, explain_mapping};
+
+use crate::math::{PI, TAU, Vec2, Vec3A};
+use serde::{Deserialize, Serialize};
+
+/// How a hit point becomes texture coordinates.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum Mapping {
+    /// The generic rectangle: u = (z + 1) / 2, v = (x + 1) / 2. Points off the rectangle give
+    /// coordinates outside [0, 1] and the texture's wrap mode decides (so a plane tiles).
+    Rectangular,
+    /// phi = atan2(x, z) in [0, 2 pi), u = phi / 2 pi, v = (y + 1) / 2.
+    Cylindrical,
+    /// u as cylindrical, theta = acos(y), v = 1 - theta / pi (the Earth).
+    #[default]
+    Spherical,
+    /// The lecture's light-probe (angular) map: alpha = acos(z), r = alpha / pi,
+    /// u = (1 + r cos beta) / 2, v = (1 + r sin beta) / 2.
+    LightProbe,
+    /// The light-probe map with z flipped (alpha = acos(-z)), for probes made from panorama
+    /// photographs, which are mirror reversals of a photographed ball.
+    Panoramic,
+    /// A mirror-ball probe seen from +z: r = sin(alpha / 2) instead of alpha / pi
+    /// (reads `texplore probe --format mirror-ball`).
+    MirrorBall,
+    /// The (u, v) the shape carries: a mesh's vertex coordinates, or the shape's own natural
+    /// parameterisation (spherical on spheres, cylindrical on cylinders, rectangular on planes).
+    Uv,
+}
+
+impl Mapping {
+    /// Every mapping, in menu order.
+    pub const ALL: [Self; 7] = [
+        Self::Rectangular,
+        Self::Cylindrical,
+        Self::Spherical,
+        Self::LightProbe,
+        Self::Panoramic,
+        Self::MirrorBall,
+        Self::Uv,
+    ];
+
+    /// The name used on the command line and in menus.
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::Rectangular => "rectangular",
+            Self::Cylindrical => "cylindrical",
+            Self::Spherical => "spherical",
+            Self::LightProbe => "light-probe",
+            Self::Panoramic => "panoramic",
+            Self::MirrorBall => "mirror-ball",
+            Self::Uv => "uv",
+        }
+    }
+
+    /// One sentence on what the mapping does, for tooltips and `--help`.
+    #[must_use]
+    pub const fn description(self) -> &'static str {
+        match self {
+            Self::Rectangular => {
+                "Projects the texture along y onto the generic rectangle (x, z) in [-1, 1]^2."
+            }
+            Self::Cylindrical => {
+                "Wraps the texture once around the y axis; v follows the height y in [-1, 1]."
+            }
+            Self::Spherical => {
+                "Latitude-longitude (equirectangular) map: u is longitude, v is latitude."
+            }
+            Self::LightProbe => {
+                "Angular light-probe map: the distance from the image centre is the angle from +z."
+            }
+            Self::Panoramic => {
+                "The light-probe map with z flipped, for probes made from panoramas."
+            }
+            Self::MirrorBall => {
+                "Mirror-ball probe: the image of a reflective sphere photographed from +z."
+            }
+            Self::Uv => {
+                "The shape's own (u, v): a mesh's vertex coordinates, or its natural parameterisation."
+            }
+        }
+    }
+
+    /// Whether u wraps around (the seam of a closed surface): filters then read across it.
+    #[must_use]
+    pub const fn u_is_periodic(self) -> bool {
+        matches!(self, Self::Cylindrical | Self::Spherical)
+    }
+
+    /// Whether v must clamp regardless of the wrap mode (the spherical map's poles).
+    #[must_use]
+    pub const fn v_clamps(self) -> bool {
+        matches!(self, Self::Spherical)
+    }
+
+    /// (u, v) and their gradients with respect to the object-space point `p`.
+    ///
+    /// `Uv` is not handled here (it needs the shape's coordinates): see
+    /// [`Mapping::map_with_differentials`].
+    #[must_use]
+    #[inline]
+    pub fn map_point(self, p: Vec3A) -> MappedPoint {
+        let m = match self {
+            Self::Rectangular => rectangular(p),
+            Self::Cylindrical => cylindrical(p),
+            Self::Spherical | Self::Uv => spherical(p),
+            Self::LightProbe => probe(p, false, ProbeCurve::Angular),
+            Self::Panoramic => probe(p, true, ProbeCurve::Angular),
+            Self::MirrorBall => probe(p, false, ProbeCurve::MirrorBall),
+        };
+        if m.uv.is_finite() {
+            m
+        } else {
+            // NaN input (a corrupt vertex, an overflowed transform): still a defined answer.
+            MappedPoint {
+                uv: Vec2::splat(0.5),
+                grad_u: Vec3A::ZERO,
+                grad_v: Vec3A::ZERO,
+            }
+        }
+    }
+
+    /// Texture coordinates of a hit with their screen-space derivatives.
+    ///
+    /// `p` is the object-space hit point, `dpdx`/`dpdy` its offsets to the neighbouring pixels'
+    /// hits (zero when unknown), `shape_uv` the coordinates the shape carries (mesh vertices) with
+    /// the triangle's dp/du and dp/dv, and `natural` the mapping that is the shape's own
+    /// parameterisation, which [`Mapping::Uv`] uses when the shape carries none.
+    #[must_use]
+    #[inline]
+    pub fn map_with_differentials(
+        self,
+        p: Vec3A,
+        dpdx: Vec3A,
+        dpdy: Vec3A,
+        shape_uv: Option<(Vec2, Option<(Vec3A, Vec3A)>)>,
+        natural: Self,
+    ) -> TexCoord {
+        let mapping = match (self, shape_uv) {
+            (Self::Uv, Some((uv, dpduv))) => {
+                let (duvdx, duvdy) = match dpduv {
+                    Some((dpdu, dpdv)) => (
+                        solve_uv_offset(dpdu, dpdv, dpdx),
+                        solve_uv_offset(dpdu, dpdv, dpdy),
+                    ),
+                    None => (Vec2::ZERO, Vec2::ZERO),
+                };
+                return TexCoord { uv, duvdx, duvdy };
+            }
+            (Self::Uv, None) => natural,
+            (m, _) => m,
+        };
+        let m = mapping.map_point(p);
+        TexCoord {
+            uv: m.uv,
+            duvdx: Vec2::new(m.grad_u.dot(dpdx), m.grad_v.dot(dpdx)),
+            duvdy: Vec2::new(m.grad_u.dot(dpdy), m.grad_v.dot(dpdy)),
+        }
+        .bounded()
+    }
+}
+
+impl std::fmt::Display for Mapping {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl std::str::FromStr for Mapping {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        Self::ALL
+            .into_iter()
+            .find(|m| m.name() == s)
+            .ok_or_else(|| {
+                let names: Vec<_> = Self::ALL.iter().map(|m| m.name()).collect();
+                format!(
+                    "unknown mapping '{s}', expected one of: {}",
+                    names.join(", ")
+                )
+            })
+    }
+}
+
+/// (u, v) at a point with the gradients of u and v with respect to the object-space point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MappedPoint {
+    /// Texture coordinates, v = 0 at the bottom of the image.
+    pub uv: Vec2,
+    /// Gradient of u with respect to the object-space hit point.
+    pub grad_u: Vec3A,
+    /// Gradient of v with respect to the object-space hit point.
+    pub grad_v: Vec3A,
+}
+
+/// Texture coordinates with their derivatives along the screen's x and y (one pixel each).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct TexCoord {
+    /// Texture coordinates, v = 0 at the bottom of the image.
+    pub uv: Vec2,
+    /// d(u, v)/dx: change to the pixel on the right.
+    pub duvdx: Vec2,
+    /// d(u, v)/dy: change to the pixel below.
+    pub duvdy: Vec2,
+}
+
+/// The largest footprint a filter is asked for: the whole texture. Singular points (the poles,
+/// the probe's rim) have unbounded derivatives; this keeps every footprint finite.
+pub const MAX_FOOTPRINT: f32 = 1.0;
+
+impl TexCoord {
+    /// Derivatives clamped to [`MAX_FOOTPRINT`] and cleaned of NaN.
+    #[must_use]
+    #[inline]
+    pub fn bounded(self) -> Self {
+        let clean = |d: Vec2| {
+            let d = Vec2::new(
+                if d.x.is_finite() { d.x } else { 0.0 },
+                if d.y.is_finite() { d.y } else { 0.0 },
+            );
+            d.clamp(Vec2::splat(-MAX_FOOTPRINT), Vec2::splat(MAX_FOOTPRINT))
+        };
+        Self {
+            uv: self.uv,
+            duvdx: clean(self.duvdx),
+            duvdy: clean(self.duvdy),
+        }
+    }
+}
+
+/// Solves `dpdu * du + dpdv * dv = dp` in the least-squares sense (pbrt's approach for meshes).
+fn solve_uv_offset(dpdu: Vec3A, dpdv: Vec3A, dp: Vec3A) -> Vec2 {
+    let (a, b, c) = (dpdu.dot(dpdu), dpdu.dot(dpdv), dpdv.dot(dpdv));
+    let det = a * c - b * b;
+    if det.abs() < 1e-30 || !det.is_finite() {
+        return Vec2::ZERO;
+    }
+    let (r0, r1) = (dpdu.dot(dp), dpdv.dot(dp));
+    let out = Vec2::new(c * r0 - b * r1, a * r1 - b * r0) / det;
+    if out.is_finite() { out } else { Vec2::ZERO }
+}
+
+fn rectangular(p: Vec3A) -> MappedPoint {
+    MappedPoint {
+        uv: Vec2::new((p.z + 1.0) * 0.5, (p.x + 1.0) * 0.5),
+        grad_u: Vec3A::new(0.0, 0.0, 0.5),
+        grad_v: Vec3A::new(0.5, 0.0, 0.0),
+    }
+}
+
+/// The azimuth u = atan2(x, z) / 2 pi in [0, 1], and its gradient; bounded on the axis.
+#[inline]
+fn azimuth(x: f32, z: f32) -> (f32, Vec3A) {
+    let mut phi = x.atan2(z);
+    if phi < 0.0 {
+        phi += TAU;
+    }
+    // phi + 2 pi can round up to exactly 2 pi: u == 1 is the seam, which wraps to 0 anyway.
+    let u = (phi / TAU).clamp(0.0, 1.0);
+    let rho2 = x * x + z * z;
+    let grad = if rho2 > 0.0 {
+        Vec3A::new(z, 0.0, -x) / (TAU * rho2)
+    } else {
+        Vec3A::ZERO // exactly on the axis u is undefined; any value is as good
+    };
+    (u, grad)
+}
+
+fn cylindrical(p: Vec3A) -> MappedPoint {
+    let (u, grad_u) = match rescaled(Vec3A::new(p.x, 0.0, p.z)) {
+        Some((q, scale)) => {
+            let (u, g) = azimuth(q.x, q.z);
+            (u, g / scale)
+        }
+        None => (0.0, Vec3A::ZERO),
+    };
+    let v = (p.y + 1.0) * 0.5;
+    MappedPoint {
+        uv: Vec2::new(u, if v.is_nan() { 0.5 } else { v.clamp(0.0, 1.0) }),
+        grad_u,
+        grad_v: Vec3A::new(0.0, 0.5, 0.0),
+    }
+}
+
+fn spherical(p: Vec3A) -> MappedPoint {
+    let Some((q, scale)) = rescaled(p) else {
+        return MappedPoint {
+            uv: Vec2::new(0.0, 0.5),
+            grad_u: Vec3A::ZERO,
+            grad_v: Vec3A::ZERO,
+        };
+    };
+    let (u, grad_u) = azimuth(q.x, q.z);
+    // theta = acos(y / |p|), written as atan2(rho, y): exact for points off the unit sphere
+    // and never the NaN of acos(1 + 1e-12).
+    let rho2 = q.x * q.x + q.z * q.z;
+    let rho = rho2.sqrt();
+    let r2 = rho2 + q.y * q.y;
+    let theta = rho.atan2(q.y);
+    let v = (1.0 - theta / PI).clamp(0.0, 1.0);
+    let grad_v = if rho > 0.0 {
+        // d theta/dq = (y x / rho, -rho, y z / rho) / r^2 ; v = 1 - theta / pi
+        -Vec3A::new(q.y * q.x / rho, -rho, q.y * q.z / rho) / (PI * r2)
+    } else {
+        Vec3A::ZERO // exactly at a pole the direction of steepest change is undefined
+    };
+    MappedPoint {
+        uv: Vec2::new(u, v),
+        grad_u: grad_u / scale,
+        grad_v: grad_v / scale,
+    }
+}
+
+/// `p` divided by its largest component, so squares neither overflow (huge points) nor
+/// underflow (subnormal ones); `None` for the origin and for NaN or infinite input.
+#[inline]
+fn rescaled(p: Vec3A) -> Option<(Vec3A, f32)> {
+    let s = p.abs().max_element();
+    (s > 0.0 && s.is_finite()).then(|| (p / s, s))
+}
+
+#[derive(Clone, Copy)]
+enum ProbeCurve {
+    /// r = alpha / pi (the lecture).
+    Angular,
+    /// r = sin(alpha / 2).
+    MirrorBall,
+}
+
+/// The light-probe maps. With n = p / |p| and d = sqrt(nx^2 + ny^2), the lecture's
+/// u = (1 + r(alpha) nx / d) / 2 is written as u = (1 + g nx) / 2 with g = r(alpha) / d, which is
+/// smooth through the z axis (g -> 1 / pi): no division by zero where the lecture's cos beta
+/// is 0 / 0. Only the antipode (alpha = pi), where the whole rim meets, is singular; it maps to
+/// the rim point beta = 0, (u, v) = (1, 0.5).
+fn probe(p: Vec3A, flip_z: bool, curve: ProbeCurve) -> MappedPoint {
+    let Some((q, scale)) = rescaled(p) else {
+        return MappedPoint {
+            uv: Vec2::splat(0.5),
+            grad_u: Vec3A::ZERO,
+            grad_v: Vec3A::ZERO,
+        };
+    };
+    let q_len = q.length();
+    let n = q / q_len;
+    let len = q_len * scale;
+    let (x, y) = (n.x, n.y);
+    let z = if flip_z { -n.z } else { n.z };
+    let d = (x * x + y * y).sqrt();
+    let alpha = d.atan2(z);
+    // g = r / d and its derivatives with respect to (x, y, z) of the unit vector.
+    let (g, dg_dd_over_d, dg_dz) = match curve {
+        ProbeCurve::Angular => {
+            if d < 1e-2 && z > 0.0 {
+                // Series about the axis: alpha / d = 1 + d^2 / 6 ..., dg/dd / d = (2/3 + d^2/5)/pi
+                let g = (1.0 + d * d / 6.0) / PI;
+                (g, -(2.0 / 3.0 + d * d / 5.0) / PI, -1.0 / PI)
+            } else if d > 0.0 {
+                let g = alpha / (PI * d);
+                (g, (z - alpha / d) / (PI * d * d), -1.0 / PI)
+            } else {
+                return antipode(flip_z);
+            }
+        }
+        ProbeCurve::MirrorBall => {
+            // r = sin(alpha / 2) = sqrt((1 - z) / 2); g = r / d = 1 / (2 cos(alpha / 2))
+            // = 1 / sqrt(2 (1 + z)).
+            let s2 = 2.0 * (1.0 + z);
+            if s2 <= 1e-12 {
+                return antipode(flip_z);
+            }
+            let g = 1.0 / s2.sqrt();
+            (g, 0.0, -g * g * g)
+        }
+    };
+    let half = 0.5;
+    let u = (half + half * g * x).clamp(0.0, 1.0);
+    let v = (half + half * g * y).clamp(0.0, 1.0);
+    // Gradient with respect to n (x, y, z treated as free), then projected onto the sphere's
+    // tangent plane and divided by |p|.
+    let dz = if flip_z { -dg_dz } else { dg_dz };
+    let grad_g = Vec3A::new(x * dg_dd_over_d, y * dg_dd_over_d, dz);
+    let gu = half * (Vec3A::new(g, 0.0, 0.0) + x * grad_g);
+    let gv = half * (Vec3A::new(0.0, g, 0.0) + y * grad_g);
+    let tangent = |gr: Vec3A| {
+        let t = (gr - n * n.dot(gr)) / len;
+        if t.is_finite() { t } else { Vec3A::ZERO }
+    };
+    MappedPoint {
+        uv: Vec2::new(u, v),
+        grad_u: tangent(gu),
+        grad_v: tangent(gv),
+    }
+}
+
+fn antipode(_flip_z: bool) -> MappedPoint {
+    MappedPoint {
+        uv: Vec2::new(1.0, 0.5),
+        grad_u: Vec3A::ZERO,
+        grad_v: Vec3A::ZERO,
+    }
+}
+
+#[cfg(test)]
+mod tests;

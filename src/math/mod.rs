@@ -1,0 +1,132 @@
+//! Small math types shared by every stage: glam re-exports, rays with differentials, colour,
+//! frames and a seeded, stateless random number source.
+
+mod color;
+mod rng;
+
+pub use color::{Rgb, linear_to_srgb, srgb_to_linear, srgb8_table, srgb8_to_linear};
+pub use glam::{Affine3A, Mat3, Mat3A, Quat, Vec2, Vec3, Vec3A};
+pub use rng::{SampleRng, hash3};
+
+/// 2 pi, the cylindrical and spherical maps' full turn.
+pub const TAU: f32 = std::f32::consts::TAU;
+/// pi.
+pub const PI: f32 = std::f32::consts::PI;
+/// 1 / pi, the Lambertian normalisation of the lecture's `SV_Lambertian::f`.
+pub const INV_PI: f32 = std::f32::consts::FRAC_1_PI;
+
+/// A ray `origin + t * dir`; `dir` need not be unit length (instance transforms scale it, and
+/// keeping it unnormalised keeps `t` the same in world and object space).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Ray {
+    /// Where the ray starts.
+    pub origin: Vec3A,
+    /// Its direction (any non-zero length).
+    pub dir: Vec3A,
+}
+
+impl Ray {
+    /// A ray from `origin` along `dir`.
+    #[must_use]
+    pub fn new(origin: Vec3A, dir: Vec3A) -> Self {
+        Self { origin, dir }
+    }
+
+    /// The point at parameter `t`.
+    #[must_use]
+    #[inline]
+    pub fn at(&self, t: f32) -> Vec3A {
+        self.origin + t * self.dir
+    }
+
+    /// The ray carried through an affine transform (direction not renormalised).
+    #[must_use]
+    #[inline]
+    pub fn transformed(&self, m: &Affine3A) -> Self {
+        Self {
+            origin: m.transform_point3a(self.origin),
+            dir: m.transform_vector3a(self.dir),
+        }
+    }
+}
+
+/// The offsets of a camera ray's neighbours one pixel to the right (x) and one pixel down (y),
+/// as pbrt's ray differentials: enough to find the footprint of a pixel on a surface.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RayDifferential {
+    /// Origin of the ray one pixel to the right.
+    pub rx_origin: Vec3A,
+    /// Direction of the ray one pixel to the right.
+    pub rx_dir: Vec3A,
+    /// Origin of the ray one pixel down.
+    pub ry_origin: Vec3A,
+    /// Direction of the ray one pixel down.
+    pub ry_dir: Vec3A,
+}
+
+impl RayDifferential {
+    /// The differentials carried through an affine transform.
+    #[must_use]
+    #[inline]
+    pub fn transformed(&self, m: &Affine3A) -> Self {
+        Self {
+            rx_origin: m.transform_point3a(self.rx_origin),
+            rx_dir: m.transform_vector3a(self.rx_dir),
+            ry_origin: m.transform_point3a(self.ry_origin),
+            ry_dir: m.transform_vector3a(self.ry_dir),
+        }
+    }
+
+    /// Scales the offsets from the main ray by `s` (used when a pixel takes several samples,
+    /// so each sample's footprint shrinks with the sample spacing).
+    #[must_use]
+    pub fn scaled_about(&self, ray: &Ray, s: f32) -> Self {
+        Self {
+            rx_origin: ray.origin + (self.rx_origin - ray.origin) * s,
+            rx_dir: ray.dir + (self.rx_dir - ray.dir) * s,
+            ry_origin: ray.origin + (self.ry_origin - ray.origin) * s,
+            ry_dir: ray.dir + (self.ry_dir - ray.dir) * s,
+        }
+    }
+
+    /// dp/dx and dp/dy on the plane through `p` with normal `n`, where the main ray hit
+    /// (pbrt's construction); zero where an offset ray runs parallel to the plane.
+    #[must_use]
+    #[inline]
+    pub fn footprint_on_plane(&self, p: Vec3A, n: Vec3A) -> (Vec3A, Vec3A) {
+        let d = n.dot(p);
+        let offset = |o: Vec3A, dir: Vec3A| {
+            let denom = n.dot(dir);
+            if denom.abs() < 1e-20 {
+                return Vec3A::ZERO;
+            }
+            let t = (d - n.dot(o)) / denom;
+            let q = o + t * dir - p;
+            if q.is_finite() { q } else { Vec3A::ZERO }
+        };
+        (
+            offset(self.rx_origin, self.rx_dir),
+            offset(self.ry_origin, self.ry_dir),
+        )
+    }
+}
+
+/// The largest absolute component of `p`, used to scale offsets and tolerances with the size of
+/// the numbers involved.
+#[must_use]
+#[inline]
+pub fn max_abs(p: Vec3A) -> f32 {
+    p.abs().max_element()
+}
+
+/// An orthonormal basis whose third axis is `n` (Duff et al. 2017, branchless).
+#[must_use]
+pub fn frame_from_normal(n: Vec3A) -> (Vec3A, Vec3A) {
+    let sign = 1.0_f32.copysign(n.z);
+    let a = -1.0 / (sign + n.z);
+    let b = n.x * n.y * a;
+    (
+        Vec3A::new(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x),
+        Vec3A::new(b, sign + n.y * n.y * a, -n.y),
+    )
+}

@@ -1,0 +1,439 @@
+//! Reading, validating and writing presets, and building the runtime [`Scene`] from one.
+
+use super::desc::{
+    CameraDesc, LightDesc, MaterialDesc, PRESET_VERSION, ProjectionDesc, RenderDesc, SceneDesc,
+    TextureDesc, TransformDesc,
+};
+use super::{RenderSettings, Scene};
+use crate::camera::{Camera, Projection};
+use crate::error::{Error, Result};
+use crate::geometry::Object;
+use crate::material::{Light, Material};
+use crate::math::{Affine3A, Quat, Vec3, Vec3A};
+use crate::texture::{
+    Checker, ImageData, ImageTexture, Lookup, Texture, load_image, uv_grid_image,
+};
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+/// Largest accepted width or height of a render.
+pub const MAX_RESOLUTION: u32 = 16_384;
+/// Largest accepted samples per pixel.
+pub const MAX_SPP: u32 = 1 << 20;
+/// Largest preset file read (a preset is a few kilobytes; anything huge is a mistake).
+pub const MAX_PRESET_BYTES: u64 = 16 << 20;
+/// Side of the generated UV test grid image.
+pub const UV_GRID_SIZE: u32 = 1024;
+
+/// Parses preset text; errors carry `path` and the line and column where parsing stopped.
+///
+/// # Errors
+/// Malformed RON, unknown fields, wrong types, or an unsupported `version`.
+pub fn parse_preset(text: &str, path: &Path) -> Result<SceneDesc> {
+    let desc: SceneDesc = ron::from_str(text).map_err(|e| Error::Preset {
+        path: path.to_path_buf(),
+        line: e.span.start.line,
+        column: e.span.start.col,
+        message: e.code.to_string(),
+    })?;
+    if desc.version != PRESET_VERSION {
+        return Err(Error::invalid(
+            path,
+            format!(
+                "version {} is not supported (this texplore reads version {PRESET_VERSION})",
+                desc.version
+            ),
+        ));
+    }
+    Ok(desc)
+}
+
+/// Reads and parses a preset file.
+///
+/// # Errors
+/// The file cannot be read, is too large, or does not parse.
+pub fn load_preset(path: &Path) -> Result<SceneDesc> {
+    let meta = std::fs::metadata(path).map_err(|e| Error::io(path, e))?;
+    if meta.len() > MAX_PRESET_BYTES {
+        return Err(Error::invalid(
+            path,
+            format!("{} bytes is too large for a preset", meta.len()),
+        ));
+    }
+    let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+    parse_preset(&text, path)
+}
+
+/// The preset as pretty RON.
+#[must_use]
+pub fn to_ron(desc: &SceneDesc) -> String {
+    let config = ron::ser::PrettyConfig::new()
+        .depth_limit(8)
+        .struct_names(false);
+    ron::ser::to_string_pretty(desc, config).unwrap_or_else(|e| format!("// cannot serialise: {e}"))
+}
+
+/// Writes a preset atomically (temporary file, then rename).
+///
+/// # Errors
+/// The file cannot be written.
+pub fn save_preset(desc: &SceneDesc, path: &Path) -> Result<()> {
+    let tmp = path.with_extension("ron.tmp");
+    std::fs::write(&tmp, to_ron(desc)).map_err(|e| Error::io(&tmp, e))?;
+    std::fs::rename(&tmp, path).map_err(|e| Error::io(path, e))
+}
+
+/// Decoded images shared between builds, so an edit in the GUI does not decode the Earth again.
+#[derive(Debug, Default)]
+pub struct AssetCache {
+    images: HashMap<(PathBuf, bool), Arc<ImageData>>,
+    uv_grid: Option<Arc<ImageData>>,
+}
+
+impl AssetCache {
+    /// An empty cache.
+    #[must_use]
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// The image at `path`, decoded once.
+    ///
+    /// # Errors
+    /// See [`load_image`].
+    pub fn image(&mut self, path: &Path, srgb: bool) -> Result<Arc<ImageData>> {
+        let key = (path.to_path_buf(), srgb);
+        if let Some(img) = self.images.get(&key) {
+            return Ok(img.clone());
+        }
+        let img = Arc::new(load_image(path, srgb)?);
+        self.images.insert(key, img.clone());
+        Ok(img)
+    }
+
+    /// The generated UV test grid.
+    pub fn uv_grid(&mut self) -> Arc<ImageData> {
+        self.uv_grid
+            .get_or_insert_with(|| Arc::new(uv_grid_image(UV_GRID_SIZE)))
+            .clone()
+    }
+}
+
+/// Resolution and samples for one render, possibly overriding the preset's.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Overrides {
+    /// Width in pixels.
+    pub width: Option<u32>,
+    /// Height in pixels.
+    pub height: Option<u32>,
+    /// Samples per pixel.
+    pub spp: Option<u32>,
+    /// Seed.
+    pub seed: Option<u32>,
+}
+
+/// Builds the runtime scene. `preset_path` names the file in errors; asset paths are resolved
+/// relative to its directory.
+///
+/// # Errors
+/// An out-of-range value (naming the field) or an asset that cannot be loaded.
+pub fn build_scene(desc: &SceneDesc, preset_path: &Path, cache: &mut AssetCache) -> Result<Scene> {
+    let base = preset_path.parent().unwrap_or(Path::new("."));
+    let bad = |msg: String| Error::invalid(preset_path, msg);
+    let settings = render_settings(&desc.render).map_err(bad)?;
+    let camera = camera(&desc.camera, settings.width, settings.height).map_err(bad)?;
+    let ambient = desc.ambient.color * desc.ambient.ls;
+    finite_non_negative("ambient", &[desc.ambient.ls]).map_err(bad)?;
+
+    let mut lights = Vec::with_capacity(desc.lights.len());
+    for (i, l) in desc.lights.iter().enumerate() {
+        lights.push(light(l).map_err(|m| bad(format!("lights[{i}]: {m}")))?);
+    }
+
+    let mut objects = Vec::with_capacity(desc.objects.len());
+    let mut materials = Vec::with_capacity(desc.objects.len());
+    let mut needs_differentials = false;
+    for (i, o) in desc.objects.iter().enumerate() {
+        let what = if o.name.is_empty() {
+            format!("objects[{i}]")
+        } else {
+            format!("objects[{i}] ({})", o.name)
+        };
+        let transform =
+            transform(&o.transform).map_err(|m| bad(format!("{what}.transform: {m}")))?;
+        let material = material(&o.material, base, cache).map_err(|e| match e {
+            Error::Invalid { message, .. } => bad(format!("{what}.material: {message}")),
+            other => other,
+        })?;
+        needs_differentials |= material.texture().needs_differentials();
+        let name = if o.name.is_empty() {
+            format!("{:?} {i}", o.shape)
+        } else {
+            o.name.clone()
+        };
+        let mut obj = Object::new(o.shape, transform, materials.len(), name);
+        obj.casts_shadows = o.casts_shadows.unwrap_or(material.is_lit());
+        materials.push(material);
+        objects.push(obj);
+    }
+    Ok(Scene {
+        objects,
+        materials,
+        lights,
+        ambient,
+        camera,
+        settings,
+        needs_differentials,
+    })
+}
+
+fn render_settings(r: &RenderDesc) -> std::result::Result<RenderSettings, String> {
+    if !(1..=MAX_RESOLUTION).contains(&r.width) || !(1..=MAX_RESOLUTION).contains(&r.height) {
+        return Err(format!(
+            "render: resolution {}x{} is out of range (1 to {MAX_RESOLUTION} per side)",
+            r.width, r.height
+        ));
+    }
+    if !(1..=MAX_SPP).contains(&r.spp) {
+        return Err(format!(
+            "render.spp: {} is out of range (1 to {MAX_SPP})",
+            r.spp
+        ));
+    }
+    if !r.exposure.is_finite() || r.exposure.abs() > 64.0 {
+        return Err(format!(
+            "render.exposure: {} stops is out of range (-64 to 64)",
+            r.exposure
+        ));
+    }
+    finite_non_negative("render.background", &r.background.to_array())?;
+    Ok(RenderSettings {
+        width: r.width,
+        height: r.height,
+        spp: r.spp,
+        seed: r.seed,
+        sampler: r.sampler,
+        exposure_scale: r.exposure.exp2(),
+        background: r.background,
+    })
+}
+
+fn finite_vec(what: &str, v: Vec3) -> std::result::Result<Vec3A, String> {
+    if v.is_finite() {
+        Ok(v.into())
+    } else {
+        Err(format!("{what}: {v} is not finite"))
+    }
+}
+
+fn finite_non_negative(what: &str, values: &[f32]) -> std::result::Result<(), String> {
+    match values.iter().find(|v| !(v.is_finite() && **v >= 0.0)) {
+        Some(v) => Err(format!("{what}: {v} must be finite and not negative")),
+        None => Ok(()),
+    }
+}
+
+fn camera(c: &CameraDesc, width: u32, height: u32) -> std::result::Result<Camera, String> {
+    let eye = finite_vec("camera.eye", c.eye)?;
+    let look_at = finite_vec("camera.look_at", c.look_at)?;
+    let up = finite_vec("camera.up", c.up)?;
+    if (eye - look_at).length_squared() == 0.0 {
+        return Err("camera: eye and look_at are the same point".into());
+    }
+    if up.length_squared() == 0.0 {
+        return Err("camera.up: must not be zero".into());
+    }
+    let in_range = |what: &str, v: f32, max: f32| {
+        if v > 0.0 && v <= max {
+            Ok(v.to_radians())
+        } else {
+            Err(format!(
+                "camera.{what}: {v} degrees is out of range (0, {max}]"
+            ))
+        }
+    };
+    let projection = match c.projection {
+        ProjectionDesc::Pinhole { fov } => {
+            let fov_y = in_range("fov", fov, 179.0)?;
+            Projection::Pinhole { fov_y }
+        }
+        ProjectionDesc::Fisheye { fov } => Projection::Fisheye {
+            psi_max: in_range("fov", fov, 360.0)? * 0.5,
+        },
+        ProjectionDesc::Spherical { h_fov, v_fov } => Projection::Spherical {
+            lambda_max: in_range("h_fov", h_fov, 360.0)? * 0.5,
+            psi_max: in_range("v_fov", v_fov, 180.0)? * 0.5,
+        },
+    };
+    Ok(Camera::new(eye, look_at, up, projection, width, height))
+}
+
+fn light(l: &LightDesc) -> std::result::Result<Light, String> {
+    Ok(match *l {
+        LightDesc::Directional {
+            direction,
+            ls,
+            color,
+            shadows,
+        } => {
+            let d = finite_vec("direction", direction)?;
+            let to_light = d.try_normalize().ok_or("direction: must not be zero")?;
+            finite_non_negative("ls", &[ls])?;
+            finite_non_negative("color", &color.to_array())?;
+            Light::Directional {
+                to_light,
+                radiance: color * ls,
+                shadows,
+            }
+        }
+        LightDesc::Point {
+            position,
+            ls,
+            color,
+            shadows,
+        } => {
+            finite_non_negative("ls", &[ls])?;
+            finite_non_negative("color", &color.to_array())?;
+            Light::Point {
+                position: finite_vec("position", position)?,
+                radiance: color * ls,
+                shadows,
+            }
+        }
+    })
+}
+
+fn transform(t: &TransformDesc) -> std::result::Result<Affine3A, String> {
+    let translate = finite_vec("translate", t.translate)?;
+    let rotate = finite_vec("rotate", t.rotate)?;
+    let scale = finite_vec("scale", t.scale)?;
+    if scale.abs().min_element() < 1e-30 || scale.abs().max_element() > 1e30 {
+        return Err(format!(
+            "scale: {} must be non-zero and below 1e30 on every axis",
+            t.scale
+        ));
+    }
+    let r = Quat::from_rotation_z(rotate.z.to_radians())
+        * Quat::from_rotation_y(rotate.y.to_radians())
+        * Quat::from_rotation_x(rotate.x.to_radians());
+    Ok(Affine3A::from_scale_rotation_translation(
+        scale.into(),
+        r,
+        translate.into(),
+    ))
+}
+
+fn material(m: &MaterialDesc, base: &Path, cache: &mut AssetCache) -> Result<Material> {
+    let check =
+        |what: &str, v: &[f32]| finite_non_negative(what, v).map_err(|m| Error::invalid(base, m));
+    Ok(match m {
+        MaterialDesc::Matte { ka, kd, cd } => {
+            check("ka/kd", &[*ka, *kd])?;
+            Material::Matte {
+                ka: *ka,
+                kd: *kd,
+                cd: texture(cd, base, cache)?,
+            }
+        }
+        MaterialDesc::Phong {
+            ka,
+            kd,
+            cd,
+            ks,
+            cs,
+            exp,
+        } => {
+            check("ka/kd/ks/exp", &[*ka, *kd, *ks, *exp])?;
+            check("cs", &cs.to_array())?;
+            Material::Phong {
+                ka: *ka,
+                kd: *kd,
+                cd: texture(cd, base, cache)?,
+                ks: *ks,
+                cs: *cs,
+                exp: *exp,
+            }
+        }
+        MaterialDesc::Emissive { ls, ce } => {
+            check("ls", &[*ls])?;
+            Material::Emissive {
+                ls: *ls,
+                ce: texture(ce, base, cache)?,
+            }
+        }
+    })
+}
+
+fn texture(t: &TextureDesc, base: &Path, cache: &mut AssetCache) -> Result<Texture> {
+    let invalid = |m: String| Error::invalid(base, m);
+    Ok(match t {
+        TextureDesc::Constant(c) => {
+            finite_non_negative("Constant", &c.to_array()).map_err(invalid)?;
+            Texture::Constant(*c)
+        }
+        TextureDesc::Image {
+            path,
+            mapping,
+            filter,
+            lookup,
+            wrap,
+            scale,
+            srgb,
+        } => {
+            finite_non_negative("Image.scale", &[*scale]).map_err(invalid)?;
+            let image = cache.image(&base.join(path), *srgb)?;
+            Texture::Image(ImageTexture {
+                image,
+                mapping: *mapping,
+                filter: *filter,
+                lookup: *lookup,
+                wrap: *wrap,
+                scale: *scale,
+            })
+        }
+        TextureDesc::Checker {
+            mapping,
+            squares,
+            colors,
+        } => {
+            let ok = |s: f32| s.is_finite() && s > 0.0 && s <= 1e6;
+            if !ok(squares.0) || !ok(squares.1) {
+                return Err(invalid(format!(
+                    "Checker.squares: {squares:?} must be positive and at most 1e6"
+                )));
+            }
+            finite_non_negative(
+                "Checker.colors",
+                &[colors.0.to_array(), colors.1.to_array()].concat(),
+            )
+            .map_err(invalid)?;
+            Texture::Checker(Checker {
+                mapping: *mapping,
+                squares: *squares,
+                colors: *colors,
+            })
+        }
+        TextureDesc::UvGrid {
+            mapping,
+            filter,
+            wrap,
+        } => Texture::Image(ImageTexture {
+            image: cache.uv_grid(),
+            mapping: *mapping,
+            filter: *filter,
+            lookup: Lookup::Centred,
+            wrap: *wrap,
+            scale: 1.0,
+        }),
+    })
+}
+
+/// Applies command-line overrides to a preset's render settings.
+pub fn apply_overrides(desc: &mut SceneDesc, o: Overrides) {
+    let r = &mut desc.render;
+    r.width = o.width.unwrap_or(r.width);
+    r.height = o.height.unwrap_or(r.height);
+    r.spp = o.spp.unwrap_or(r.spp);
+    r.seed = o.seed.unwrap_or(r.seed);
+}

@@ -1,0 +1,409 @@
+//! Presets: the serde description of a scene, as written in `presets/*.ron`.
+//!
+//! A preset states only what its scene needs; `#[serde(default)]` fills the rest. Unknown fields
+//! are errors (a typo must not silently fall back to a default). Colours are linear RGB.
+
+use crate::geometry::Shape;
+use crate::mapping::Mapping;
+use crate::math::{Rgb, Vec3};
+use crate::sampler::PixelSampler;
+use crate::texture::{Filter, Lookup, Wrap};
+use serde::{Deserialize, Serialize};
+
+/// The preset format version this build reads and writes.
+pub const PRESET_VERSION: u32 = 1;
+
+/// A whole scene: camera, lights, objects and render settings.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneDesc {
+    /// Preset format version ([`PRESET_VERSION`]).
+    pub version: u32,
+    /// One line saying what the scene shows.
+    #[serde(default, skip_serializing_if = "String::is_empty")]
+    pub description: String,
+    /// The camera.
+    pub camera: CameraDesc,
+    /// Resolution, samples, seed, exposure.
+    #[serde(default)]
+    pub render: RenderDesc,
+    /// Ambient light.
+    #[serde(default)]
+    pub ambient: AmbientDesc,
+    /// Directional and point lights.
+    #[serde(default)]
+    pub lights: Vec<LightDesc>,
+    /// The objects.
+    pub objects: Vec<ObjectDesc>,
+    /// Settings for `texplore snapshot`.
+    #[serde(default)]
+    pub snapshot: SnapshotDesc,
+}
+
+/// Camera placement and projection.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CameraDesc {
+    /// Eye position.
+    pub eye: Vec3,
+    /// The point looked at.
+    #[serde(default)]
+    pub look_at: Vec3,
+    /// Approximate up direction.
+    #[serde(default = "default_up")]
+    pub up: Vec3,
+    /// Projection and its angles.
+    #[serde(default)]
+    pub projection: ProjectionDesc,
+}
+
+fn default_up() -> Vec3 {
+    Vec3::Y
+}
+
+/// Camera projections. Angles in degrees.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub enum ProjectionDesc {
+    /// Perspective with a vertical field of view.
+    Pinhole {
+        /// Vertical field of view, degrees.
+        fov: f32,
+    },
+    /// Equidistant fisheye with the full angle across the inscribed circle.
+    Fisheye {
+        /// Full field of view, degrees (360 sees everything).
+        fov: f32,
+    },
+    /// Equirectangular panorama.
+    Spherical {
+        /// Horizontal field of view, degrees (360 for all around).
+        h_fov: f32,
+        /// Vertical field of view, degrees (180 for pole to pole).
+        v_fov: f32,
+    },
+}
+
+impl Default for ProjectionDesc {
+    fn default() -> Self {
+        Self::Pinhole { fov: 45.0 }
+    }
+}
+
+/// Render settings.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct RenderDesc {
+    /// Image width in pixels.
+    pub width: u32,
+    /// Image height in pixels.
+    pub height: u32,
+    /// Samples per pixel.
+    pub spp: u32,
+    /// Seed of every random number.
+    pub seed: u32,
+    /// Where samples go in a pixel.
+    pub sampler: PixelSampler,
+    /// Exposure in stops (multiplies radiance by 2^exposure before display).
+    pub exposure: f32,
+    /// Colour of rays that hit nothing.
+    pub background: Rgb,
+}
+
+impl Default for RenderDesc {
+    fn default() -> Self {
+        Self {
+            width: 640,
+            height: 480,
+            spp: 16,
+            seed: 0,
+            sampler: PixelSampler::Jittered,
+            exposure: 0.0,
+            background: Rgb::BLACK,
+        }
+    }
+}
+
+/// Settings `texplore snapshot` renders at (small and quick, but enough to see every feature).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct SnapshotDesc {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// Samples per pixel.
+    pub spp: u32,
+}
+
+impl Default for SnapshotDesc {
+    fn default() -> Self {
+        Self {
+            width: 320,
+            height: 240,
+            spp: 4,
+        }
+    }
+}
+
+/// The ambient light: radiance `ls * color` from everywhere.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct AmbientDesc {
+    /// Radiance scale.
+    pub ls: f32,
+    /// Colour.
+    pub color: Rgb,
+}
+
+impl Default for AmbientDesc {
+    fn default() -> Self {
+        Self {
+            ls: 1.0,
+            color: Rgb::WHITE,
+        }
+    }
+}
+
+/// A light.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub enum LightDesc {
+    /// Light from one direction (the sun).
+    Directional {
+        /// Direction from surfaces toward the light (need not be unit length).
+        direction: Vec3,
+        /// Radiance scale.
+        #[serde(default = "one")]
+        ls: f32,
+        /// Colour.
+        #[serde(default = "white")]
+        color: Rgb,
+        /// Whether objects cast shadows from it.
+        #[serde(default = "yes")]
+        shadows: bool,
+    },
+    /// Light from a point, without fall-off (the lecture's).
+    Point {
+        /// Position.
+        position: Vec3,
+        /// Radiance scale.
+        #[serde(default = "one")]
+        ls: f32,
+        /// Colour.
+        #[serde(default = "white")]
+        color: Rgb,
+        /// Whether objects cast shadows from it.
+        #[serde(default = "yes")]
+        shadows: bool,
+    },
+}
+
+fn one() -> f32 {
+    1.0
+}
+fn white() -> Rgb {
+    Rgb::WHITE
+}
+fn yes() -> bool {
+    true
+}
+
+/// An object: a generic shape, where it is, and what it is made of.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ObjectDesc {
+    /// A name for menus and messages.
+    #[serde(default, skip_serializing_if = "String::is_empty")]
+    pub name: String,
+    /// The generic shape.
+    pub shape: Shape,
+    /// Scale, then rotate, then translate.
+    #[serde(default)]
+    pub transform: TransformDesc,
+    /// The material.
+    pub material: MaterialDesc,
+    /// Whether it blocks shadow rays (default: yes, except emissive objects).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub casts_shadows: Option<bool>,
+}
+
+/// An instance transform: scale, then rotate (degrees about x, then y, then z), then translate.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct TransformDesc {
+    /// Translation.
+    pub translate: Vec3,
+    /// Rotation in degrees about x, then y, then z.
+    pub rotate: Vec3,
+    /// Scale along each axis.
+    pub scale: Vec3,
+}
+
+impl Default for TransformDesc {
+    fn default() -> Self {
+        Self {
+            translate: Vec3::ZERO,
+            rotate: Vec3::ZERO,
+            scale: Vec3::ONE,
+        }
+    }
+}
+
+/// Materials.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub enum MaterialDesc {
+    /// The lecture's `SV_Matte`: ambient + diffuse with a textured colour.
+    Matte {
+        /// Ambient coefficient.
+        #[serde(default = "default_ka")]
+        ka: f32,
+        /// Diffuse coefficient.
+        #[serde(default = "default_kd")]
+        kd: f32,
+        /// Diffuse colour.
+        cd: TextureDesc,
+    },
+    /// Matte with a Phong highlight.
+    Phong {
+        /// Ambient coefficient.
+        #[serde(default = "default_ka")]
+        ka: f32,
+        /// Diffuse coefficient.
+        #[serde(default = "default_kd")]
+        kd: f32,
+        /// Diffuse colour.
+        cd: TextureDesc,
+        /// Specular coefficient.
+        #[serde(default = "default_ks")]
+        ks: f32,
+        /// Specular colour.
+        #[serde(default = "white")]
+        cs: Rgb,
+        /// Phong exponent.
+        #[serde(default = "default_exp")]
+        exp: f32,
+    },
+    /// The lecture's `SV_Emissive`: glows with a textured colour, ignores lights.
+    Emissive {
+        /// Radiance scale.
+        #[serde(default = "one")]
+        ls: f32,
+        /// Emitted colour.
+        ce: TextureDesc,
+    },
+}
+
+fn default_ka() -> f32 {
+    0.25
+}
+fn default_kd() -> f32 {
+    0.75
+}
+fn default_ks() -> f32 {
+    0.25
+}
+fn default_exp() -> f32 {
+    20.0
+}
+
+/// Textures.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub enum TextureDesc {
+    /// One colour everywhere.
+    Constant(Rgb),
+    /// An image file through a mapping.
+    Image {
+        /// Path, relative to the preset file.
+        path: String,
+        /// How hit points become (u, v).
+        #[serde(default)]
+        mapping: Mapping,
+        /// How texels are combined.
+        #[serde(default)]
+        filter: Filter,
+        /// Which texel the nearest filter picks.
+        #[serde(default)]
+        lookup: Lookup,
+        /// Outside [0, 1].
+        #[serde(default)]
+        wrap: Wrap,
+        /// Multiplier on the texel values.
+        #[serde(default = "one")]
+        scale: f32,
+        /// Whether 8- and 16-bit files are sRGB-encoded (almost always).
+        #[serde(default = "yes")]
+        srgb: bool,
+    },
+    /// A checkerboard in (u, v).
+    Checker {
+        /// How hit points become (u, v).
+        #[serde(default)]
+        mapping: Mapping,
+        /// Squares along u and along v over [0, 1].
+        #[serde(default = "default_squares")]
+        squares: (f32, f32),
+        /// The two colours.
+        #[serde(default = "default_checker_colors")]
+        colors: (Rgb, Rgb),
+    },
+    /// The labelled UV test grid (cells A1 to H8).
+    UvGrid {
+        /// How hit points become (u, v).
+        #[serde(default)]
+        mapping: Mapping,
+        /// How texels are combined.
+        #[serde(default)]
+        filter: Filter,
+        /// Outside [0, 1].
+        #[serde(default)]
+        wrap: Wrap,
+    },
+}
+
+fn default_squares() -> (f32, f32) {
+    (8.0, 8.0)
+}
+fn default_checker_colors() -> (Rgb, Rgb) {
+    (Rgb::grey(0.8), Rgb::grey(0.05))
+}
+
+impl TextureDesc {
+    /// The mapping, for textures that have one.
+    #[must_use]
+    pub fn mapping(&self) -> Option<Mapping> {
+        match self {
+            Self::Constant(_) => None,
+            Self::Image { mapping, .. }
+            | Self::Checker { mapping, .. }
+            | Self::UvGrid { mapping, .. } => Some(*mapping),
+        }
+    }
+
+    /// Sets the mapping of a texture that has one.
+    pub fn set_mapping(&mut self, m: Mapping) {
+        match self {
+            Self::Constant(_) => {}
+            Self::Image { mapping, .. }
+            | Self::Checker { mapping, .. }
+            | Self::UvGrid { mapping, .. } => *mapping = m,
+        }
+    }
+}
+
+impl MaterialDesc {
+    /// The colour texture.
+    #[must_use]
+    pub fn texture(&self) -> &TextureDesc {
+        match self {
+            Self::Matte { cd, .. } | Self::Phong { cd, .. } => cd,
+            Self::Emissive { ce, .. } => ce,
+        }
+    }
+
+    /// The colour texture, mutably.
+    pub fn texture_mut(&mut self) -> &mut TextureDesc {
+        match self {
+            Self::Matte { cd, .. } | Self::Phong { cd, .. } => cd,
+            Self::Emissive { ce, .. } => ce,
+        }
+    }
+}

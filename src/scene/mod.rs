@@ -1,0 +1,224 @@
+//! Scenes: presets on disk ([`SceneDesc`]), asset loading, and the immutable runtime [`Scene`]
+//! that the renderer traces.
+
+mod build;
+mod desc;
+
+pub use build::{
+    AssetCache, MAX_RESOLUTION, MAX_SPP, Overrides, apply_overrides, build_scene, load_preset,
+    parse_preset, save_preset, to_ron,
+};
+pub use desc::*;
+
+use crate::camera::Camera;
+use crate::geometry::{LocalHit, Object, Shape};
+use crate::mapping::Mapping;
+use crate::material::{Light, Material};
+use crate::math::{Ray, RayDifferential, Rgb, Vec3A, max_abs};
+use crate::sampler::PixelSampler;
+use crate::texture::TextureContext;
+
+/// Shadow-ray origins are pushed off the surface along its geometric normal by this fraction of
+/// the magnitude of the coordinates involved (hit point and the object's translation): about a
+/// hundred f32 ulps of the numbers the hit point was computed from. Hit points are reprojected
+/// onto the exact surface in object space, so the only error left is that of the transform,
+/// which scales the same way: the offset is scale-invariant (the same scene scaled by 1e-3 or
+/// 1e3 shadows the same) and clears self-intersection ("shadow acne").
+pub const SHADOW_OFFSET_RELATIVE: f32 = 1e-5;
+
+/// Settings the renderer needs besides geometry.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RenderSettings {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// Target samples per pixel.
+    pub spp: u32,
+    /// Seed of every random number.
+    pub seed: u32,
+    /// Pixel sample pattern.
+    pub sampler: PixelSampler,
+    /// Linear multiplier applied before display (2^exposure).
+    pub exposure_scale: f32,
+    /// Radiance of rays that hit nothing.
+    pub background: Rgb,
+}
+
+/// An immutable, ready-to-trace scene.
+#[derive(Clone, Debug)]
+pub struct Scene {
+    /// The placed objects.
+    pub objects: Vec<Object>,
+    /// Materials, indexed by `Object::material`.
+    pub materials: Vec<Material>,
+    /// Directional and point lights.
+    pub lights: Vec<Light>,
+    /// Ambient radiance.
+    pub ambient: Rgb,
+    /// The camera.
+    pub camera: Camera,
+    /// Render settings.
+    pub settings: RenderSettings,
+    /// Whether any texture needs ray differentials (computed only then).
+    pub needs_differentials: bool,
+}
+
+/// A hit resolved in world space, with what the shading step needs.
+#[derive(Clone, Copy, Debug)]
+pub struct SurfaceHit {
+    /// Index of the object hit.
+    pub object: usize,
+    /// The hit in object space.
+    pub local: LocalHit,
+    /// World-space hit point.
+    pub p: Vec3A,
+    /// World-space geometric normal, facing the incoming ray.
+    pub ng: Vec3A,
+    /// World-space shading normal, on the same side as `ng`.
+    pub ns: Vec3A,
+    /// Unit vector toward the viewer.
+    pub wo: Vec3A,
+}
+
+impl Scene {
+    /// The nearest object hit by `ray` within (0, `t_max`).
+    #[must_use]
+    #[inline]
+    pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<(usize, LocalHit)> {
+        let mut best = None;
+        let mut t_best = t_max;
+        for (i, obj) in self.objects.iter().enumerate() {
+            if let Some(h) = obj.intersect(ray, t_best) {
+                t_best = h.t;
+                best = Some((i, h));
+            }
+        }
+        best
+    }
+
+    /// Whether anything that casts shadows lies on `ray` within (0, `t_max`).
+    #[must_use]
+    #[inline]
+    pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
+        self.objects
+            .iter()
+            .any(|o| o.casts_shadows && o.intersect(ray, t_max).is_some())
+    }
+
+    /// Finds the nearest hit and resolves it in world space.
+    #[must_use]
+    #[inline]
+    pub fn hit(&self, ray: &Ray) -> Option<SurfaceHit> {
+        let (object, local) = self.intersect(ray, f32::INFINITY)?;
+        let obj = &self.objects[object];
+        let p = obj.point_to_world(local.p);
+        let mut ng = obj.normal_to_world(local.n);
+        let mut ns = if local.ns == local.n {
+            ng
+        } else {
+            obj.normal_to_world(local.ns)
+        };
+        let wo = (-ray.dir).normalize_or(Vec3A::Z);
+        // Two-sided surfaces: shade the side the ray came from.
+        if ng.dot(wo) < 0.0 {
+            ng = -ng;
+            ns = -ns;
+        }
+        Some(SurfaceHit {
+            object,
+            local,
+            p,
+            ng,
+            ns,
+            wo,
+        })
+    }
+
+    /// The texture context of a hit: object-space point and, when a filter needs them, the
+    /// object-space offsets to the neighbouring pixels' hits.
+    #[must_use]
+    #[inline]
+    pub fn texture_context(
+        &self,
+        hit: &SurfaceHit,
+        diff: Option<&RayDifferential>,
+    ) -> TextureContext {
+        let obj = &self.objects[hit.object];
+        let (dpdx, dpdy) = match diff {
+            Some(d) if self.needs_differentials => {
+                let d = if obj.identity {
+                    *d
+                } else {
+                    d.transformed(&obj.object_from_world)
+                };
+                d.footprint_on_plane(hit.local.p, hit.local.n)
+            }
+            _ => (Vec3A::ZERO, Vec3A::ZERO),
+        };
+        TextureContext {
+            p: hit.local.p,
+            dpdx,
+            dpdy,
+            shape_uv: hit.local.uv.map(|uv| (uv, hit.local.dpduv)),
+            natural: natural_mapping(&obj.shape),
+        }
+    }
+
+    /// Radiance along a camera ray: the lecture's shading (ambient + direct light with shadows,
+    /// or emission), no global illumination. Never NaN or infinite.
+    #[must_use]
+    #[inline]
+    pub fn trace(&self, ray: &Ray, diff: Option<&RayDifferential>) -> Rgb {
+        let Some(hit) = self.hit(ray) else {
+            return self.settings.background;
+        };
+        let l = self.shade(&hit, diff);
+        if l.is_finite() { l } else { Rgb::BLACK }
+    }
+
+    /// Shades a resolved hit.
+    #[must_use]
+    #[inline]
+    pub fn shade(&self, hit: &SurfaceHit, diff: Option<&RayDifferential>) -> Rgb {
+        let obj = &self.objects[hit.object];
+        let material = &self.materials[obj.material];
+        let ctx = self.texture_context(hit, diff);
+        let sp = material.shade_point(&ctx, self.ambient);
+        if !material.is_lit() {
+            return sp.base;
+        }
+        let mut l = sp.base;
+        let offset = SHADOW_OFFSET_RELATIVE
+            * (max_abs(hit.p) + max_abs(obj.world_from_object.translation)).max(f32::MIN_POSITIVE);
+        for light in &self.lights {
+            let (wi, dist, li, shadows) = light.incident(hit.p);
+            if hit.ns.dot(wi) <= 0.0 || hit.ng.dot(wi) <= 0.0 {
+                continue;
+            }
+            if shadows {
+                let origin = hit.p + hit.ng * offset;
+                let t_max = if dist.is_finite() {
+                    dist - offset
+                } else {
+                    f32::INFINITY
+                };
+                if self.occluded(&Ray::new(origin, wi), t_max) {
+                    continue;
+                }
+            }
+            l += sp.direct(hit.ns, hit.wo, wi, li);
+        }
+        l
+    }
+}
+
+/// The shape's own parameterisation, which [`Mapping::Uv`] falls back to.
+#[must_use]
+pub const fn natural_mapping(shape: &Shape) -> Mapping {
+    match shape {
+        Shape::Sphere => Mapping::Spherical,
+        Shape::Cylinder { .. } => Mapping::Cylindrical,
+        Shape::Plane | Shape::Rectangle | Shape::Disk => Mapping::Rectangular,
+    }
+}

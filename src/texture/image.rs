@@ -1,0 +1,300 @@
+//! Image storage, decoding with explicit limits, texel fetch, nearest and bilinear lookups.
+
+use super::{Lookup, Wrap};
+use crate::error::{Error, Result};
+use crate::math::{Rgb, Vec2, linear_to_srgb, srgb_to_linear, srgb8_table};
+use std::path::Path;
+
+/// The largest width or height an image may have (decoding refuses anything bigger).
+pub const MAX_IMAGE_DIMENSION: u32 = 32_768;
+/// The most memory one decoded image may take.
+pub const MAX_IMAGE_BYTES: u64 = 1 << 30;
+
+/// Texel storage: 8-bit sRGB images stay compact (4 bytes per texel, decoded through a 256-entry
+/// table on lookup); HDR and 16-bit images are kept as linear `f32` (12 bytes per texel).
+#[derive(Clone, Debug)]
+pub enum Texels {
+    /// 8-bit sRGB-encoded RGB, padded to 4 bytes for aligned loads.
+    Srgb8(Vec<[u8; 4]>),
+    /// Linear RGB.
+    Linear(Vec<[f32; 3]>),
+}
+
+/// An image in memory. Row 0 is the top row of the file; the lecture's `v` runs up, so
+/// `row_from_bottom` is converted once, in [`ImageData::texel`].
+#[derive(Clone, Debug)]
+pub struct ImageData {
+    width: u32,
+    height: u32,
+    texels: Texels,
+    /// Where it came from, for the inspector and messages.
+    pub name: String,
+}
+
+impl ImageData {
+    /// An image from texels in file order (top row first).
+    ///
+    /// # Panics
+    /// If the texel count is not `width * height` or a side is zero (a programming error).
+    #[must_use]
+    pub fn new(width: u32, height: u32, texels: Texels, name: impl Into<String>) -> Self {
+        let n = match &texels {
+            Texels::Srgb8(v) => v.len(),
+            Texels::Linear(v) => v.len(),
+        };
+        assert!(
+            width > 0 && height > 0 && n == width as usize * height as usize,
+            "bad image size"
+        );
+        Self {
+            width,
+            height,
+            texels,
+            name: name.into(),
+        }
+    }
+
+    /// A linear-colour image from a closure of (column, row from the top).
+    #[must_use]
+    pub fn from_fn(width: u32, height: u32, name: &str, f: impl Fn(u32, u32) -> Rgb) -> Self {
+        let mut v = Vec::with_capacity(width as usize * height as usize);
+        for y in 0..height {
+            for x in 0..width {
+                v.push(f(x, y).to_array());
+            }
+        }
+        Self::new(width, height, Texels::Linear(v), name)
+    }
+
+    /// Width in texels (the lecture's `hres`).
+    #[must_use]
+    pub const fn width(&self) -> u32 {
+        self.width
+    }
+
+    /// Height in texels (the lecture's `vres`).
+    #[must_use]
+    pub const fn height(&self) -> u32 {
+        self.height
+    }
+
+    /// The storage.
+    #[must_use]
+    pub const fn texels(&self) -> &Texels {
+        &self.texels
+    }
+
+    /// Bytes per texel of the storage.
+    #[must_use]
+    pub const fn bytes_per_texel(&self) -> usize {
+        match self.texels {
+            Texels::Srgb8(_) => 4,
+            Texels::Linear(_) => 12,
+        }
+    }
+
+    /// Whether the image holds linear (HDR or 16-bit) values.
+    #[must_use]
+    pub const fn is_linear(&self) -> bool {
+        matches!(self.texels, Texels::Linear(_))
+    }
+
+    /// The texel at `column` and `row_from_bottom` (the lecture's row, v up), linear RGB.
+    #[must_use]
+    #[inline]
+    pub fn texel(&self, column: u32, row_from_bottom: u32) -> Rgb {
+        let row = self.height - 1 - row_from_bottom;
+        self.texel_top(column, row)
+    }
+
+    /// The texel at `column` and file row `row` (0 = top), linear RGB.
+    #[must_use]
+    #[inline]
+    pub fn texel_top(&self, column: u32, row: u32) -> Rgb {
+        let i = row as usize * self.width as usize + column as usize;
+        match &self.texels {
+            Texels::Srgb8(v) => {
+                let t = srgb8_table();
+                let [r, g, b, _] = v[i];
+                Rgb(t[r as usize], t[g as usize], t[b as usize])
+            }
+            Texels::Linear(v) => Rgb::from_array(v[i]),
+        }
+    }
+
+    /// The texel (column, row from bottom) a nearest lookup picks, or `None` outside under
+    /// [`Wrap::Black`].
+    #[must_use]
+    #[inline]
+    pub fn nearest_index(
+        &self,
+        uv: Vec2,
+        lookup: Lookup,
+        wu: Wrap,
+        wv: Wrap,
+    ) -> Option<(u32, u32)> {
+        let u = wu.coord(uv.x)?;
+        let v = wv.coord(uv.y)?;
+        Some((lookup.index(u, self.width), lookup.index(v, self.height)))
+    }
+
+    /// Nearest-texel lookup.
+    #[must_use]
+    #[inline]
+    pub fn nearest(&self, uv: Vec2, lookup: Lookup, wu: Wrap, wv: Wrap) -> Rgb {
+        match self.nearest_index(uv, lookup, wu, wv) {
+            Some((c, r)) => self.texel(c, r),
+            None => Rgb::BLACK,
+        }
+    }
+
+    /// Bilinear interpolation between the four nearest texel centres, (i + 0.5) / w.
+    #[must_use]
+    #[inline]
+    pub fn bilinear(&self, uv: Vec2, wu: Wrap, wv: Wrap) -> Rgb {
+        let x = uv.x * self.width as f32 - 0.5;
+        let y = uv.y * self.height as f32 - 0.5;
+        if !(x.is_finite() && y.is_finite()) {
+            return self.nearest(uv, Lookup::Centred, wu, wv);
+        }
+        let (x0, y0) = (x.floor(), y.floor());
+        let (fx, fy) = (x - x0, y - y0);
+        let (x0, y0) = (x0 as i64, y0 as i64);
+        let fetch = |i: i64, j: i64| match (wu.index(i, self.width), wv.index(j, self.height)) {
+            (Some(c), Some(r)) => self.texel(c, r),
+            _ => Rgb::BLACK,
+        };
+        let top = fetch(x0, y0 + 1) * (1.0 - fx) + fetch(x0 + 1, y0 + 1) * fx;
+        let bottom = fetch(x0, y0) * (1.0 - fx) + fetch(x0 + 1, y0) * fx;
+        bottom * (1.0 - fy) + top * fy
+    }
+
+    /// The image encoded as 8-bit sRGB RGB bytes (top row first), for display and PNG.
+    #[must_use]
+    pub fn to_srgb8(&self) -> Vec<u8> {
+        let mut out = Vec::with_capacity(self.width as usize * self.height as usize * 3);
+        for row in 0..self.height {
+            for col in 0..self.width {
+                let c = self.texel_top(col, row);
+                for ch in c.to_array() {
+                    out.push((linear_to_srgb(ch) * 255.0).round() as u8);
+                }
+            }
+        }
+        out
+    }
+}
+
+/// Decodes an image file (PNG, JPEG, TIFF, PPM/PGM P2/P3/P5/P6 8- and 16-bit, Radiance HDR,
+/// OpenEXR) under [`MAX_IMAGE_DIMENSION`] and [`MAX_IMAGE_BYTES`].
+///
+/// 8-bit images are taken as sRGB-encoded unless `srgb` is false; 16-bit ones are decoded to
+/// linear floats through the same curve; float formats are linear already.
+///
+/// # Errors
+/// A missing, truncated, corrupt or oversized file, naming the file.
+pub fn load_image(path: &Path, srgb: bool) -> Result<ImageData> {
+    let err = |message: String| Error::Image {
+        path: path.to_path_buf(),
+        message,
+    };
+    let reader = image::ImageReader::open(path).map_err(|e| Error::io(path, e))?;
+    let mut reader = reader
+        .with_guessed_format()
+        .map_err(|e| Error::io(path, e))?;
+    let mut limits = image::Limits::default();
+    limits.max_image_width = Some(MAX_IMAGE_DIMENSION);
+    limits.max_image_height = Some(MAX_IMAGE_DIMENSION);
+    limits.max_alloc = Some(MAX_IMAGE_BYTES);
+    reader.limits(limits);
+    let decoded = reader.decode().map_err(|e| err(e.to_string()))?;
+    let (w, h) = (decoded.width(), decoded.height());
+    if w == 0 || h == 0 {
+        return Err(err("the image is empty (0 pixels)".into()));
+    }
+    let name = path
+        .file_name()
+        .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+    use image::DynamicImage as D;
+    let texels = match decoded {
+        D::ImageRgb32F(_) | D::ImageRgba32F(_) => {
+            let rgb = decoded.to_rgb32f();
+            Texels::Linear(rgb.pixels().map(|p| sanitize(p.0)).collect())
+        }
+        D::ImageLuma16(_) | D::ImageLumaA16(_) | D::ImageRgb16(_) | D::ImageRgba16(_) => {
+            let rgb = decoded.to_rgb16();
+            let dec = |v: u16| {
+                let x = f32::from(v) / 65_535.0;
+                if srgb { srgb_to_linear(x) } else { x }
+            };
+            Texels::Linear(
+                rgb.pixels()
+                    .map(|p| [dec(p.0[0]), dec(p.0[1]), dec(p.0[2])])
+                    .collect(),
+            )
+        }
+        _ => {
+            let rgb = decoded.to_rgb8();
+            if srgb {
+                Texels::Srgb8(
+                    rgb.pixels()
+                        .map(|p| [p.0[0], p.0[1], p.0[2], 255])
+                        .collect(),
+                )
+            } else {
+                let f = |v: u8| f32::from(v) / 255.0;
+                Texels::Linear(
+                    rgb.pixels()
+                        .map(|p| [f(p.0[0]), f(p.0[1]), f(p.0[2])])
+                        .collect(),
+                )
+            }
+        }
+    };
+    Ok(ImageData::new(w, h, texels, name))
+}
+
+/// HDR files may hold NaN or Inf (a corrupt RGBE exponent, an EXR with holes): such texels are
+/// zeroed so they can never reach the film.
+fn sanitize(p: [f32; 3]) -> [f32; 3] {
+    p.map(|v| if v.is_finite() && v >= 0.0 { v } else { 0.0 })
+}
+
+/// Writes RGB8 pixels as a PNG, with optional text chunks (keyword, text), atomically: a
+/// temporary file beside the target is renamed over it, so a failed save never leaves half a
+/// file.
+///
+/// # Errors
+/// The file cannot be written.
+pub fn save_png(
+    path: &Path,
+    width: u32,
+    height: u32,
+    rgb: &[u8],
+    text: &[(&str, &str)],
+) -> Result<()> {
+    let tmp = path.with_extension("png.tmp");
+    let write = || -> std::result::Result<(), String> {
+        let file = std::fs::File::create(&tmp).map_err(|e| e.to_string())?;
+        let mut enc = png::Encoder::new(std::io::BufWriter::new(file), width, height);
+        enc.set_color(png::ColorType::Rgb);
+        enc.set_depth(png::BitDepth::Eight);
+        enc.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
+        for (k, t) in text {
+            enc.add_itxt_chunk((*k).to_string(), (*t).to_string())
+                .map_err(|e| e.to_string())?;
+        }
+        let mut w = enc.write_header().map_err(|e| e.to_string())?;
+        w.write_image_data(rgb).map_err(|e| e.to_string())?;
+        w.finish().map_err(|e| e.to_string())?;
+        Ok(())
+    };
+    if let Err(message) = write() {
+        let _ = std::fs::remove_file(&tmp);
+        return Err(Error::Image {
+            path: path.to_path_buf(),
+            message,
+        });
+    }
+    std::fs::rename(&tmp, path).map_err(|e| Error::io(path, e))
+}

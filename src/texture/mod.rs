@@ -1,0 +1,267 @@
+//! Textures: the lecture's `Texture::get_color`, as one enum with one `match`.
+//!
+//! A texture is evaluated from a [`TextureContext`] (the object-space hit point, its screen-space
+//! offsets and any coordinates the shape carries); image and procedural textures run their
+//! mapping first, then look up or compute the colour.
+
+mod image;
+mod procedural;
+
+pub use image::{ImageData, MAX_IMAGE_BYTES, MAX_IMAGE_DIMENSION, Texels, load_image, save_png};
+pub use procedural::{Checker, uv_grid_image};
+
+use crate::mapping::{Mapping, TexCoord};
+use crate::math::{Rgb, Vec2, Vec3A};
+use serde::{Deserialize, Serialize};
+use std::sync::Arc;
+
+/// Everything a texture may need about a hit.
+#[derive(Clone, Copy, Debug)]
+pub struct TextureContext {
+    /// Hit point in the generic object's space (the lecture's `local_hit_point`).
+    pub p: Vec3A,
+    /// Object-space offset of the hit to the neighbouring pixel's on the right (zero if unknown).
+    pub dpdx: Vec3A,
+    /// Object-space offset of the hit to the neighbouring pixel's below (zero if unknown).
+    pub dpdy: Vec3A,
+    /// (u, v) carried by the shape (mesh vertices), with the triangle's dp/du and dp/dv.
+    pub shape_uv: Option<(Vec2, Option<(Vec3A, Vec3A)>)>,
+    /// The shape's natural parameterisation, used by [`Mapping::Uv`] when it carries none.
+    pub natural: Mapping,
+}
+
+impl TextureContext {
+    /// Coordinates and derivatives under `mapping`.
+    #[must_use]
+    #[inline]
+    pub fn tex_coord(&self, mapping: Mapping) -> TexCoord {
+        mapping.map_with_differentials(self.p, self.dpdx, self.dpdy, self.shape_uv, self.natural)
+    }
+}
+
+/// How a texture becomes colour at a hit.
+#[derive(Clone, Debug)]
+pub enum Texture {
+    /// The lecture's `ConstantColor`: the same colour everywhere.
+    Constant(Rgb),
+    /// The lecture's `ImageTexture`: an image read through a mapping.
+    Image(ImageTexture),
+    /// A procedural checkerboard in (u, v).
+    Checker(Checker),
+}
+
+impl Texture {
+    /// The colour at a hit (linear RGB).
+    #[must_use]
+    #[inline]
+    pub fn eval(&self, ctx: &TextureContext) -> Rgb {
+        match self {
+            Self::Constant(c) => *c,
+            Self::Image(t) => t.eval(ctx),
+            Self::Checker(c) => c.eval(ctx),
+        }
+    }
+
+    /// Whether evaluating needs the hit's screen-space offsets (a filter with a footprint).
+    #[must_use]
+    pub fn needs_differentials(&self) -> bool {
+        match self {
+            Self::Constant(_) | Self::Checker(_) => false,
+            Self::Image(t) => t.filter.needs_footprint(),
+        }
+    }
+}
+
+/// Which texel the nearest lookup picks.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum Lookup {
+    /// The lecture's `column = (int)((hres - 1) u)`: stretches the image by hres / (hres - 1) and
+    /// reaches the last column only at u == 1 exactly. What the book renders.
+    Lecture,
+    /// Texel-centred: `column = min(floor(u hres), hres - 1)`; every texel covers an equal
+    /// share of [0, 1].
+    #[default]
+    Centred,
+}
+
+impl Lookup {
+    /// Both lookups.
+    pub const ALL: [Self; 2] = [Self::Lecture, Self::Centred];
+
+    /// The name used on the command line and in menus.
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::Lecture => "lecture",
+            Self::Centred => "centred",
+        }
+    }
+
+    /// The texel index along an axis of `n` texels for a coordinate already wrapped to [0, 1].
+    #[must_use]
+    #[inline]
+    pub fn index(self, t: f32, n: u32) -> u32 {
+        let last = n - 1;
+        let i = match self {
+            Self::Lecture => (last as f32 * t) as u32, // truncation, as the C++ (int) cast
+            Self::Centred => (t * n as f32) as u32,
+        };
+        i.min(last)
+    }
+}
+
+/// What happens outside [0, 1].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum Wrap {
+    /// Tile the texture.
+    #[default]
+    Repeat,
+    /// Extend the edge texels.
+    Clamp,
+    /// Tile with every other copy mirrored, so edges meet seamlessly.
+    Mirror,
+    /// Black outside the texture.
+    Black,
+}
+
+impl Wrap {
+    /// Every wrap mode, in menu order.
+    pub const ALL: [Self; 4] = [Self::Repeat, Self::Clamp, Self::Mirror, Self::Black];
+
+    /// The name used on the command line and in menus.
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::Repeat => "repeat",
+            Self::Clamp => "clamp",
+            Self::Mirror => "mirror",
+            Self::Black => "black",
+        }
+    }
+
+    /// A continuous coordinate brought into [0, 1], or `None` outside under [`Wrap::Black`].
+    #[must_use]
+    #[inline]
+    pub fn coord(self, t: f32) -> Option<f32> {
+        if t.is_nan() {
+            return Some(0.0);
+        }
+        match self {
+            Self::Repeat => {
+                let f = t - t.floor();
+                Some(if f < 1.0 { f } else { 0.0 }) // -1e-9 - floor rounds up to 1.0
+            }
+            Self::Clamp => Some(t.clamp(0.0, 1.0)),
+            Self::Mirror => {
+                let f = t.rem_euclid(2.0);
+                Some(if f > 1.0 { 2.0 - f } else { f.min(1.0) })
+            }
+            Self::Black => (0.0..=1.0).contains(&t).then_some(t),
+        }
+    }
+
+    /// An integer texel index brought into [0, n), or `None` outside under [`Wrap::Black`].
+    #[must_use]
+    #[inline]
+    pub fn index(self, i: i64, n: u32) -> Option<u32> {
+        let n64 = i64::from(n);
+        match self {
+            Self::Repeat => Some(i.rem_euclid(n64) as u32),
+            Self::Clamp => Some(i.clamp(0, n64 - 1) as u32),
+            Self::Mirror => {
+                let m = i.rem_euclid(2 * n64);
+                Some(if m >= n64 { 2 * n64 - 1 - m } else { m } as u32)
+            }
+            Self::Black => (0..n64).contains(&i).then_some(i as u32),
+        }
+    }
+}
+
+/// How texels are combined into one colour.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum Filter {
+    /// One texel, chosen by the [`Lookup`].
+    #[default]
+    Nearest,
+    /// The four nearest texel centres, weighted by distance.
+    Bilinear,
+}
+
+impl Filter {
+    /// Every filter, in menu order.
+    pub const ALL: [Self; 2] = [Self::Nearest, Self::Bilinear];
+
+    /// The name used on the command line and in menus.
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::Nearest => "nearest",
+            Self::Bilinear => "bilinear",
+        }
+    }
+
+    /// Whether this filter needs the pixel's footprint in texture space.
+    #[must_use]
+    pub const fn needs_footprint(self) -> bool {
+        false
+    }
+}
+
+/// An image read through a mapping with a filter and wrap mode.
+#[derive(Clone, Debug)]
+pub struct ImageTexture {
+    /// The texels.
+    pub image: Arc<ImageData>,
+    /// How hit points become (u, v).
+    pub mapping: Mapping,
+    /// How texels are combined.
+    pub filter: Filter,
+    /// Which texel the nearest filter picks.
+    pub lookup: Lookup,
+    /// What happens outside [0, 1].
+    pub wrap: Wrap,
+    /// A multiplier on the texel values (brightens or dims an HDR image).
+    pub scale: f32,
+}
+
+impl ImageTexture {
+    /// The wrap modes along u and v: periodic mappings wrap u across their seam, the spherical
+    /// map clamps v at its poles, whatever the texture's own mode.
+    #[must_use]
+    #[inline]
+    pub fn wraps(&self) -> (Wrap, Wrap) {
+        let wu = if self.mapping.u_is_periodic() {
+            Wrap::Repeat
+        } else {
+            self.wrap
+        };
+        let wv = if self.mapping.v_clamps() {
+            Wrap::Clamp
+        } else {
+            self.wrap
+        };
+        (wu, wv)
+    }
+
+    /// The colour at a hit.
+    #[must_use]
+    #[inline]
+    pub fn eval(&self, ctx: &TextureContext) -> Rgb {
+        let tc = ctx.tex_coord(self.mapping);
+        self.sample(tc) * self.scale
+    }
+
+    /// The filtered colour at texture coordinates (before `scale`).
+    #[must_use]
+    #[inline]
+    pub fn sample(&self, tc: TexCoord) -> Rgb {
+        let (wu, wv) = self.wraps();
+        match self.filter {
+            Filter::Nearest => self.image.nearest(tc.uv, self.lookup, wu, wv),
+            Filter::Bilinear => self.image.bilinear(tc.uv, wu, wv),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests;

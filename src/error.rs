@@ -7,12 +7,12 @@ use std::path::{Path, PathBuf};
 #[derive(Debug, thiserror::Error)]
 pub enum Error {
     /// The file could not be read or written.
-    #[error("{}: {source}", path.display())]
+    #[error("{}: {io}", path.display())]
     Io {
         /// The file.
         path: PathBuf,
-        /// What the OS said.
-        source: std::io::Error,
+        /// What the OS said (kept out of the error chain: the message already includes it).
+        io: std::io::Error,
     },
     /// An image could not be decoded or was refused by the decode limits.
     #[error("{}: cannot load image: {message}", path.display())]
@@ -47,10 +47,10 @@ pub enum Error {
 impl Error {
     /// An [`Error::Io`] for `path`.
     #[must_use]
-    pub fn io(path: &Path, source: std::io::Error) -> Self {
+    pub fn io(path: &Path, io: std::io::Error) -> Self {
         Self::Io {
             path: path.to_path_buf(),
-            source,
+            io,
         }
     }
 

@@ -7,6 +7,7 @@ use serde::{Deserialize, Serialize};
 /// A generic shape in its object space. Size, position and orientation come from the instance
 /// transform, so the lecture's mappings see the generic object they were written for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub enum Shape {
     /// The unit sphere at the origin.
     Sphere,

@@ -1,9 +1,8 @@
 //! The application state and its frame-by-frame UI.
 
-use crate::cli::read_preset_or_png;
 use crate::mapping::Mapping;
 use crate::render::{Generation, RenderJob, RenderOptions};
-use crate::scene::{AssetCache, SceneDesc, build_scene};
+use crate::scene::{AssetCache, SceneDesc, build_scene, read_preset_or_png};
 use crate::texture::Filter;
 use std::path::PathBuf;
 use std::sync::Arc;

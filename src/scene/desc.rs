@@ -63,6 +63,7 @@ fn default_up() -> Vec3 {
 
 /// Camera projections. Angles in degrees.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub enum ProjectionDesc {
     /// Perspective with a vertical field of view.
     Pinhole {
@@ -166,6 +167,7 @@ impl Default for AmbientDesc {
 
 /// A light.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub enum LightDesc {
     /// Light from one direction (the sun).
     Directional {
@@ -250,6 +252,7 @@ impl Default for TransformDesc {
 
 /// Materials.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub enum MaterialDesc {
     /// The lecture's `SV_Matte`: ambient + diffuse with a textured colour.
     Matte {
@@ -307,6 +310,7 @@ fn default_exp() -> f32 {
 
 /// Textures.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub enum TextureDesc {
     /// One colour everywhere.
     Constant(Rgb),

@@ -3,12 +3,16 @@
 
 mod build;
 mod desc;
+mod files;
 
 pub use build::{
     AssetCache, MAX_RESOLUTION, MAX_SPP, Overrides, apply_overrides, build_scene, load_preset,
     parse_preset, save_preset, to_ron,
 };
 pub use desc::*;
+pub use files::{
+    PRESET_CHUNK, read_png_preset, read_preset_or_png, rebase_assets, save_render_png,
+};
 
 use crate::camera::Camera;
 use crate::geometry::{LocalHit, Object, Shape};

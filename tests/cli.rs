@@ -1,0 +1,153 @@
+//! The command line as a user runs it.
+
+use std::process::Command;
+
+fn texplore(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_texplore"))
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+fn json(args: &[&str]) -> serde_json::Value {
+    let out = texplore(args);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).unwrap()
+}
+
+#[test]
+fn map_prints_the_lecture_values_as_json() {
+    let v = json(&[
+        "map",
+        "spherical",
+        "1",
+        "0",
+        "0",
+        "--json",
+        "--res",
+        "100",
+        "50",
+    ]);
+    assert!((v["u"].as_f64().unwrap() - 0.25).abs() < 1e-6);
+    assert!((v["v"].as_f64().unwrap() - 0.5).abs() < 1e-6);
+    assert_eq!(v["column"], 25);
+    assert_eq!(v["row"], 25);
+    // The lecture's lookup: (int)(99 * 0.25) = 24.
+    let v = json(&[
+        "map",
+        "spherical",
+        "1",
+        "0",
+        "0",
+        "--json",
+        "--res",
+        "100",
+        "50",
+        "--lookup",
+        "lecture",
+    ]);
+    assert_eq!(v["column"], 24);
+    assert_eq!(v["row"], 24);
+    // Negative coordinates and the probe's axis.
+    let v = json(&["map", "light-probe", "0", "0", "-1", "--json"]);
+    assert!((v["u"].as_f64().unwrap() - 1.0).abs() < 1e-6);
+    let v = json(&["map", "panoramic", "0", "0", "-1", "--json"]);
+    assert!((v["u"].as_f64().unwrap() - 0.5).abs() < 1e-6);
+}
+
+#[test]
+fn map_explains_the_formula() {
+    let out = texplore(&["map", "cylindrical", "-1", "0.5", "0"]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success());
+    assert!(
+        text.contains("phi = atan2(x, z)")
+            && text.contains("phi += 2 pi")
+            && text.contains("u = phi / (2 pi) = 0.7500"),
+        "{text}"
+    );
+}
+
+#[test]
+fn render_writes_a_png_with_the_preset_inside() {
+    let dir = tempfile::tempdir().unwrap();
+    let out_png = dir.path().join("e.png");
+    let out = texplore(&[
+        "render",
+        "presets/earth.ron",
+        "-o",
+        out_png.to_str().unwrap(),
+        "--width",
+        "40",
+        "--height",
+        "30",
+        "--spp",
+        "1",
+        "-q",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let img = image::open(&out_png).unwrap();
+    assert_eq!((img.width(), img.height()), (40, 30));
+    // Rendering the PNG renders the preset embedded in it, with the overrides it was saved with.
+    let again = dir.path().join("again.png");
+    let out = texplore(&[
+        "render",
+        out_png.to_str().unwrap(),
+        "-o",
+        again.to_str().unwrap(),
+        "-q",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(image::open(&again).unwrap().to_rgb8(), img.to_rgb8());
+}
+
+#[test]
+fn errors_are_one_line_naming_the_file() {
+    let out = texplore(&["render", "presets/does-not-exist.ron", "-o", "/tmp/x.png"]);
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.starts_with("error: presets/does-not-exist.ron"),
+        "{err}"
+    );
+    let out = texplore(&["map", "sphere", "0", "0", "1"]);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("spherical"));
+}
+
+#[test]
+fn probe_writes_an_hdr_probe() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path().join("p.hdr");
+    let out = texplore(&[
+        "probe",
+        "assets/courtyard_1024x512.hdr",
+        "-o",
+        p.to_str().unwrap(),
+        "--size",
+        "64",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let img = texplore::texture::load_image(&p, true).unwrap();
+    assert_eq!((img.width(), img.height()), (64, 64));
+    // Outside the disc is black; the centre is not.
+    assert_eq!(img.texel_top(0, 0), texplore::math::Rgb::BLACK);
+    assert!(img.texel_top(32, 32).max_channel() > 0.0);
+}

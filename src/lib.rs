@@ -13,6 +13,7 @@ pub mod geometry;
 pub mod mapping;
 pub mod material;
 pub mod math;
+pub mod names;
 pub mod probe;
 pub mod render;
 pub mod sampler;

@@ -21,7 +21,7 @@ fn render(path: &Path, w: u32, h: u32, spp: u32, threads: usize) -> Film {
             width: Some(w),
             height: Some(h),
             spp: Some(spp),
-            seed: None,
+            ..Overrides::default()
         },
     );
     let scene = build_scene(&desc, path, &mut AssetCache::new()).unwrap();

@@ -38,7 +38,7 @@ pub fn run(a: &BenchArgs) -> Result<()> {
             width: Some(a.width),
             height: Some(a.height),
             spp: Some(1),
-            seed: None,
+            ..Overrides::default()
         },
     );
     let scene = build_scene(&desc, &a.preset, &mut AssetCache::new())?;

@@ -1,9 +1,11 @@
 //! `texplore render`.
 
 use crate::render::render_blocking;
+use crate::sampler::PixelSampler;
 use crate::scene::{
     AssetCache, Overrides, apply_overrides, build_scene, read_preset_or_png, save_render_png,
 };
+use crate::texture::Filter;
 use anyhow::{Context, Result};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -28,6 +30,12 @@ pub struct RenderArgs {
     /// Random seed (overrides the preset).
     #[arg(long)]
     pub seed: Option<u32>,
+    /// Texture filter for every image texture (overrides the preset): nearest, bilinear, ...
+    #[arg(long)]
+    pub filter: Option<Filter>,
+    /// Pixel sampler (overrides the preset): regular, random, jittered, n-rooks, ...
+    #[arg(long)]
+    pub sampler: Option<PixelSampler>,
     /// Worker threads (default: one per core).
     #[arg(long, default_value_t = 0)]
     pub threads: usize,
@@ -36,6 +44,10 @@ pub struct RenderArgs {
     pub quiet: bool,
 }
 
+/// Renders the preset and writes the PNG.
+///
+/// # Errors
+/// The preset, its assets or the output cannot be read or written.
 pub fn run(a: &RenderArgs) -> Result<()> {
     let mut desc = read_preset_or_png(&a.preset)?;
     apply_overrides(
@@ -45,6 +57,8 @@ pub fn run(a: &RenderArgs) -> Result<()> {
             height: a.height,
             spp: a.spp,
             seed: a.seed,
+            filter: a.filter,
+            sampler: a.sampler,
         },
     );
     let mut cache = AssetCache::new();

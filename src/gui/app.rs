@@ -150,24 +150,21 @@ impl eframe::App for ExplorerApp {
             }
         });
         if let Some(job) = &self.job {
-            if let Some((img, serial)) = job.image() {
-                if serial != self.shown_serial {
-                    let color = egui::ColorImage::from_rgba_unmultiplied(
-                        [img.width as usize, img.height as usize],
-                        &img.rgba,
-                    );
-                    match &mut self.texture {
-                        Some(t) => t.set(color, egui::TextureOptions::NEAREST),
-                        None => {
-                            self.texture = Some(ctx.load_texture(
-                                "render",
-                                color,
-                                egui::TextureOptions::NEAREST,
-                            ))
-                        }
+            if let Some((img, serial)) = job.image()
+                && serial != self.shown_serial
+            {
+                let color = egui::ColorImage::from_rgba_unmultiplied(
+                    [img.width as usize, img.height as usize],
+                    &img.rgba,
+                );
+                match &mut self.texture {
+                    Some(t) => t.set(color, egui::TextureOptions::NEAREST),
+                    None => {
+                        self.texture =
+                            Some(ctx.load_texture("render", color, egui::TextureOptions::NEAREST))
                     }
-                    self.shown_serial = serial;
                 }
+                self.shown_serial = serial;
             }
             if !job.progress().finished {
                 ctx.request_repaint();

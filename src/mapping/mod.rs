@@ -171,27 +171,7 @@ impl Mapping {
     }
 }
 
-impl std::fmt::Display for Mapping {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl std::str::FromStr for Mapping {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        Self::ALL
-            .into_iter()
-            .find(|m| m.name() == s)
-            .ok_or_else(|| {
-                let names: Vec<_> = Self::ALL.iter().map(|m| m.name()).collect();
-                format!(
-                    "unknown mapping '{s}', expected one of: {}",
-                    names.join(", ")
-                )
-            })
-    }
-}
+crate::named_enum!(Mapping, "mapping");
 
 /// (u, v) at a point with the gradients of u and v with respect to the object-space point.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -106,6 +106,8 @@ impl PixelSampler {
     }
 }
 
+crate::named_enum!(PixelSampler, "sampler");
+
 /// A near-square grid with at least `count` cells: columns x rows.
 #[must_use]
 pub fn grid(count: u32) -> (u32, u32) {

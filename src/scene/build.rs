@@ -10,8 +10,9 @@ use crate::error::{Error, Result};
 use crate::geometry::Object;
 use crate::material::{Light, Material};
 use crate::math::{Affine3A, Quat, Vec3, Vec3A};
+use crate::sampler::PixelSampler;
 use crate::texture::{
-    Checker, ImageData, ImageTexture, Lookup, Texture, load_image, uv_grid_image,
+    Checker, Filter, ImageData, ImageTexture, Lookup, Texture, load_image, uv_grid_image,
 };
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -131,6 +132,10 @@ pub struct Overrides {
     pub spp: Option<u32>,
     /// Seed.
     pub seed: Option<u32>,
+    /// Texture filter for every image texture.
+    pub filter: Option<Filter>,
+    /// Pixel sampler.
+    pub sampler: Option<PixelSampler>,
 }
 
 /// Builds the runtime scene. `preset_path` names the file in errors; asset paths are resolved
@@ -436,4 +441,14 @@ pub fn apply_overrides(desc: &mut SceneDesc, o: Overrides) {
     r.height = o.height.unwrap_or(r.height);
     r.spp = o.spp.unwrap_or(r.spp);
     r.seed = o.seed.unwrap_or(r.seed);
+    r.sampler = o.sampler.unwrap_or(r.sampler);
+    if let Some(f) = o.filter {
+        for obj in &mut desc.objects {
+            if let TextureDesc::Image { filter, .. } | TextureDesc::UvGrid { filter, .. } =
+                obj.material.texture_mut()
+            {
+                *filter = f;
+            }
+        }
+    }
 }

@@ -207,6 +207,10 @@ impl Filter {
     }
 }
 
+crate::named_enum!(Lookup, "lookup");
+crate::named_enum!(Wrap, "wrap mode");
+crate::named_enum!(Filter, "filter");
+
 /// An image read through a mapping with a filter and wrap mode.
 #[derive(Clone, Debug)]
 pub struct ImageTexture {

@@ -367,3 +367,99 @@ fn every_preset_in_every_mode_renders_finite() {
         }
     }
 }
+
+/// Renders an emissive sphere textured with `img` (saved as PNG) under every filter and wrap
+/// mode; returns (filter, wrap, linear pixels) with the background black.
+fn render_image_sphere(img: &image::RgbImage, mapping: &str) -> Vec<(Filter, Wrap, Vec<Rgb>)> {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("t.png");
+    img.save(&path).unwrap();
+    let mut out = Vec::new();
+    let mut cache = AssetCache::new();
+    for wrap in Wrap::ALL {
+        let text = format!(
+            "(version: 1, camera: (eye: (0.3, 0.6, 3)), render: (width: 40, height: 30, spp: 1),
+              objects: [(shape: Sphere, transform: (scale: (1, 1, 1)), material: Emissive(ce: Image(path: \"t.png\", mapping: {mapping}, wrap: {wrap:?})))])"
+        );
+        let preset = dir.path().join("p.ron");
+        for filter in Filter::ALL {
+            let mut desc = parse_preset(&text, &preset).unwrap();
+            apply_overrides(
+                &mut desc,
+                Overrides {
+                    filter: Some(filter),
+                    ..Overrides::default()
+                },
+            );
+            let scene = build_scene(&desc, &preset, &mut cache).unwrap();
+            let film = render_blocking(&scene, |_| {});
+            assert!(film.is_finite(), "{filter}/{wrap}");
+            out.push((filter, wrap, film.to_linear()));
+        }
+    }
+    out
+}
+
+/// A 1x1 texture is one colour everywhere, under every filter and every wrap that stays inside
+/// the image (Black may fade toward the border, where filters reach outside).
+#[test]
+fn one_by_one_texture_is_its_colour_under_every_filter() {
+    let img = image::RgbImage::from_pixel(1, 1, image::Rgb([200, 100, 50]));
+    let want = Rgb(
+        texplore::math::srgb8_to_linear(200),
+        texplore::math::srgb8_to_linear(100),
+        texplore::math::srgb8_to_linear(50),
+    );
+    for mapping in ["Spherical", "Rectangular", "LightProbe"] {
+        for (filter, wrap, pixels) in render_image_sphere(&img, mapping) {
+            let hit: Vec<&Rgb> = pixels.iter().filter(|c| c.max_channel() > 0.0).collect();
+            assert!(
+                hit.len() > 200,
+                "{mapping} {filter}/{wrap}: sphere not seen"
+            );
+            if wrap == Wrap::Black {
+                assert!(
+                    hit.iter().all(|c| c.0 <= want.0 + 1e-5),
+                    "{mapping} {filter}/{wrap}: brighter than the texel"
+                );
+                continue;
+            }
+            for c in hit {
+                let d = (c.0 - want.0)
+                    .abs()
+                    .max((c.1 - want.1).abs())
+                    .max((c.2 - want.2).abs());
+                assert!(d < 1e-4, "{mapping} {filter}/{wrap}: {c:?} != {want:?}");
+            }
+        }
+    }
+}
+
+/// 1xN, Nx1 and odd non-power-of-two sizes: every filter and wrap stays finite, inside the
+/// texels' range (up to a bicubic's overshoot) and sees both ends of a ramp.
+#[test]
+fn thin_and_odd_sized_textures_under_every_filter() {
+    for (w, h) in [(1, 7), (9, 1), (3, 5), (257, 3)] {
+        let img = image::RgbImage::from_fn(w, h, |x, y| {
+            let t = (x + y) as f32 / (w + h - 2).max(1) as f32;
+            image::Rgb([(255.0 * t) as u8, 40, (255.0 * (1.0 - t)) as u8])
+        });
+        for (filter, wrap, pixels) in render_image_sphere(&img, "Spherical") {
+            let reds: Vec<f32> = pixels.iter().filter(|c| c.1 > 0.0).map(|c| c.0).collect();
+            assert!(reds.len() > 200, "{w}x{h} {filter}/{wrap}");
+            let (lo, hi) = reds
+                .iter()
+                .fold((f32::MAX, f32::MIN), |(a, b), &r| (a.min(r), b.max(r)));
+            assert!(
+                lo >= -0.05 && hi <= 1.1,
+                "{w}x{h} {filter}/{wrap}: red in [{lo}, {hi}]"
+            );
+            if wrap != Wrap::Black {
+                assert!(
+                    hi - lo > 0.3,
+                    "{w}x{h} {filter}/{wrap}: the ramp is not visible ({lo}..{hi})"
+                );
+            }
+        }
+    }
+}

@@ -89,3 +89,20 @@ pub fn image_bytes(data: &[u8], path: &Path) -> Result<ImageData> {
         }
     }
 }
+
+/// Writes `data` to `path` (a `.png`) and reads the preset a texplore screenshot carries, the
+/// way opening or dropping a PNG on the window does.
+///
+/// # Errors
+/// Not a PNG, no preset inside, or a preset that does not parse, naming `path`.
+///
+/// # Panics
+/// When an invariant breaks (see the module docs), or `path` cannot be written.
+pub fn screenshot_bytes(data: &[u8], path: &Path) -> Result<crate::scene::SceneDesc> {
+    std::fs::write(path, data).expect("the fuzz harness cannot write its scratch file");
+    let result = crate::scene::read_preset_or_png(path);
+    if let Err(e) = &result {
+        assert_names(e, path);
+    }
+    result
+}

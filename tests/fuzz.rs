@@ -9,7 +9,7 @@
 use proptest::prelude::*;
 use proptest::test_runner::{Config, TestRunner};
 use std::path::{Path, PathBuf};
-use texplore::robustness::{image_bytes, preset_bytes};
+use texplore::robustness::{image_bytes, preset_bytes, screenshot_bytes};
 use texplore::scene::AssetCache;
 
 fn cases() -> u32 {
@@ -242,6 +242,30 @@ fn mutated_images_of_every_format_never_panic() {
     assert!(ok > 0 && refused > 0, "ok {ok}, refused {refused}");
 }
 
+/// Screenshots: a PNG render of a preset (the preset in its text chunk), mutated.
+#[test]
+fn mutated_screenshots_never_panic() {
+    let dir = tempfile::tempdir().unwrap();
+    let png = dir.path().join("shot.png");
+    let status = std::process::Command::new(env!("CARGO_BIN_EXE_texplore"))
+        .args(["render", "presets/checker.ron", "-o"])
+        .arg(&png)
+        .args(["--width", "16", "--height", "12", "--spp", "1"])
+        .current_dir(root())
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let seeds = vec![std::fs::read(&png).unwrap()];
+    let target = dir.path().join("fuzzed.png");
+    let (mut ok, mut refused) = (0, 0);
+    fuzz(&seeds, |data| match screenshot_bytes(data, &target) {
+        Ok(_) => ok += 1,
+        Err(_) => refused += 1,
+    });
+    eprintln!("screenshots: {ok} restored, {refused} refused");
+    assert!(ok > 0 && refused > 0, "ok {ok}, refused {refused}");
+}
+
 /// Every input that once broke a parser, replayed: `tests/fuzz_regressions/<target>-<name>`.
 #[test]
 fn fuzz_regressions_stay_fixed() {
@@ -261,6 +285,8 @@ fn fuzz_regressions_stay_fixed() {
                 .extension()
                 .map_or("bin".into(), |x| x.to_string_lossy().into_owned());
             let _ = image_bytes(&data, &scratch.path().join(format!("fuzzed.{ext}")));
+        } else if name.starts_with("screenshot-") {
+            let _ = screenshot_bytes(&data, &scratch.path().join("fuzzed.png"));
         } else if name != "README.md" {
             panic!("{name}: a regression input must start with a target name");
         }

@@ -13,6 +13,7 @@ pub mod geometry;
 pub mod mapping;
 pub mod material;
 pub mod math;
+pub mod meshio;
 pub mod names;
 pub mod probe;
 pub mod render;

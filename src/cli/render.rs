@@ -1,11 +1,12 @@
 //! `texplore render`.
 
 use crate::render::render_blocking;
-use crate::sampler::PixelSampler;
+use crate::sampler::{PixelFilter, PixelSampler};
 use crate::scene::{
-    AssetCache, Overrides, apply_overrides, build_scene, read_preset_or_png, save_render_png,
+    AdaptiveDesc, AssetCache, DEFAULT_ADAPTIVE_THRESHOLD, Overrides, apply_overrides, build_scene,
+    read_preset_or_png, save_render_png,
 };
-use crate::texture::Filter;
+use crate::texture::{Filter, View};
 use anyhow::{Context, Result};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -30,12 +31,29 @@ pub struct RenderArgs {
     /// Random seed (overrides the preset).
     #[arg(long)]
     pub seed: Option<u32>,
-    /// Texture filter for every image texture (overrides the preset): nearest, bilinear, ...
+    /// Texture filter for every image and checker texture (overrides the preset): nearest,
+    /// bilinear, bicubic, trilinear, ewa.
     #[arg(long)]
     pub filter: Option<Filter>,
+    /// Largest anisotropy the EWA filter follows, 1 to 64 (overrides the preset; default 8).
+    #[arg(long = "max-aniso", value_name = "RATIO")]
+    pub max_aniso: Option<f32>,
     /// Pixel sampler (overrides the preset): regular, random, jittered, n-rooks, ...
     #[arg(long)]
     pub sampler: Option<PixelSampler>,
+    /// Pixel reconstruction filter (overrides the preset): box, tent, gaussian.
+    #[arg(long = "pixel-filter", value_name = "FILTER")]
+    pub pixel_filter: Option<PixelFilter>,
+    /// Adaptive sampling: after --spp samples everywhere, up to MAX_SPP where the estimated
+    /// error exceeds THRESHOLD (display units, default 0.01). E.g. `--spp 1 --adaptive 16`.
+    #[arg(long, value_name = "MAX_SPP[,THRESHOLD]", value_parser = parse_adaptive)]
+    pub adaptive: Option<AdaptiveDesc>,
+    /// Turn off the preset's adaptive sampling.
+    #[arg(long, conflicts_with = "adaptive")]
+    pub no_adaptive: bool,
+    /// What to render: shaded, uv, mip-level, texel-grid, seams.
+    #[arg(long)]
+    pub view: Option<View>,
     /// Worker threads (default: one per core).
     #[arg(long, default_value_t = 0)]
     pub threads: usize,
@@ -59,6 +77,11 @@ pub fn run(a: &RenderArgs) -> Result<()> {
             seed: a.seed,
             filter: a.filter,
             sampler: a.sampler,
+            max_anisotropy: a.max_aniso,
+            pixel_filter: a.pixel_filter,
+            adaptive: a.adaptive,
+            no_adaptive: a.no_adaptive,
+            view: a.view,
         },
     );
     let mut cache = AssetCache::new();
@@ -67,7 +90,7 @@ pub fn run(a: &RenderArgs) -> Result<()> {
     let bar = if a.quiet {
         indicatif::ProgressBar::hidden()
     } else {
-        let bar = indicatif::ProgressBar::new(u64::from(s.spp));
+        let bar = indicatif::ProgressBar::new(u64::from(s.max_spp()));
         bar.set_style(
             indicatif::ProgressStyle::with_template(
                 "{spinner} {msg} [{bar:30}] {pos}/{len} spp, {elapsed} elapsed, {eta} left",
@@ -93,17 +116,38 @@ pub fn run(a: &RenderArgs) -> Result<()> {
         preset_dir,
     )?;
     if !a.quiet {
-        let rays = f64::from(s.width) * f64::from(s.height) * f64::from(s.spp);
+        let rays = film.total_samples();
+        let pixels = f64::from(s.width) * f64::from(s.height);
         eprintln!(
-            "wrote {} ({}x{}, {} spp) in {:.2} s: {:.1} M rays/s on {} threads",
+            "wrote {} ({}x{}, {:.2} spp on average) in {:.2} s: {:.1} M rays/s on {} threads",
             a.output.display(),
             s.width,
             s.height,
-            s.spp,
+            rays / pixels,
             dt.as_secs_f64(),
             rays / dt.as_secs_f64() / 1e6,
             pool.current_num_threads()
         );
     }
     Ok(())
+}
+
+/// `MAX_SPP` or `MAX_SPP,THRESHOLD`.
+fn parse_adaptive(s: &str) -> std::result::Result<AdaptiveDesc, String> {
+    let (spp, threshold) = match s.split_once(',') {
+        Some((a, b)) => (a, Some(b)),
+        None => (s, None),
+    };
+    let max_spp = spp
+        .trim()
+        .parse::<u32>()
+        .map_err(|e| format!("MAX_SPP '{spp}': {e}"))?;
+    let threshold = match threshold {
+        Some(t) => t
+            .trim()
+            .parse::<f32>()
+            .map_err(|e| format!("THRESHOLD '{t}': {e}"))?,
+        None => DEFAULT_ADAPTIVE_THRESHOLD,
+    };
+    Ok(AdaptiveDesc { max_spp, threshold })
 }

@@ -4,23 +4,45 @@
 use crate::math::{Rgb, linear_to_srgb};
 use std::sync::LazyLock;
 
-/// Running sums per pixel: `[r, g, b, weight]`, linear radiance.
+/// Running sums per pixel: `[r, g, b, weight]`, linear radiance; and, for adaptive sampling,
+/// the sum and the sum of squares of each sample's display-encoded luminance.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Film {
     width: u32,
     height: u32,
     pixels: Vec<[f32; 4]>,
+    stats: Vec<[f32; 2]>,
 }
 
 impl Film {
     /// A black film with no samples.
     #[must_use]
     pub fn new(width: u32, height: u32) -> Self {
+        let n = width as usize * height as usize;
         Self {
             width,
             height,
-            pixels: vec![[0.0; 4]; width as usize * height as usize],
+            pixels: vec![[0.0; 4]; n],
+            stats: vec![[0.0; 2]; n],
         }
+    }
+
+    /// Per pixel, the sum and the sum of squares of the samples' display luminance (filled by
+    /// adaptive renders only).
+    #[must_use]
+    pub fn stats(&self) -> &[[f32; 2]] {
+        &self.stats
+    }
+
+    /// The sums and the luminance statistics, mutably (for render passes).
+    pub fn sums_mut(&mut self) -> (&mut [[f32; 4]], &mut [[f32; 2]]) {
+        (&mut self.pixels, &mut self.stats)
+    }
+
+    /// Total samples taken (the sum of every pixel's weight).
+    #[must_use]
+    pub fn total_samples(&self) -> f64 {
+        self.pixels.iter().map(|p| f64::from(p[3])).sum()
     }
 
     /// Width in pixels.

@@ -1,7 +1,7 @@
 //! A render job on its own thread: preview passes, then one-sample passes until the target,
 //! publishing a display image after each; cancelled at once by bumping a generation counter.
 
-use super::{DisplayImage, Film, PREVIEW_BLOCKS, render_pass, render_preview};
+use super::{DisplayImage, Film, PREVIEW_BLOCKS, render_preview, render_scheduled_pass};
 use crate::scene::Scene;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
@@ -53,10 +53,13 @@ impl Default for RenderOptions {
 /// What a job has done so far.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Progress {
-    /// Full-resolution samples per pixel accumulated.
+    /// Full-resolution passes done (samples per pixel where every pixel is sampled; adaptive
+    /// passes sample only some pixels).
     pub spp_done: u32,
-    /// Target samples per pixel.
+    /// Most passes: the target samples per pixel, or the adaptive `max_spp`.
     pub spp_target: u32,
+    /// Pixels sampled by the last pass (all of them, except in adaptive passes).
+    pub last_pass_pixels: usize,
     /// Block size of the last preview shown, while no full pass is done yet.
     pub preview_block: Option<u32>,
     /// Duration of the last full pass.
@@ -182,7 +185,7 @@ fn run(
         p.serial += 1;
     };
     let mut progress = Progress {
-        spp_target: s.spp,
+        spp_target: s.max_spp(),
         ..Progress::default()
     };
     pool.install(|| {
@@ -203,25 +206,33 @@ fn run(
         }
         let mut film = Film::new(s.width, s.height);
         let mut tracing = Duration::ZERO;
-        for sample in 0..s.spp {
+        let mut rays = 0.0;
+        let passes = s.max_spp();
+        for pass in 0..passes {
             let t0 = Instant::now();
-            if render_pass(scene, &mut film, sample, &cancelled).is_err() {
+            let Ok(pixels) = render_scheduled_pass(scene, &mut film, pass, &cancelled) else {
                 lock(out).progress.cancelled = true;
                 return;
-            }
+            };
             let dt = t0.elapsed();
             tracing += dt;
-            progress.spp_done = sample + 1;
+            rays += pixels as f64;
+            // An adaptive render ends early once every pixel has converged.
+            progress.finished = pixels == 0 || pass + 1 == passes;
+            if pixels > 0 {
+                progress.spp_done = pass + 1;
+                progress.last_pass = dt;
+                progress.last_pass_pixels = pixels;
+            }
             progress.preview_block = None;
-            progress.last_pass = dt;
             progress.elapsed = start.elapsed();
-            progress.rays_per_second =
-                f64::from(s.width) * f64::from(s.height) * f64::from(sample + 1)
-                    / tracing.as_secs_f64().max(1e-9);
-            progress.finished = sample + 1 == s.spp;
+            progress.rays_per_second = rays / tracing.as_secs_f64().max(1e-9);
             let image = film.to_display(s.exposure_scale);
             let snapshot = progress.finished.then(|| Arc::new(film.clone()));
             publish(image, snapshot, progress);
+            if progress.finished {
+                break;
+            }
         }
     });
 }

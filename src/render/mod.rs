@@ -1,14 +1,17 @@
 //! The progressive renderer: a film of running sums, passes over row tiles on rayon, a coarse
 //! preview first, and a job any viewer can poll and cancel.
 
+mod adaptive;
 mod film;
 mod job;
 
+pub use adaptive::{CONTRAST_FACTOR, adaptive_mask, display_luminance};
 pub use film::{DisplayImage, Film, encode_srgb8};
 pub use job::{Generation, Progress, RenderJob, RenderOptions};
 
-use crate::math::{Rgb, Vec2};
-use crate::scene::Scene;
+use crate::math::{Rgb, Vec2, hash3};
+use crate::sampler::{PixelFilter, permute};
+use crate::scene::{RenderSettings, Scene};
 use rayon::prelude::*;
 
 /// Rows per tile: a tile is the unit of parallel work and of cancellation. 8 rows of an 800-pixel
@@ -22,6 +25,10 @@ pub const PREVIEW_BLOCKS: [u32; 3] = [8, 4, 2];
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Cancelled;
 
+/// Texture footprints never shrink below this fraction of a pixel, however many samples a pixel
+/// takes (pbrt-v4's clamp): tiny footprints only cost texture cache misses.
+pub const MIN_FOOTPRINT_SCALE: f32 = 0.125;
+
 /// Renders full-resolution sample `sample` of every pixel into `film` (one sample per pixel),
 /// checking `cancelled` before each tile.
 ///
@@ -34,42 +41,134 @@ pub fn render_pass(
     sample: u32,
     cancelled: &(dyn Fn() -> bool + Sync),
 ) -> Result<(), Cancelled> {
+    render_pass_masked(scene, film, sample, None, cancelled)
+}
+
+/// The film position (pixels) of sample `k` of pixel (x, y): the sampler's point warped by the
+/// pixel filter. Samples below `spp` form the sampler's set of `spp`; adaptive samples past it
+/// come from a second set of `max_spp - spp` taken in a per-pixel shuffled order, so a pixel that
+/// stops early still has an unbiased share of it. Depends only on (seed, pixel, k).
+#[must_use]
+#[inline]
+pub fn sample_position(s: &RenderSettings, x: u32, y: u32, k: u32) -> Vec2 {
+    let pixel = y * s.width + x;
+    let offset = if k < s.spp {
+        s.sampler.sample(s.seed, pixel, k, s.spp)
+    } else {
+        let n = s.max_spp().saturating_sub(s.spp).max(1);
+        let j = permute((k - s.spp) % n, n, hash3(s.seed, pixel, ADAPTIVE_STREAM));
+        s.sampler.sample(s.seed ^ ADAPTIVE_STREAM, pixel, j, n)
+    };
+    let corner = Vec2::new(x as f32, y as f32);
+    match s.pixel_filter {
+        // Kept as the corner plus the offset, bit for bit the box sampling of earlier versions.
+        PixelFilter::Box => corner + offset,
+        f => corner + Vec2::splat(0.5) + f.warp(offset),
+    }
+}
+
+/// Seeds the second sample set of adaptive passes apart from the first.
+const ADAPTIVE_STREAM: u32 = 0xada9_7e55;
+
+/// Like [`render_pass`], but only for pixels where `mask` is true (all when `None`). When the
+/// scene renders adaptively, each sample's display luminance also goes into the film's
+/// statistics.
+///
+/// # Errors
+/// [`Cancelled`] if `cancelled` returned true.
+pub fn render_pass_masked(
+    scene: &Scene,
+    film: &mut Film,
+    sample: u32,
+    mask: Option<&[bool]>,
+    cancelled: &(dyn Fn() -> bool + Sync),
+) -> Result<(), Cancelled> {
     let s = &scene.settings;
     let width = film.width() as usize;
     let spacing = 1.0 / (s.spp as f32).sqrt();
-    let result: Result<(), Cancelled> = film
-        .pixels_mut()
+    let stats_on = s.adaptive.is_some();
+    let (sums, stats) = film.sums_mut();
+    let result: Result<(), Cancelled> = sums
         .par_chunks_mut(width * TILE_ROWS)
+        .zip(stats.par_chunks_mut(width * TILE_ROWS))
         .enumerate()
-        .try_for_each(|(tile, chunk)| {
+        .try_for_each(|(tile, (chunk, stat))| {
             if cancelled() {
                 return Err(Cancelled);
             }
             let y0 = tile * TILE_ROWS;
-            for (i, px) in chunk.iter_mut().enumerate() {
+            for (i, (px, st)) in chunk.iter_mut().zip(stat.iter_mut()).enumerate() {
                 let (x, y) = (i % width, y0 + i / width);
-                let pixel = (y * width + x) as u32;
-                let offset = s.sampler.sample(s.seed, pixel, sample, s.spp);
-                let pos = Vec2::new(x as f32, y as f32) + offset;
+                if let Some(m) = mask {
+                    if !m[y * width + x] {
+                        continue;
+                    }
+                }
+                let pos = sample_position(s, x as u32, y as u32, sample);
                 let l = radiance(scene, pos, spacing);
                 debug_assert!(l.is_finite(), "non-finite radiance at pixel ({x}, {y})");
                 px[0] += l.0;
                 px[1] += l.1;
                 px[2] += l.2;
                 px[3] += 1.0;
+                if stats_on {
+                    let e = display_luminance(l, s.exposure_scale);
+                    st[0] += e;
+                    st[1] += e * e;
+                }
             }
             Ok(())
         });
     result
 }
 
+/// Runs pass `pass` of the scene's schedule: passes below `spp` sample every pixel; with
+/// adaptive sampling, later passes (up to `max_spp`) sample only the pixels
+/// [`adaptive_mask`] selects. Returns how many pixels were sampled: 0 means the render is
+/// complete (every pass done, or every pixel converged).
+///
+/// # Errors
+/// [`Cancelled`] if `cancelled` returned true.
+pub fn render_scheduled_pass(
+    scene: &Scene,
+    film: &mut Film,
+    pass: u32,
+    cancelled: &(dyn Fn() -> bool + Sync),
+) -> Result<usize, Cancelled> {
+    let s = &scene.settings;
+    if pass < s.spp {
+        render_pass(scene, film, pass, cancelled)?;
+        return Ok(film.pixels().len());
+    }
+    let Some(a) = s.adaptive else {
+        return Ok(0);
+    };
+    if pass >= s.max_spp() {
+        return Ok(0);
+    }
+    let mask = adaptive_mask(film, &a);
+    let n = mask.iter().filter(|m| **m).count();
+    if n > 0 {
+        render_pass_masked(scene, film, pass, Some(&mask), cancelled)?;
+    }
+    Ok(n)
+}
+
 /// Radiance through film position `pos` (pixels), with ray differentials for samples spaced
-/// `spacing` pixels apart when the scene needs them.
+/// `spacing` pixels apart when the scene needs them: the texture footprint is `spacing` pixels
+/// wide (at least [`MIN_FOOTPRINT_SCALE`]).
 #[must_use]
 #[inline]
 pub fn radiance(scene: &Scene, pos: Vec2, spacing: f32) -> Rgb {
     match scene.camera.ray(pos, spacing) {
-        Some((ray, diff)) => scene.trace(&ray, scene.needs_differentials.then_some(&diff)),
+        Some((ray, diff)) => {
+            if scene.needs_differentials {
+                let diff = diff.scaled_about(&ray, spacing.max(MIN_FOOTPRINT_SCALE));
+                scene.trace(&ray, Some(&diff))
+            } else {
+                scene.trace(&ray, None)
+            }
+        }
         None => Rgb::BLACK,
     }
 }
@@ -114,17 +213,20 @@ pub fn render_preview(
     result.map(|()| out)
 }
 
-/// Renders `scene` to completion on the current rayon pool: every pass, no preview.
-/// `on_pass` is told after each pass (for progress bars).
+/// Renders `scene` to completion on the current rayon pool: every pass (adaptive ones too), no
+/// preview. `on_pass` is told the number of passes done after each (for progress bars; the
+/// most there can be is [`RenderSettings::max_spp`]).
 #[must_use]
 pub fn render_blocking(scene: &Scene, mut on_pass: impl FnMut(u32)) -> Film {
     let s = &scene.settings;
     let mut film = Film::new(s.width, s.height);
-    for sample in 0..s.spp {
-        let never = || false;
+    let never = || false;
+    for pass in 0..s.max_spp() {
         // Cannot be cancelled: `never` is always false.
-        let _ = render_pass(scene, &mut film, sample, &never);
-        on_pass(sample + 1);
+        match render_scheduled_pass(scene, &mut film, pass, &never) {
+            Ok(0) | Err(Cancelled) => break,
+            Ok(_) => on_pass(pass + 1),
+        }
     }
     film
 }

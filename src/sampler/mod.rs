@@ -2,6 +2,10 @@
 //! Hammersley. Each sample is computed on its own from (seed, pixel, index, count), in O(1), with
 //! no stored sets: the same point on every run and every thread count, and no allocation.
 
+mod pixel_filter;
+
+pub use pixel_filter::{GAUSSIAN_RADIUS, GAUSSIAN_SIGMA, PixelFilter};
+
 use crate::math::{SampleRng, Vec2, hash3};
 use serde::{Deserialize, Serialize};
 

@@ -1,8 +1,8 @@
 //! Reading, validating and writing presets, and building the runtime [`Scene`] from one.
 
 use super::desc::{
-    CameraDesc, LightDesc, MaterialDesc, PRESET_VERSION, ProjectionDesc, RenderDesc, SceneDesc,
-    TextureDesc, TransformDesc,
+    AdaptiveDesc, CameraDesc, LightDesc, MaterialDesc, PRESET_VERSION, ProjectionDesc, RenderDesc,
+    SceneDesc, TextureDesc, TransformDesc,
 };
 use super::{RenderSettings, Scene};
 use crate::camera::{Camera, Projection};
@@ -10,9 +10,10 @@ use crate::error::{Error, Result};
 use crate::geometry::{Mesh, MeshShape, Object, Shape};
 use crate::material::{Light, Material};
 use crate::math::{Affine3A, Quat, Vec3, Vec3A};
-use crate::sampler::PixelSampler;
+use crate::sampler::{PixelFilter, PixelSampler};
 use crate::texture::{
-    Checker, Filter, ImageData, ImageTexture, Lookup, Texture, load_image, uv_grid_image,
+    Checker, Filter, ImageData, ImageTexture, Lookup, MAX_ANISOTROPY_LIMIT, MipPyramid, Texture,
+    View, load_image, uv_grid_image,
 };
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -91,6 +92,9 @@ pub struct AssetCache {
     images: HashMap<(PathBuf, bool), Arc<ImageData>>,
     uv_grid: Option<Arc<ImageData>>,
     meshes: HashMap<PathBuf, Arc<Mesh>>,
+    /// Mip pyramids, built on first use by a mip filter and keyed by their base image (the
+    /// cache holds every base image, so an `Arc` pointer stays a unique key).
+    mips: Vec<(Arc<ImageData>, Arc<MipPyramid>)>,
 }
 
 impl AssetCache {
@@ -138,10 +142,26 @@ impl AssetCache {
             .get_or_insert_with(|| Arc::new(uv_grid_image(UV_GRID_SIZE)))
             .clone()
     }
+
+    /// The mip pyramid of `image`, built once.
+    pub fn mip(&mut self, image: &Arc<ImageData>) -> Arc<MipPyramid> {
+        if let Some((_, m)) = self.mips.iter().find(|(i, _)| Arc::ptr_eq(i, image)) {
+            return m.clone();
+        }
+        let m = Arc::new(MipPyramid::build(image.clone()));
+        self.mips.push((image.clone(), m.clone()));
+        m
+    }
+
+    /// How many mip pyramids have been built (each at most once).
+    #[must_use]
+    pub fn mip_count(&self) -> usize {
+        self.mips.len()
+    }
 }
 
 /// Resolution and samples for one render, possibly overriding the preset's.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Overrides {
     /// Width in pixels.
     pub width: Option<u32>,
@@ -155,6 +175,16 @@ pub struct Overrides {
     pub filter: Option<Filter>,
     /// Pixel sampler.
     pub sampler: Option<PixelSampler>,
+    /// EWA's largest anisotropy for every image texture.
+    pub max_anisotropy: Option<f32>,
+    /// Pixel reconstruction filter.
+    pub pixel_filter: Option<PixelFilter>,
+    /// Adaptive sampling on (`Some`); the preset's setting otherwise.
+    pub adaptive: Option<AdaptiveDesc>,
+    /// Turns adaptive sampling off whatever the preset says.
+    pub no_adaptive: bool,
+    /// Debug view.
+    pub view: Option<View>,
 }
 
 /// Builds the runtime scene. `preset_path` names the file in errors; asset paths are resolved
@@ -209,7 +239,8 @@ pub fn build_scene(desc: &SceneDesc, preset_path: &Path, cache: &mut AssetCache)
             Error::Invalid { message, .. } => bad(format!("{what}.material: {message}")),
             other => other,
         })?;
-        needs_differentials |= material.texture().needs_differentials();
+        needs_differentials |=
+            material.texture().needs_differentials() || settings.view.needs_footprint();
         let name = match (&o.shape, o.name.is_empty()) {
             (_, false) => o.name.clone(),
             (super::ShapeDesc::Mesh { path, .. }, true) => format!("{path} {i}"),
@@ -251,6 +282,20 @@ fn render_settings(r: &RenderDesc) -> std::result::Result<RenderSettings, String
         ));
     }
     finite_non_negative("render.background", &r.background.to_array())?;
+    if let Some(a) = r.adaptive {
+        if !(r.spp..=MAX_SPP).contains(&a.max_spp) {
+            return Err(format!(
+                "render.adaptive.max_spp: {} is out of range ({} = render.spp to {MAX_SPP})",
+                a.max_spp, r.spp
+            ));
+        }
+        if !(a.threshold.is_finite() && a.threshold > 0.0 && a.threshold <= 1.0) {
+            return Err(format!(
+                "render.adaptive.threshold: {} is out of range (0, 1]",
+                a.threshold
+            ));
+        }
+    }
     Ok(RenderSettings {
         width: r.width,
         height: r.height,
@@ -259,6 +304,9 @@ fn render_settings(r: &RenderDesc) -> std::result::Result<RenderSettings, String
         sampler: r.sampler,
         exposure_scale: r.exposure.exp2(),
         background: r.background,
+        pixel_filter: r.pixel_filter,
+        adaptive: r.adaptive,
+        view: r.view,
     })
 }
 
@@ -423,9 +471,12 @@ fn texture(t: &TextureDesc, base: &Path, cache: &mut AssetCache) -> Result<Textu
             wrap,
             scale,
             srgb,
+            max_anisotropy,
         } => {
             finite_non_negative("Image.scale", &[*scale]).map_err(invalid)?;
+            check_anisotropy("Image", *max_anisotropy).map_err(invalid)?;
             let image = cache.image(&base.join(path), *srgb)?;
+            let mip = filter.needs_mip().then(|| cache.mip(&image));
             Texture::Image(ImageTexture {
                 image,
                 mapping: *mapping,
@@ -433,12 +484,15 @@ fn texture(t: &TextureDesc, base: &Path, cache: &mut AssetCache) -> Result<Textu
                 lookup: *lookup,
                 wrap: *wrap,
                 scale: *scale,
+                mip,
+                max_anisotropy: *max_anisotropy,
             })
         }
         TextureDesc::Checker {
             mapping,
             squares,
             colors,
+            filter,
         } => {
             let ok = |s: f32| s.is_finite() && s > 0.0 && s <= 1e6;
             if !ok(squares.0) || !ok(squares.1) {
@@ -455,6 +509,7 @@ fn texture(t: &TextureDesc, base: &Path, cache: &mut AssetCache) -> Result<Textu
                 mapping: *mapping,
                 squares: *squares,
                 colors: *colors,
+                filter: *filter,
             })
         }
         TextureDesc::MeshMaterial { .. } => {
@@ -466,15 +521,33 @@ fn texture(t: &TextureDesc, base: &Path, cache: &mut AssetCache) -> Result<Textu
             mapping,
             filter,
             wrap,
-        } => Texture::Image(ImageTexture {
-            image: cache.uv_grid(),
-            mapping: *mapping,
-            filter: *filter,
-            lookup: Lookup::Centred,
-            wrap: *wrap,
-            scale: 1.0,
-        }),
+            max_anisotropy,
+        } => {
+            check_anisotropy("UvGrid", *max_anisotropy).map_err(invalid)?;
+            let image = cache.uv_grid();
+            let mip = filter.needs_mip().then(|| cache.mip(&image));
+            Texture::Image(ImageTexture {
+                image,
+                mapping: *mapping,
+                filter: *filter,
+                lookup: Lookup::Centred,
+                wrap: *wrap,
+                scale: 1.0,
+                mip,
+                max_anisotropy: *max_anisotropy,
+            })
+        }
     })
+}
+
+fn check_anisotropy(what: &str, a: f32) -> std::result::Result<(), String> {
+    if (1.0..=MAX_ANISOTROPY_LIMIT).contains(&a) {
+        Ok(())
+    } else {
+        Err(format!(
+            "{what}.max_anisotropy: {a} is out of range (1 to {MAX_ANISOTROPY_LIMIT})"
+        ))
+    }
 }
 
 /// Applies command-line overrides to a preset's render settings.
@@ -485,14 +558,36 @@ pub fn apply_overrides(desc: &mut SceneDesc, o: Overrides) {
     r.spp = o.spp.unwrap_or(r.spp);
     r.seed = o.seed.unwrap_or(r.seed);
     r.sampler = o.sampler.unwrap_or(r.sampler);
-    if let Some(f) = o.filter {
-        for obj in &mut desc.objects {
-            if let TextureDesc::Image { filter, .. }
-            | TextureDesc::UvGrid { filter, .. }
-            | TextureDesc::MeshMaterial { filter, .. } = obj.material.texture_mut()
-            {
-                *filter = f;
+    r.pixel_filter = o.pixel_filter.unwrap_or(r.pixel_filter);
+    r.view = o.view.unwrap_or(r.view);
+    if o.no_adaptive {
+        r.adaptive = None;
+    }
+    if let Some(a) = o.adaptive {
+        r.adaptive = Some(a);
+    }
+    for obj in &mut desc.objects {
+        match obj.material.texture_mut() {
+            TextureDesc::Image {
+                filter,
+                max_anisotropy,
+                ..
             }
+            | TextureDesc::UvGrid {
+                filter,
+                max_anisotropy,
+                ..
+            }
+            | TextureDesc::MeshMaterial {
+                filter,
+                max_anisotropy,
+                ..
+            } => {
+                *filter = o.filter.unwrap_or(*filter);
+                *max_anisotropy = o.max_anisotropy.unwrap_or(*max_anisotropy);
+            }
+            TextureDesc::Checker { filter, .. } => *filter = o.filter.unwrap_or(*filter),
+            TextureDesc::Constant(_) => {}
         }
     }
 }

@@ -6,8 +6,8 @@
 use crate::geometry::{Shading, Shape};
 use crate::mapping::Mapping;
 use crate::math::{Rgb, Vec3};
-use crate::sampler::PixelSampler;
-use crate::texture::{Filter, Lookup, Wrap};
+use crate::sampler::{PixelFilter, PixelSampler};
+use crate::texture::{DEFAULT_MAX_ANISOTROPY, Filter, Lookup, View, Wrap};
 use serde::{Deserialize, Serialize};
 
 /// The preset format version this build reads and writes.
@@ -108,6 +108,13 @@ pub struct RenderDesc {
     pub exposure: f32,
     /// Colour of rays that hit nothing.
     pub background: Rgb,
+    /// How a pixel weighs its samples (the reconstruction filter).
+    pub pixel_filter: PixelFilter,
+    /// Adaptive sampling: after `spp` samples everywhere, more (up to `max_spp`) only where
+    /// the image needs them.
+    pub adaptive: Option<AdaptiveDesc>,
+    /// What the render shows: the shaded image or a debug view.
+    pub view: View,
 }
 
 impl Default for RenderDesc {
@@ -120,8 +127,32 @@ impl Default for RenderDesc {
             sampler: PixelSampler::Jittered,
             exposure: 0.0,
             background: Rgb::BLACK,
+            pixel_filter: PixelFilter::Box,
+            adaptive: None,
+            view: View::Shaded,
         }
     }
+}
+
+/// Adaptive sampling: after the first `render.spp` samples of every pixel, further passes
+/// sample only pixels whose estimated error is above `threshold`, up to `max_spp` in all.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AdaptiveDesc {
+    /// Most samples a pixel may take.
+    pub max_spp: u32,
+    /// Error tolerance in display units (0-1, sRGB-encoded luminance): a pixel keeps sampling
+    /// while the standard error of its mean, or (after a single sample) its difference from a
+    /// neighbour, exceeds this.
+    #[serde(default = "default_threshold")]
+    pub threshold: f32,
+}
+
+/// The default adaptive threshold: about 2.5 steps of 8-bit display colour.
+pub const DEFAULT_ADAPTIVE_THRESHOLD: f32 = 0.01;
+
+fn default_threshold() -> f32 {
+    DEFAULT_ADAPTIVE_THRESHOLD
 }
 
 /// Settings `texplore snapshot` renders at (small and quick, but enough to see every feature).
@@ -380,6 +411,9 @@ pub enum TextureDesc {
         /// Whether 8- and 16-bit files are sRGB-encoded (almost always).
         #[serde(default = "yes")]
         srgb: bool,
+        /// The longest footprint the EWA filter follows (major / minor axis, 1 to 64).
+        #[serde(default = "default_max_anisotropy")]
+        max_anisotropy: f32,
     },
     /// A checkerboard in (u, v).
     Checker {
@@ -392,6 +426,10 @@ pub enum TextureDesc {
         /// The two colours.
         #[serde(default = "default_checker_colors")]
         colors: (Rgb, Rgb),
+        /// `Trilinear` or `Ewa`: box-filtered over the pixel's footprint in closed form;
+        /// otherwise point-sampled.
+        #[serde(default)]
+        filter: Filter,
     },
     /// The image (`map_Kd`) or colour (`Kd`) of the material a mesh file names (an OBJ's .mtl),
     /// read through the mesh's (u, v) by default. Only on `Mesh` shapes.
@@ -408,6 +446,9 @@ pub enum TextureDesc {
         /// Outside [0, 1].
         #[serde(default)]
         wrap: Wrap,
+        /// Longest-to-shortest axis ratio the EWA filter honours (see the `Image` texture).
+        #[serde(default = "default_max_anisotropy")]
+        max_anisotropy: f32,
     },
     /// The labelled UV test grid (cells A1 to H8).
     UvGrid {
@@ -420,12 +461,20 @@ pub enum TextureDesc {
         /// Outside [0, 1].
         #[serde(default)]
         wrap: Wrap,
+        /// The longest footprint the EWA filter follows (major / minor axis, 1 to 64).
+        #[serde(default = "default_max_anisotropy")]
+        max_anisotropy: f32,
     },
 }
 
 fn uv_mapping() -> Mapping {
     Mapping::Uv
 }
+
+fn default_max_anisotropy() -> f32 {
+    DEFAULT_MAX_ANISOTROPY
+}
+
 fn default_squares() -> (f32, f32) {
     (8.0, 8.0)
 }

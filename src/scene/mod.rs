@@ -20,8 +20,8 @@ use crate::geometry::{LocalHit, Object, Shape};
 use crate::mapping::Mapping;
 use crate::material::{Light, Material};
 use crate::math::{Ray, RayDifferential, Rgb, Vec3A, max_abs};
-use crate::sampler::PixelSampler;
-use crate::texture::TextureContext;
+use crate::sampler::{PixelFilter, PixelSampler};
+use crate::texture::{TextureContext, View};
 
 /// Shadow-ray origins are pushed off the surface along its geometric normal by this fraction of
 /// the magnitude of the coordinates involved (hit point and the object's translation): about a
@@ -48,6 +48,20 @@ pub struct RenderSettings {
     pub exposure_scale: f32,
     /// Radiance of rays that hit nothing.
     pub background: Rgb,
+    /// Reconstruction filter (how samples spread around the pixel centre).
+    pub pixel_filter: PixelFilter,
+    /// Adaptive sampling, if on.
+    pub adaptive: Option<AdaptiveDesc>,
+    /// The shaded image or a debug view.
+    pub view: View,
+}
+
+impl RenderSettings {
+    /// The most samples any pixel takes: `spp`, or the adaptive `max_spp`.
+    #[must_use]
+    pub fn max_spp(&self) -> u32 {
+        self.adaptive.map_or(self.spp, |a| a.max_spp.max(self.spp))
+    }
 }
 
 /// An immutable, ready-to-trace scene.
@@ -200,9 +214,13 @@ impl Scene {
         let obj = &self.objects[hit.object];
         let material = &self.materials[obj.material];
         let ctx = self.texture_context(hit, diff);
+        let view = self.settings.view;
+        if matches!(view, View::Uv | View::MipLevel) {
+            return material.texture().debug_color(&ctx, view, Rgb::BLACK);
+        }
         let sp = material.shade_point(&ctx, self.ambient);
         if !material.is_lit() {
-            return sp.base;
+            return material.texture().debug_color(&ctx, view, sp.base);
         }
         let mut l = sp.base;
         let offset = SHADOW_OFFSET_RELATIVE
@@ -225,7 +243,10 @@ impl Scene {
             }
             l += sp.direct(hit.ns, hit.wo, wi, li);
         }
-        l
+        match view {
+            View::Shaded => l,
+            _ => material.texture().debug_color(&ctx, view, l),
+        }
     }
 }
 

@@ -4,10 +4,14 @@
 //! offsets and any coordinates the shape carries); image and procedural textures run their
 //! mapping first, then look up or compute the colour.
 
+mod debug;
 mod image;
+mod mip;
 mod procedural;
 
+pub use debug::{View, mip_level_color};
 pub use image::{ImageData, MAX_IMAGE_BYTES, MAX_IMAGE_DIMENSION, Texels, load_image, save_png};
+pub use mip::{DEFAULT_MAX_ANISOTROPY, MAX_ANISOTROPY_LIMIT, MipPyramid};
 pub use procedural::{Checker, uv_grid_image};
 
 use crate::mapping::{Mapping, TexCoord};
@@ -66,8 +70,19 @@ impl Texture {
     #[must_use]
     pub fn needs_differentials(&self) -> bool {
         match self {
-            Self::Constant(_) | Self::Checker(_) => false,
+            Self::Constant(_) => false,
+            Self::Checker(c) => c.filter.needs_footprint(),
             Self::Image(t) => t.filter.needs_footprint(),
+        }
+    }
+
+    /// The mapping, for textures that have one.
+    #[must_use]
+    pub const fn mapping(&self) -> Option<Mapping> {
+        match self {
+            Self::Constant(_) => None,
+            Self::Image(t) => Some(t.mapping),
+            Self::Checker(c) => Some(c.mapping),
         }
     }
 }
@@ -178,6 +193,10 @@ impl Wrap {
 }
 
 /// How texels are combined into one colour.
+///
+/// On the procedural checker, which has no texels, `Nearest`, `Bilinear` and `Bicubic` all
+/// point-sample, and `Trilinear` and `Ewa` use the closed-form box filter of the checker over
+/// the footprint's bounding box (pbrt's analytically filtered checkerboard).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub enum Filter {
     /// One texel, chosen by the [`Lookup`].
@@ -185,11 +204,25 @@ pub enum Filter {
     Nearest,
     /// The four nearest texel centres, weighted by distance.
     Bilinear,
+    /// Catmull-Rom bicubic over the 4 x 4 nearest texel centres (sharper magnification).
+    Bicubic,
+    /// Trilinear mip-mapping: bilinear in the two mip levels around the pixel's footprint size,
+    /// blended (isotropic: blurs footprints that are long and thin).
+    Trilinear,
+    /// Elliptically weighted average over the mip pyramid: follows long, thin footprints (a
+    /// plane seen at a grazing angle) up to the texture's `max_anisotropy`.
+    Ewa,
 }
 
 impl Filter {
     /// Every filter, in menu order.
-    pub const ALL: [Self; 2] = [Self::Nearest, Self::Bilinear];
+    pub const ALL: [Self; 5] = [
+        Self::Nearest,
+        Self::Bilinear,
+        Self::Bicubic,
+        Self::Trilinear,
+        Self::Ewa,
+    ];
 
     /// The name used on the command line and in menus.
     #[must_use]
@@ -197,13 +230,40 @@ impl Filter {
         match self {
             Self::Nearest => "nearest",
             Self::Bilinear => "bilinear",
+            Self::Bicubic => "bicubic",
+            Self::Trilinear => "trilinear",
+            Self::Ewa => "ewa",
         }
     }
 
-    /// Whether this filter needs the pixel's footprint in texture space.
+    /// One sentence on what the filter does, for tooltips.
+    #[must_use]
+    pub const fn description(self) -> &'static str {
+        match self {
+            Self::Nearest => "One texel per sample: blocky when magnified, aliases when minified.",
+            Self::Bilinear => {
+                "Blends the four nearest texels: smooth up close, still aliases far away."
+            }
+            Self::Bicubic => "Catmull-Rom over 4 x 4 texels: sharper than bilinear up close.",
+            Self::Trilinear => {
+                "Mip-mapping: averages as many texels as the pixel covers, but isotropically (blurs at grazing angles)."
+            }
+            Self::Ewa => {
+                "Elliptical weighted average: follows the pixel's stretched footprint; sharp and alias-free."
+            }
+        }
+    }
+
+    /// Whether this filter needs the pixel's footprint in texture space (ray differentials).
     #[must_use]
     pub const fn needs_footprint(self) -> bool {
-        false
+        matches!(self, Self::Trilinear | Self::Ewa)
+    }
+
+    /// Whether this filter reads a mip pyramid (built only then).
+    #[must_use]
+    pub const fn needs_mip(self) -> bool {
+        matches!(self, Self::Trilinear | Self::Ewa)
     }
 }
 
@@ -226,6 +286,11 @@ pub struct ImageTexture {
     pub wrap: Wrap,
     /// A multiplier on the texel values (brightens or dims an HDR image).
     pub scale: f32,
+    /// The mip pyramid, present when the filter needs one ([`Filter::needs_mip`]); without it
+    /// mip filters fall back to bilinear.
+    pub mip: Option<Arc<MipPyramid>>,
+    /// The longest footprint EWA follows, as a ratio of major to minor axis.
+    pub max_anisotropy: f32,
 }
 
 impl ImageTexture {
@@ -260,9 +325,27 @@ impl ImageTexture {
     #[inline]
     pub fn sample(&self, tc: TexCoord) -> Rgb {
         let (wu, wv) = self.wraps();
-        match self.filter {
-            Filter::Nearest => self.image.nearest(tc.uv, self.lookup, wu, wv),
-            Filter::Bilinear => self.image.bilinear(tc.uv, wu, wv),
+        match (self.filter, &self.mip) {
+            (Filter::Nearest, _) => self.image.nearest(tc.uv, self.lookup, wu, wv),
+            (Filter::Bilinear, _) | (Filter::Trilinear | Filter::Ewa, None) => {
+                self.image.bilinear(tc.uv, wu, wv)
+            }
+            (Filter::Bicubic, _) => self.image.bicubic(tc.uv, wu, wv),
+            (Filter::Trilinear, Some(m)) => m.trilinear(tc.uv, tc.duvdx, tc.duvdy, wu, wv),
+            (Filter::Ewa, Some(m)) => m.ewa(tc.uv, tc.duvdx, tc.duvdy, self.max_anisotropy, wu, wv),
+        }
+    }
+
+    /// The continuous mip level the footprint of `tc` selects (0 at full resolution or when
+    /// magnified; negative values say how much the texture is magnified).
+    #[must_use]
+    pub fn footprint_level(&self, tc: &TexCoord) -> f32 {
+        let size = Vec2::new(self.image.width() as f32, self.image.height() as f32);
+        let width = (tc.duvdx * size).length().max((tc.duvdy * size).length());
+        if width > 0.0 && width.is_finite() {
+            width.log2()
+        } else {
+            -8.0
         }
     }
 }

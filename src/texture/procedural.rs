@@ -1,7 +1,7 @@
 //! Procedural textures: a checkerboard in (u, v) and the labelled UV test grid.
 
-use super::{ImageData, TextureContext};
-use crate::mapping::Mapping;
+use super::{Filter, ImageData, TextureContext};
+use crate::mapping::{Mapping, TexCoord};
 use crate::math::{Rgb, srgb_to_linear};
 
 /// A checkerboard of `squares.0 x squares.1` squares over the unit (u, v) square, repeating
@@ -14,6 +14,9 @@ pub struct Checker {
     pub squares: (f32, f32),
     /// The two colours (linear).
     pub colors: (Rgb, Rgb),
+    /// Footprint filters ([`Filter::needs_footprint`]) use the closed-form box filter; the others
+    /// point-sample.
+    pub filter: Filter,
 }
 
 impl Checker {
@@ -21,7 +24,57 @@ impl Checker {
     #[must_use]
     #[inline]
     pub fn eval(&self, ctx: &TextureContext) -> Rgb {
-        let uv = ctx.tex_coord(self.mapping).uv;
+        let tc = ctx.tex_coord(self.mapping);
+        if self.filter.needs_footprint() {
+            self.box_filtered(&tc)
+        } else {
+            self.point(tc.uv)
+        }
+    }
+
+    /// The checker averaged over the bounding box of the pixel's footprint, in closed form
+    /// (pbrt's `Checkerboard` with a box filter). Along one axis, the share of [s0, s1] lying in
+    /// odd squares is `(I(s1) - I(s0)) / (s1 - s0)` with `I(x) = floor(x / 2) +
+    /// 2 max(x / 2 - floor(x / 2) - 1 / 2, 0)` the integral of the odd-square indicator; the 2D
+    /// share of the second colour is `a (1 - b) + b (1 - a)`. The box is the bounding box of the
+    /// one-pixel parallelogram spanned by d(u, v)/dx and d(u, v)/dy.
+    #[must_use]
+    pub fn box_filtered(&self, tc: &TexCoord) -> Rgb {
+        let (nu, nv) = self.squares;
+        let (s, t) = (tc.uv.x * nu, tc.uv.y * nv);
+        let ds = 0.5 * (tc.duvdx.x.abs() + tc.duvdy.x.abs()) * nu;
+        let dt = 0.5 * (tc.duvdx.y.abs() + tc.duvdy.y.abs()) * nv;
+        let (s0, s1, t0, t1) = (s - ds, s + ds, t - dt, t + dt);
+        if !(s0.is_finite() && s1.is_finite() && t0.is_finite() && t1.is_finite())
+            || (s0.floor() == s1.floor() && t0.floor() == t1.floor())
+        {
+            return self.point(tc.uv);
+        }
+        // Over many squares the average is the mean colour (and f32 loses the fraction).
+        let share = |a: f32, b: f32, d: f32| {
+            if d <= 0.0 {
+                // Zero width: a point along this axis.
+                if a.floor().rem_euclid(2.0) < 0.5 {
+                    0.0
+                } else {
+                    1.0
+                }
+            } else if d > 1e5 {
+                0.5
+            } else {
+                ((odd_integral(b) - odd_integral(a)) / (2.0 * d)).clamp(0.0, 1.0)
+            }
+        };
+        let a = share(s0, s1, ds);
+        let b = share(t0, t1, dt);
+        let second = a * (1.0 - b) + b * (1.0 - a);
+        self.colors.0 * (1.0 - second) + self.colors.1 * second
+    }
+
+    /// The checker at one point.
+    #[must_use]
+    #[inline]
+    pub fn point(&self, uv: crate::math::Vec2) -> Rgb {
         let (i, j) = (
             (uv.x * self.squares.0).floor(),
             (uv.y * self.squares.1).floor(),
@@ -33,6 +86,14 @@ impl Checker {
             self.colors.1
         }
     }
+}
+
+/// The integral from 0 to `x` of the indicator of odd unit intervals.
+#[inline]
+fn odd_integral(x: f32) -> f32 {
+    let h = x * 0.5;
+    let f = h.floor();
+    f + 2.0 * (h - f - 0.5).max(0.0)
 }
 
 /// 5x7 glyphs, one row per byte, bit 4 = leftmost pixel.
@@ -138,4 +199,100 @@ pub fn uv_grid_image(size: u32) -> ImageData {
             srgb_to_linear(c[2]),
         )
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::Vec2;
+
+    fn checker(filter: Filter) -> Checker {
+        Checker {
+            mapping: Mapping::Rectangular,
+            squares: (4.0, 4.0),
+            colors: (Rgb::grey(1.0), Rgb::grey(0.0)),
+            filter,
+        }
+    }
+
+    /// The box average by brute force: a 400 x 400 grid of point samples over the box.
+    fn brute(c: &Checker, tc: &TexCoord) -> f32 {
+        let hu = 0.5 * (tc.duvdx.x.abs() + tc.duvdy.x.abs());
+        let hv = 0.5 * (tc.duvdx.y.abs() + tc.duvdy.y.abs());
+        let n = 400;
+        let mut sum = 0.0;
+        for i in 0..n {
+            for j in 0..n {
+                let u = tc.uv.x - hu + 2.0 * hu * (i as f32 + 0.5) / n as f32;
+                let v = tc.uv.y - hv + 2.0 * hv * (j as f32 + 0.5) / n as f32;
+                sum += c.point(Vec2::new(u, v)).0;
+            }
+        }
+        sum / (n * n) as f32
+    }
+
+    #[test]
+    fn closed_form_box_filter_matches_brute_force() {
+        let c = checker(Filter::Ewa);
+        for (uv, dx, dy) in [
+            (
+                Vec2::new(0.3, 0.41),
+                Vec2::new(0.1, 0.0),
+                Vec2::new(0.0, 0.03),
+            ),
+            (
+                Vec2::new(0.25, 0.25),
+                Vec2::new(0.2, 0.05),
+                Vec2::new(-0.04, 0.3),
+            ),
+            (
+                Vec2::new(-1.37, 2.6),
+                Vec2::new(0.9, 0.0),
+                Vec2::new(0.0, 0.9),
+            ),
+            (
+                Vec2::new(0.6, 0.1),
+                Vec2::new(0.01, 0.0),
+                Vec2::new(0.0, 0.5),
+            ),
+        ] {
+            let tc = TexCoord {
+                uv,
+                duvdx: dx,
+                duvdy: dy,
+            };
+            let exact = c.box_filtered(&tc).0;
+            let b = brute(&c, &tc);
+            assert!((exact - b).abs() < 0.01, "{uv} {dx} {dy}: {exact} vs {b}");
+        }
+    }
+
+    #[test]
+    fn closed_form_is_grey_far_away_and_exact_inside_a_square() {
+        let c = checker(Filter::Trilinear);
+        let far = TexCoord {
+            uv: Vec2::new(0.3, 0.7),
+            duvdx: Vec2::new(1e3, 0.0),
+            duvdy: Vec2::new(0.0, 1e3),
+        };
+        assert!((c.box_filtered(&far).0 - 0.5).abs() < 1e-3);
+        let inside = TexCoord {
+            uv: Vec2::new(0.1, 0.1),
+            duvdx: Vec2::new(0.01, 0.0),
+            duvdy: Vec2::new(0.0, 0.01),
+        };
+        assert_eq!(c.box_filtered(&inside), c.point(inside.uv));
+        // Point-sampling filters ignore the footprint.
+        assert_eq!(checker(Filter::Nearest).eval_tc(&far), c.point(far.uv));
+    }
+
+    impl Checker {
+        fn eval_tc(&self, tc: &TexCoord) -> Rgb {
+            if self.filter.needs_footprint() {
+                self.box_filtered(tc)
+            } else {
+                self.point(tc.uv)
+            }
+        }
+    }
 }

@@ -132,6 +132,8 @@ fn periodic_mappings_override_the_wrap_on_u() {
         lookup: Lookup::Centred,
         wrap: Wrap::Black,
         scale: 1.0,
+        mip: None,
+        max_anisotropy: DEFAULT_MAX_ANISOTROPY,
     };
     assert_eq!(tex.wraps(), (Wrap::Repeat, Wrap::Clamp));
 }

@@ -1,0 +1,519 @@
+//! The mip pyramid and the filters that read it: trilinear (isotropic) and EWA (anisotropic,
+//! Heckbert's elliptical weighted average with a Gaussian, as in pbrt).
+//!
+//! Levels are averaged in linear colour. 8-bit sRGB images are decoded to linear, averaged and
+//! re-encoded to 8-bit sRGB (4 bytes per texel, like the base level: the pyramid adds a third
+//! to the image's memory); linear images keep linear `f32` levels (12 bytes per texel).
+//! Non-power-of-two sides are reduced by a polyphase box filter: an even side halves with a
+//! 2-tap box, an odd side `n` becomes `(n - 1) / 2` with 3 taps weighted
+//! `((m - i) / n, m / n, (i + 1) / n)` for output texel `i` (with `m = (n - 1) / 2`), which is
+//! the exact box filter of width `n / m` texels: no row or column is dropped and no image
+//! content shifts. A side of 1 stays 1. Lookups wrap each level with the texture's wrap modes,
+//! so periodic mappings filter across their seam at every level.
+
+use super::{ImageData, Texels, Wrap};
+use crate::math::{Rgb, Vec2, linear_to_srgb};
+use std::sync::{Arc, LazyLock};
+
+/// The default largest ratio of the footprint's major to minor axis that EWA honours; longer
+/// footprints are widened (blurrier, but the work per lookup stays bounded).
+pub const DEFAULT_MAX_ANISOTROPY: f32 = 8.0;
+
+/// The largest `max_anisotropy` accepted: EWA's work per lookup grows with it.
+pub const MAX_ANISOTROPY_LIMIT: f32 = 64.0;
+
+/// A pyramid of successively halved images; level 0 is the texture itself (shared, not copied).
+#[derive(Clone, Debug)]
+pub struct MipPyramid {
+    levels: Vec<Arc<ImageData>>,
+}
+
+impl MipPyramid {
+    /// Builds every level down to 1 x 1 from `base`.
+    #[must_use]
+    pub fn build(base: Arc<ImageData>) -> Self {
+        let mut levels = vec![base];
+        loop {
+            let last = &levels[levels.len() - 1];
+            if last.width() == 1 && last.height() == 1 {
+                break;
+            }
+            let next = downsample(last);
+            levels.push(Arc::new(next));
+        }
+        Self { levels }
+    }
+
+    /// Number of levels (1 for a 1 x 1 image).
+    #[must_use]
+    pub fn len(&self) -> usize {
+        self.levels.len()
+    }
+
+    /// Always false: a pyramid has at least its base level.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.levels.is_empty()
+    }
+
+    /// Level `i` (0 = full resolution), clamped to the coarsest.
+    #[must_use]
+    pub fn level(&self, i: usize) -> &ImageData {
+        &self.levels[i.min(self.levels.len() - 1)]
+    }
+
+    /// Bytes taken by the levels above the base (the base belongs to the texture).
+    #[must_use]
+    pub fn extra_bytes(&self) -> usize {
+        self.levels[1..]
+            .iter()
+            .map(|l| l.width() as usize * l.height() as usize * l.bytes_per_texel())
+            .sum()
+    }
+
+    /// The continuous level whose texels are `texels` base texels wide (0 when magnified).
+    #[must_use]
+    #[inline]
+    pub fn level_for_width(&self, texels: f32) -> f32 {
+        let max = (self.levels.len() - 1) as f32;
+        if texels.is_finite() && texels > 1.0 {
+            texels.log2().min(max)
+        } else if texels.is_finite() {
+            0.0
+        } else {
+            max
+        }
+    }
+
+    /// Trilinear filtering: bilinear at the two levels around the footprint's size, blended.
+    /// The size is the longer of the two screen-space derivatives, in base texels.
+    #[must_use]
+    #[inline]
+    pub fn trilinear(&self, uv: Vec2, duvdx: Vec2, duvdy: Vec2, wu: Wrap, wv: Wrap) -> Rgb {
+        let base = self.level(0);
+        let size = Vec2::new(base.width() as f32, base.height() as f32);
+        let width = (duvdx * size).length().max((duvdy * size).length());
+        let lod = self.level_for_width(width);
+        let l0 = lod.floor();
+        let t = lod - l0;
+        let l0 = l0 as usize;
+        let a = self.level(l0).bilinear(uv, wu, wv);
+        if t <= 0.0 {
+            return a;
+        }
+        let b = self.level(l0 + 1).bilinear(uv, wu, wv);
+        a * (1.0 - t) + b * t
+    }
+
+    /// Elliptically weighted average (Heckbert 1989, pbrt's Gaussian form): the pixel's
+    /// footprint is the ellipse with conjugate semi-axes `duvdx` and `duvdy`; the ellipse is
+    /// widened so the major / minor ratio is at most `max_anisotropy`, a level is chosen where
+    /// the minor axis spans a few texels, and the texels inside are averaged with Gaussian
+    /// weights (blended between two levels).
+    #[must_use]
+    pub fn ewa(
+        &self,
+        uv: Vec2,
+        duvdx: Vec2,
+        duvdy: Vec2,
+        max_anisotropy: f32,
+        wu: Wrap,
+        wv: Wrap,
+    ) -> Rgb {
+        let base = self.level(0);
+        let size = Vec2::new(base.width() as f32, base.height() as f32);
+        // Work in base texels so non-square images get round texels.
+        let (mut major, mut minor) = (duvdx * size, duvdy * size);
+        if !(major.is_finite() && minor.is_finite()) {
+            return base.bilinear(uv, wu, wv);
+        }
+        if major.length_squared() < minor.length_squared() {
+            std::mem::swap(&mut major, &mut minor);
+        }
+        let major_len = major.length();
+        let mut minor_len = minor.length();
+        if major_len == 0.0 {
+            return base.bilinear(uv, wu, wv);
+        }
+        // Clamp the eccentricity: widen the minor axis (perpendicular to the major one when the
+        // footprint is degenerate, so it keeps its area).
+        let aniso = max_anisotropy.clamp(1.0, MAX_ANISOTROPY_LIMIT);
+        if minor_len * aniso < major_len {
+            let want = major_len / aniso;
+            minor = if minor_len > 0.0 {
+                minor * (want / minor_len)
+            } else {
+                Vec2::new(-major.y, major.x) * (want / major_len)
+            };
+            minor_len = want;
+        }
+        let lod = self.level_for_width(minor_len);
+        let l0 = lod.floor();
+        let t = lod - l0;
+        let l0 = l0 as usize;
+        let a = ewa_level(self.level(l0), size, uv, major, minor, wu, wv);
+        if t <= 0.0 || l0 + 1 >= self.levels.len() {
+            return a;
+        }
+        let b = ewa_level(self.level(l0 + 1), size, uv, major, minor, wu, wv);
+        a * (1.0 - t) + b * t
+    }
+}
+
+/// Entries of the Gaussian weight table, indexed by the squared elliptical radius.
+const WEIGHT_TABLE_SIZE: usize = 128;
+/// The Gaussian's falloff: `exp(-ALPHA r^2) - exp(-ALPHA)`, zero on the ellipse's rim.
+const EWA_ALPHA: f32 = 2.0;
+
+static EWA_WEIGHTS: LazyLock<[f32; WEIGHT_TABLE_SIZE]> = LazyLock::new(|| {
+    let mut t = [0.0; WEIGHT_TABLE_SIZE];
+    for (i, w) in t.iter_mut().enumerate() {
+        let r2 = i as f32 / (WEIGHT_TABLE_SIZE - 1) as f32;
+        *w = (-EWA_ALPHA * r2).exp() - (-EWA_ALPHA).exp();
+    }
+    t
+});
+
+/// The most texels one EWA lookup may visit along a side of its bounding box; the anisotropy
+/// clamp keeps real footprints far below it, this only guards against absurd input.
+const EWA_MAX_SPAN: f32 = 1024.0;
+
+/// EWA over one level. `base_size` converts the base-texel axes to this level's texels.
+fn ewa_level(
+    img: &ImageData,
+    base_size: Vec2,
+    uv: Vec2,
+    major: Vec2,
+    minor: Vec2,
+    wu: Wrap,
+    wv: Wrap,
+) -> Rgb {
+    let (w, h) = (img.width(), img.height());
+    let scale = Vec2::new(w as f32, h as f32) / base_size;
+    let (d0, d1) = (major * scale, minor * scale);
+    let s = uv.x * w as f32 - 0.5;
+    let t = uv.y * h as f32 - 0.5;
+    // Implicit ellipse A s^2 + B s t + C t^2 = F through the axes' tips, with one texel added to
+    // each axis so a magnified lookup still covers a texel (the reconstruction filter).
+    let mut a = d0.y * d0.y + d1.y * d1.y + 1.0;
+    let mut b = -2.0 * (d0.x * d0.y + d1.x * d1.y);
+    let mut c = d0.x * d0.x + d1.x * d1.x + 1.0;
+    let f = a * c - b * b * 0.25;
+    if !(f.is_finite() && f > 0.0) {
+        return img.bilinear(uv, wu, wv);
+    }
+    let inv_f = 1.0 / f;
+    a *= inv_f;
+    b *= inv_f;
+    c *= inv_f;
+    let det = -b * b + 4.0 * a * c;
+    let inv_det = 1.0 / det;
+    let u_sqrt = (det * c).sqrt();
+    let v_sqrt = (a * det).sqrt();
+    let du = (2.0 * inv_det * u_sqrt).min(EWA_MAX_SPAN);
+    let dv = (2.0 * inv_det * v_sqrt).min(EWA_MAX_SPAN);
+    if !(du.is_finite() && dv.is_finite() && s.is_finite() && t.is_finite()) {
+        return img.bilinear(uv, wu, wv);
+    }
+    let (s0, s1) = ((s - du).ceil() as i64, (s + du).floor() as i64);
+    let (t0, t1) = ((t - dv).ceil() as i64, (t + dv).floor() as i64);
+    let weights = &*EWA_WEIGHTS;
+    let mut sum = Rgb::BLACK;
+    let mut wsum = 0.0;
+    for it in t0..=t1 {
+        let tt = it as f32 - t;
+        let Some(row) = wv.index(it, h) else {
+            // Outside under `Black`: black texels still count in the average.
+            for is in s0..=s1 {
+                let ss = is as f32 - s;
+                let r2 = a * ss * ss + b * ss * tt + c * tt * tt;
+                if r2 < 1.0 {
+                    wsum += weights[((r2 * (WEIGHT_TABLE_SIZE - 1) as f32) as usize)
+                        .min(WEIGHT_TABLE_SIZE - 1)];
+                }
+            }
+            continue;
+        };
+        for is in s0..=s1 {
+            let ss = is as f32 - s;
+            let r2 = a * ss * ss + b * ss * tt + c * tt * tt;
+            if r2 < 1.0 {
+                let wgt = weights
+                    [((r2 * (WEIGHT_TABLE_SIZE - 1) as f32) as usize).min(WEIGHT_TABLE_SIZE - 1)];
+                if let Some(col) = wu.index(is, w) {
+                    sum += img.texel(col, row) * wgt;
+                }
+                wsum += wgt;
+            }
+        }
+    }
+    if wsum > 0.0 {
+        sum / wsum
+    } else {
+        img.bilinear(uv, wu, wv)
+    }
+}
+
+/// The next level: each side halved by the polyphase box filter (see the module docs).
+fn downsample(img: &ImageData) -> ImageData {
+    let (w, h) = (img.width(), img.height());
+    let (nw, nh) = (half(w), half(h));
+    // Gather linear texels of the source, row 0 = top (row order does not matter for a box).
+    let mut src = Vec::with_capacity(w as usize * h as usize);
+    for row in 0..h {
+        for col in 0..w {
+            src.push(img.texel_top(col, row));
+        }
+    }
+    // Along x, then along y.
+    let mut tmp = vec![Rgb::BLACK; nw as usize * h as usize];
+    for row in 0..h as usize {
+        let line = &src[row * w as usize..(row + 1) * w as usize];
+        for (i, out) in tmp[row * nw as usize..(row + 1) * nw as usize]
+            .iter_mut()
+            .enumerate()
+        {
+            *out = taps(w, i as u32, |k| line[k as usize]);
+        }
+    }
+    let mut dst = vec![Rgb::BLACK; nw as usize * nh as usize];
+    for col in 0..nw as usize {
+        for j in 0..nh as usize {
+            dst[j * nw as usize + col] = taps(h, j as u32, |k| tmp[k as usize * nw as usize + col]);
+        }
+    }
+    let name = format!("{} ({nw}x{nh})", img.name);
+    let texels = match img.texels() {
+        Texels::Srgb8(_) => Texels::Srgb8(
+            dst.iter()
+                .map(|c| {
+                    let e = |v: f32| (linear_to_srgb(v.clamp(0.0, 1.0)) * 255.0).round() as u8;
+                    [e(c.0), e(c.1), e(c.2), 255]
+                })
+                .collect(),
+        ),
+        Texels::Linear(_) => Texels::Linear(dst.iter().map(|c| c.to_array()).collect()),
+    };
+    ImageData::new(nw, nh, texels, name)
+}
+
+/// The size of a side after one reduction.
+#[must_use]
+pub const fn half(n: u32) -> u32 {
+    if n <= 1 { 1 } else { n / 2 }
+}
+
+/// Output texel `i` of a side of `n` source texels read through `at`.
+#[inline]
+fn taps(n: u32, i: u32, at: impl Fn(u32) -> Rgb) -> Rgb {
+    if n <= 1 {
+        return at(0);
+    }
+    if n % 2 == 0 {
+        return (at(2 * i) + at(2 * i + 1)) * 0.5;
+    }
+    let m = (n - 1) / 2;
+    let nf = n as f32;
+    at(2 * i) * ((m - i) as f32 / nf)
+        + at(2 * i + 1) * (m as f32 / nf)
+        + at(2 * i + 2) * ((i + 1) as f32 / nf)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn mean(img: &ImageData) -> Rgb {
+        let mut s = Rgb::BLACK;
+        for r in 0..img.height() {
+            for c in 0..img.width() {
+                s += img.texel_top(c, r);
+            }
+        }
+        s / (img.width() * img.height()) as f32
+    }
+
+    #[test]
+    fn odd_and_thin_sizes_reduce_to_one_texel_keeping_the_mean() {
+        for (w, h) in [
+            (1, 1),
+            (1, 7),
+            (7, 1),
+            (3, 5),
+            (5, 3),
+            (6, 9),
+            (2048, 1024),
+            (17, 2),
+        ] {
+            let img = Arc::new(ImageData::from_fn(w, h, "t", |c, r| {
+                Rgb(c as f32, r as f32, ((c * 7 + r * 3) % 5) as f32)
+            }));
+            let m0 = mean(&img);
+            let p = MipPyramid::build(img);
+            let last = p.level(p.len() - 1);
+            assert_eq!((last.width(), last.height()), (1, 1), "{w}x{h}");
+            // Every level keeps the image's mean (the box filter conserves energy).
+            for l in 0..p.len() {
+                let m = mean(p.level(l));
+                assert!(
+                    (m.0 - m0.0).abs() < 1e-3 * (1.0 + m0.0)
+                        && (m.1 - m0.1).abs() < 1e-3 * (1.0 + m0.1)
+                        && (m.2 - m0.2).abs() < 1e-3 * (1.0 + m0.2),
+                    "{w}x{h} level {l}: {m:?} vs {m0:?}"
+                );
+            }
+            // Level count: one per halving of the longer side.
+            let expected = 1 + (w.max(h) as f32).log2().floor() as usize;
+            assert_eq!(p.len(), expected, "{w}x{h}");
+        }
+    }
+
+    #[test]
+    fn three_by_five_level_one_is_the_polyphase_box() {
+        // A ramp in x: 3 texels 0, 1, 2 -> one texel, the mean 1.
+        let img = Arc::new(ImageData::from_fn(3, 5, "r", |c, _| Rgb::grey(c as f32)));
+        let p = MipPyramid::build(img);
+        let l1 = p.level(1);
+        assert_eq!((l1.width(), l1.height()), (1, 2));
+        assert!((l1.texel_top(0, 0).0 - 1.0).abs() < 1e-6);
+        // 5 -> 2 in y: weights (2/5, 2/5, 1/5) and (1/5, 2/5, 2/5): a y ramp 0..4 gives 0.8, 3.2.
+        let img = Arc::new(ImageData::from_fn(1, 5, "r", |_, r| Rgb::grey(r as f32)));
+        let p = MipPyramid::build(img);
+        let l1 = p.level(1);
+        assert_eq!((l1.width(), l1.height()), (1, 2));
+        assert!((l1.texel_top(0, 0).0 - 0.8).abs() < 1e-5);
+        assert!((l1.texel_top(0, 1).0 - 3.2).abs() < 1e-5);
+    }
+
+    #[test]
+    fn srgb_levels_average_in_linear_colour() {
+        // Black and white columns: the linear mean 0.5 is sRGB byte 188, not 128.
+        let texels = (0..4)
+            .map(|i| {
+                if i % 2 == 0 {
+                    [0, 0, 0, 255]
+                } else {
+                    [255, 255, 255, 255]
+                }
+            })
+            .collect();
+        let img = Arc::new(ImageData::new(2, 2, Texels::Srgb8(texels), "bw"));
+        let p = MipPyramid::build(img);
+        assert_eq!(p.level(1).bytes_per_texel(), 4);
+        let c = p.level(1).texel_top(0, 0);
+        assert!((c.0 - 0.5).abs() < 0.01, "{c:?}");
+        let Texels::Srgb8(v) = p.level(1).texels() else {
+            panic!("level 1 should stay 8-bit sRGB")
+        };
+        assert_eq!(v[0][0], 188);
+    }
+
+    #[test]
+    fn trilinear_and_ewa_average_a_fine_checker_to_grey_when_minified() {
+        let img = Arc::new(ImageData::from_fn(64, 64, "c", |c, r| {
+            Rgb::grey(((c + r) % 2) as f32)
+        }));
+        let p = MipPyramid::build(img);
+        let d = Vec2::new(16.0 / 64.0, 0.0);
+        let e = Vec2::new(0.0, 16.0 / 64.0);
+        for uv in [
+            Vec2::new(0.3, 0.7),
+            Vec2::new(0.0, 0.0),
+            Vec2::new(0.99, 0.5),
+        ] {
+            let t = p.trilinear(uv, d, e, Wrap::Repeat, Wrap::Repeat);
+            assert!((t.0 - 0.5).abs() < 0.02, "{uv}: {t:?}");
+            let x = p.ewa(uv, d, e, 8.0, Wrap::Repeat, Wrap::Repeat);
+            assert!((x.0 - 0.5).abs() < 0.02, "{uv}: {x:?}");
+        }
+        // Magnified, EWA still reconstructs the texel (no blur toward grey at a texel centre
+        // beyond the one-texel reconstruction). Column 0, bottom row (file row 63) is white.
+        let tiny = Vec2::new(1e-5, 0.0);
+        let x = p.ewa(
+            Vec2::new(0.5 / 64.0, 0.5 / 64.0),
+            tiny,
+            tiny.perp(),
+            8.0,
+            Wrap::Repeat,
+            Wrap::Repeat,
+        );
+        assert!(x.0 > 0.6, "{x:?}");
+    }
+
+    #[test]
+    fn ewa_is_anisotropic_and_respects_max_anisotropy() {
+        // Vertical stripes, one texel wide: a footprint long along v and one texel along u keeps
+        // them; a footprint long along u averages them.
+        let img = Arc::new(ImageData::from_fn(64, 64, "s", |c, _| {
+            Rgb::grey((c % 2) as f32)
+        }));
+        let p = MipPyramid::build(img);
+        let uv = Vec2::new(1.5 / 64.0, 0.5);
+        let along_v = p.ewa(
+            uv,
+            Vec2::new(0.0, 16.0 / 64.0),
+            Vec2::new(0.2 / 64.0, 0.0),
+            16.0,
+            Wrap::Repeat,
+            Wrap::Repeat,
+        );
+        assert!(along_v.0 > 0.6, "{along_v:?}");
+        let along_u = p.ewa(
+            uv,
+            Vec2::new(16.0 / 64.0, 0.0),
+            Vec2::new(0.0, 0.2 / 64.0),
+            16.0,
+            Wrap::Repeat,
+            Wrap::Repeat,
+        );
+        assert!((along_u.0 - 0.5).abs() < 0.05, "{along_u:?}");
+        // With max anisotropy 1 the long-along-v footprint becomes a 16-texel disc: grey.
+        let iso = p.ewa(
+            uv,
+            Vec2::new(0.0, 16.0 / 64.0),
+            Vec2::new(0.2 / 64.0, 0.0),
+            1.0,
+            Wrap::Repeat,
+            Wrap::Repeat,
+        );
+        assert!((iso.0 - 0.5).abs() < 0.05, "{iso:?}");
+    }
+
+    #[test]
+    fn filters_wrap_across_the_u_seam_at_every_level() {
+        // Left half black, right half white: at u = 0 with repeat the footprint straddles the
+        // seam and sees both halves, at every level.
+        let img = Arc::new(ImageData::from_fn(64, 32, "h", |c, _| {
+            Rgb::grey(if c < 32 { 0.0 } else { 1.0 })
+        }));
+        let p = MipPyramid::build(img);
+        for width in [1.0_f32, 4.0, 16.0] {
+            let d = Vec2::new(width / 64.0, 0.0);
+            let e = Vec2::new(0.0, width / 32.0);
+            let t = p.trilinear(Vec2::new(0.0, 0.5), d, e, Wrap::Repeat, Wrap::Clamp);
+            let x = p.ewa(Vec2::new(0.0, 0.5), d, e, 8.0, Wrap::Repeat, Wrap::Clamp);
+            assert!((t.0 - 0.5).abs() < 0.15, "trilinear {width}: {t:?}");
+            assert!((x.0 - 0.5).abs() < 0.15, "ewa {width}: {x:?}");
+        }
+    }
+
+    #[test]
+    fn degenerate_footprints_are_finite() {
+        let img = Arc::new(ImageData::from_fn(8, 4, "d", |c, r| {
+            Rgb::grey((c + r) as f32)
+        }));
+        let p = MipPyramid::build(img);
+        for (d, e) in [
+            (Vec2::ZERO, Vec2::ZERO),
+            (Vec2::new(1.0, 0.0), Vec2::ZERO),
+            (Vec2::new(1.0, 1.0), Vec2::new(1.0, 1.0)),
+            (Vec2::splat(f32::NAN), Vec2::ZERO),
+            (Vec2::splat(1e30), Vec2::splat(-1e30)),
+        ] {
+            for w in Wrap::ALL {
+                assert!(p.ewa(Vec2::new(0.2, 0.9), d, e, 8.0, w, w).is_finite());
+                assert!(p.trilinear(Vec2::new(0.2, 0.9), d, e, w, w).is_finite());
+            }
+        }
+    }
+}

@@ -106,3 +106,56 @@ pub fn screenshot_bytes(data: &[u8], path: &Path) -> Result<crate::scene::SceneD
     }
     result
 }
+
+/// Writes `data` to `path` (`.ply` or `.obj`), reads it as a mesh, builds its BVH and shoots rays
+/// at it from around its bounding box, as loading a mesh into a scene and rendering it does.
+///
+/// # Errors
+/// The reader's or the validation's refusal, naming `path`.
+///
+/// # Panics
+/// When an invariant breaks (see the module docs): a NaN in a hit, a (u, v) outside the file's
+/// values, or a reader that panicked.
+pub fn mesh_bytes(data: &[u8], path: &Path) -> Result<()> {
+    use crate::geometry::{Mesh, Shading};
+    use crate::math::{Ray, Vec3A};
+    std::fs::write(path, data).expect("the fuzz harness cannot write its scratch file");
+    let result = crate::meshio::load_mesh(path).and_then(|d| Mesh::new(d, path));
+    let mesh = match result {
+        Ok(m) => m,
+        Err(e) => {
+            assert_names(&e, path);
+            return Err(e);
+        }
+    };
+    let b = mesh.bbox();
+    let (lo, hi) = (Vec3A::from(b.min), Vec3A::from(b.max));
+    let centre = (lo + hi) * 0.5;
+    let reach = (hi - lo).length().max(1.0);
+    if !(reach.is_finite() && centre.is_finite()) {
+        return Ok(()); // coordinates near f32::MAX: no ray from outside the box is finite
+    }
+    for i in 0..64u32 {
+        // Rays from a sphere around the box toward points inside it.
+        let a = i as f32 * 2.399_963; // golden angle
+        let z = 1.0 - (i as f32 + 0.5) / 32.0;
+        let r = (1.0 - z * z).max(0.0).sqrt();
+        let dir_out = Vec3A::new(r * a.cos(), z, r * a.sin());
+        let target = lo + (hi - lo) * Vec3A::new(0.5 + 0.4 * a.sin(), 0.5, 0.5 + 0.4 * a.cos());
+        let origin = centre + dir_out * reach * 2.0;
+        let ray = Ray::new(origin, target - origin);
+        for shading in Shading::ALL {
+            if let Some(h) = mesh.intersect(&ray, f32::INFINITY, shading) {
+                assert!(h.t.is_finite() && h.p.is_finite(), "hit {h:?}");
+                assert!(h.n.is_finite() && h.ns.is_finite(), "normal {h:?}");
+                if let Some(uv) = h.uv {
+                    assert!(uv.is_finite(), "uv {h:?}");
+                }
+                if let Some((dpdu, dpdv)) = h.dpduv {
+                    assert!(dpdu.is_finite() && dpdv.is_finite(), "dp/du {h:?}");
+                }
+            }
+        }
+    }
+    Ok(())
+}

@@ -9,7 +9,7 @@
 use proptest::prelude::*;
 use proptest::test_runner::{Config, TestRunner};
 use std::path::{Path, PathBuf};
-use texplore::robustness::{image_bytes, preset_bytes, screenshot_bytes};
+use texplore::robustness::{image_bytes, mesh_bytes, preset_bytes, screenshot_bytes};
 use texplore::scene::AssetCache;
 
 fn cases() -> u32 {
@@ -266,6 +266,48 @@ fn mutated_screenshots_never_panic() {
     assert!(ok > 0 && refused > 0, "ok {ok}, refused {refused}");
 }
 
+/// The lecture's PLY as printed.
+const LECTURE_PLY: &str = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nproperty float u\nproperty float v\nelement face 2\nproperty list int int vertex_indices\nend_header\n-1.0 0.0 -1.0 0.0 0.0\n-1.0 -1.0 1.0 1.0 0.0\n1.0 0.0 1.0 1.0 1.0\n1.0 -1.0 -1.0 0.0 1.0\n3 0 1 2\n3 0 2 3\n";
+
+/// Seeds for the mesh readers: the lecture's PLY, a PLY with `s t`, normals, a comment, an extra
+/// element and a quad; binary PLYs of a torus in both byte orders; an OBJ with `vt`, `vn` and a
+/// quad. The first byte says which reader (even: PLY, odd: OBJ), as in the cargo-fuzz target.
+fn mesh_seeds() -> Vec<Vec<u8>> {
+    use texplore::meshio::{PlyFormat, torus, write_ply};
+    let tagged = |tag: u8, body: &[u8]| [&[tag][..], body].concat();
+    let mut seeds = vec![
+        tagged(0, LECTURE_PLY.as_bytes()),
+        tagged(0, b"ply\nformat ascii 1.0\ncomment a quad\nobj_info made by hand\nelement vertex 4\nproperty double x\nproperty double y\nproperty double z\nproperty float nx\nproperty float ny\nproperty float nz\nproperty float s\nproperty float t\nelement face 1\nproperty list uchar uint vertex_index\nelement edge 1\nproperty int a\nproperty int b\nend_header\n0 0 0 0 0 1 0 0\n1 0 0 0 0 1 1 0\n1 1 0 0 0 1 1 1\n0 1 0 0 0 1 0 1\n4 0 1 2 3\n0 1\n"),
+        tagged(1, b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvn 0 0 1\nf 1/1/1 2/2/1 3/3/1 4/4/1\nf -1/-1/-1 -2/-2/-1 -3/-3/-1\n"),
+    ];
+    let torus = torus(6, 4, 1.0, 0.3);
+    for format in [PlyFormat::BinaryLittleEndian, PlyFormat::BinaryBigEndian] {
+        let mut bytes = Vec::new();
+        write_ply(&mut bytes, &torus, format).unwrap();
+        seeds.push(tagged(0, &bytes));
+    }
+    seeds
+}
+
+#[test]
+fn mutated_meshes_never_panic() {
+    let dir = tempfile::tempdir().unwrap();
+    let seeds = mesh_seeds();
+    let (mut ok, mut refused) = (0, 0);
+    fuzz(&seeds, |data| {
+        let Some((&pick, body)) = data.split_first() else {
+            return;
+        };
+        let ext = if pick % 2 == 0 { "ply" } else { "obj" };
+        match mesh_bytes(body, &dir.path().join(format!("fuzzed.{ext}"))) {
+            Ok(()) => ok += 1,
+            Err(_) => refused += 1,
+        }
+    });
+    eprintln!("meshes: {ok} loaded and traced, {refused} refused");
+    assert!(ok > 0 && refused > 0, "ok {ok}, refused {refused}");
+}
+
 /// Every input that once broke a parser, replayed: `tests/fuzz_regressions/<target>-<name>`.
 #[test]
 fn fuzz_regressions_stay_fixed() {
@@ -285,6 +327,9 @@ fn fuzz_regressions_stay_fixed() {
                 .extension()
                 .map_or("bin".into(), |x| x.to_string_lossy().into_owned());
             let _ = image_bytes(&data, &scratch.path().join(format!("fuzzed.{ext}")));
+        } else if let Some(rest) = name.strip_prefix("mesh-") {
+            let ext = if rest.ends_with(".obj") { "obj" } else { "ply" };
+            let _ = mesh_bytes(&data, &scratch.path().join(format!("fuzzed.{ext}")));
         } else if name.starts_with("screenshot-") {
             let _ = screenshot_bytes(&data, &scratch.path().join("fuzzed.png"));
         } else if name != "README.md" {

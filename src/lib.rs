@@ -16,6 +16,7 @@ pub mod math;
 pub mod names;
 pub mod probe;
 pub mod render;
+pub mod report;
 pub mod sampler;
 pub mod scene;
 pub mod snapshot;

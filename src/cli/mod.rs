@@ -5,6 +5,7 @@ mod bench;
 mod map;
 mod probe;
 mod render;
+mod report;
 mod snapshot;
 
 pub use map::LookupArg;
@@ -40,6 +41,8 @@ pub enum Command {
     Probe(probe::ProbeArgs),
     /// Time full 1-spp passes and the first preview of a preset with 1, 2, ... threads.
     Bench(bench::BenchArgs),
+    /// Speed against error: time each antialiasing mode and measure its error against a reference.
+    Report(report::ReportArgs),
 }
 
 /// Runs a subcommand.
@@ -53,5 +56,6 @@ pub fn run(command: Command) -> Result<()> {
         Command::Map(a) => map::run(&a),
         Command::Probe(a) => probe::run(&a),
         Command::Bench(a) => bench::run(&a),
+        Command::Report(a) => report::run(&a),
     }
 }

@@ -68,8 +68,15 @@ pub fn render_pass(
 #[must_use]
 #[inline]
 pub fn radiance(scene: &Scene, pos: Vec2, spacing: f32) -> Rgb {
+    // Without a footprint filter only the main ray is needed (saves two camera directions).
+    if !scene.needs_differentials {
+        return scene
+            .camera
+            .primary_ray(pos)
+            .map_or(Rgb::BLACK, |ray| scene.trace(&ray, None));
+    }
     match scene.camera.ray(pos, spacing) {
-        Some((ray, diff)) => scene.trace(&ray, scene.needs_differentials.then_some(&diff)),
+        Some((ray, diff)) => scene.trace(&ray, Some(&diff)),
         None => Rgb::BLACK,
     }
 }

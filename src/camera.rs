@@ -16,6 +16,9 @@ pub struct Camera {
     pub width: u32,
     /// Film height in pixels.
     pub height: u32,
+    /// The pinhole's film-plane size of one pixel, tan(fov_y / 2) 2 / height, computed once
+    /// here instead of a `tan` per ray (same value, so the same images).
+    pixel_scale: f32,
 }
 
 /// How film positions become directions.
@@ -64,12 +67,17 @@ impl Camera {
         }
         let u = u.normalize();
         let v = w.cross(u);
+        let pixel_scale = match projection {
+            Projection::Pinhole { fov_y } => (fov_y * 0.5).tan() * 2.0 / height as f32,
+            Projection::Fisheye { .. } | Projection::Spherical { .. } => 0.0,
+        };
         Self {
             eye,
             frame: [u, v, w],
             projection,
             width,
             height,
+            pixel_scale,
         }
     }
 
@@ -81,8 +89,8 @@ impl Camera {
         let (w, h) = (self.width as f32, self.height as f32);
         let [u, v, back] = self.frame;
         match self.projection {
-            Projection::Pinhole { fov_y } => {
-                let scale = (fov_y * 0.5).tan() * 2.0 / h;
+            Projection::Pinhole { .. } => {
+                let scale = self.pixel_scale;
                 let x = (pos.x - 0.5 * w) * scale;
                 let y = (0.5 * h - pos.y) * scale;
                 Some(x * u + y * v - back)
@@ -114,6 +122,14 @@ impl Camera {
                 Some(cp * sl * u + sp * v - cp * cl * back)
             }
         }
+    }
+
+    /// The ray through `pos` without differentials: one direction instead of three, for scenes
+    /// whose filters need no footprint.
+    #[must_use]
+    #[inline]
+    pub fn primary_ray(&self, pos: Vec2) -> Option<Ray> {
+        self.direction(pos).map(|d| Ray::new(self.eye, d))
     }
 
     /// The ray through `pos`, with its neighbours one pixel right and one pixel down as ray

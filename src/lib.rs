@@ -17,6 +17,7 @@ pub mod meshio;
 pub mod names;
 pub mod probe;
 pub mod render;
+pub mod report;
 pub mod robustness;
 pub mod sampler;
 pub mod scene;

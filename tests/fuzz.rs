@@ -2,12 +2,13 @@
 //! format go through the same harnesses as the cargo-fuzz targets (`texplore::robustness`).
 //! A panic is a finding; an error naming the file is the right answer.
 //!
-//! `TEXPLORE_FUZZ_CASES=N` sets the cases per target (default 1000); the long runs are cargo-fuzz
+//! `TEXPLORE_FUZZ_CASES=N` sets the cases per target (default 1000) and `TEXPLORE_FUZZ_SEED=N`
+//! the mutations (default 0, so CI is reproducible); the long runs are cargo-fuzz
 //! (see the README's "Robustness" section). Inputs that once broke a parser live in
 //! `tests/fuzz_regressions/` and are replayed on every run.
 
 use proptest::prelude::*;
-use proptest::test_runner::{Config, TestRunner};
+use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
 use std::path::{Path, PathBuf};
 use texplore::robustness::{image_bytes, mesh_bytes, preset_bytes, screenshot_bytes};
 use texplore::scene::AssetCache;
@@ -147,11 +148,20 @@ fn mutation() -> impl Strategy<Value = Mutation> {
 /// Runs `check` on mutated copies of `seeds` (`cases()` cases).
 fn fuzz(seeds: &[Vec<u8>], check: impl FnMut(&[u8])) {
     let check = std::cell::RefCell::new(check);
-    let mut runner = TestRunner::new(Config {
+    // Deterministic by default so CI is reproducible; TEXPLORE_FUZZ_SEED=N explores elsewhere.
+    let seed: u64 = std::env::var("TEXPLORE_FUZZ_SEED")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(0);
+    let mut key = [0u8; 32];
+    key[..8].copy_from_slice(&seed.to_le_bytes());
+    let rng = TestRng::from_seed(RngAlgorithm::ChaCha, &key);
+    let config = Config {
         cases: cases(),
         failure_persistence: None,
         ..Config::default()
-    });
+    };
+    let mut runner = TestRunner::new_with_rng(config, rng);
     let strategy = (0..seeds.len(), prop::collection::vec(mutation(), 1..6));
     runner
         .run(&strategy, |(seed, muts)| {

@@ -463,3 +463,46 @@ fn thin_and_odd_sized_textures_under_every_filter() {
         }
     }
 }
+
+/// OBJ face indices that point at nothing are refused with the file and the line, before the
+/// OBJ library indexes its arrays with them (a huge index once overflowed inside `tobj`).
+#[test]
+fn obj_face_indices_out_of_range_name_the_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases = [
+        (
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/9223372036854775807 2/1 3/1\n",
+            "line 5",
+            "texture coordinate",
+        ),
+        ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n", "line 4", "vertex"),
+        (
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n",
+            "line 4",
+            "start at 1",
+        ),
+        (
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//-2 2//1 3//1\n",
+            "line 5",
+            "normal",
+        ),
+    ];
+    for (i, (text, line, what)) in cases.iter().enumerate() {
+        let p = dir.path().join(format!("bad{i}.obj"));
+        std::fs::write(&p, text).unwrap();
+        let e = texplore::meshio::load_mesh(&p).unwrap_err().to_string();
+        assert!(
+            e.contains(&format!("bad{i}.obj")) && e.contains(line) && e.contains(what),
+            "{e}"
+        );
+    }
+    // Relative indices and indices of elements defined later in the file are fine.
+    let p = dir.path().join("good.obj");
+    std::fs::write(
+        &p,
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\nf 1 2 4\nv 1 1 0\n",
+    )
+    .unwrap();
+    let m = texplore::meshio::load_mesh(&p).unwrap();
+    assert_eq!(m.triangles.len(), 2);
+}

@@ -6,6 +6,7 @@ mod map;
 mod mesh_info;
 mod probe;
 mod render;
+mod report;
 mod snapshot;
 
 pub use map::LookupArg;
@@ -44,6 +45,8 @@ pub enum Command {
     /// Print a mesh file's vertex and triangle counts, (u, v) and normals, bounding box and
     /// degenerate triangles.
     MeshInfo(mesh_info::MeshInfoArgs),
+    /// Speed against error: time each antialiasing mode and measure its error against a reference.
+    Report(report::ReportArgs),
 }
 
 /// Runs a subcommand.
@@ -58,5 +61,6 @@ pub fn run(command: Command) -> Result<()> {
         Command::Probe(a) => probe::run(&a),
         Command::Bench(a) => bench::run(&a),
         Command::MeshInfo(a) => mesh_info::run(&a),
+        Command::Report(a) => report::run(&a),
     }
 }

@@ -58,6 +58,7 @@ pub fn read_obj(path: &Path) -> Result<MeshData> {
             ),
         ));
     }
+    check_face_indices(path).map_err(|(line, message)| fail(format!("line {line}"), message))?;
     let file = std::fs::File::open(path).map_err(|e| Error::io(path, e))?;
     let mut reader = LineCounter {
         inner: std::io::BufReader::new(file),
@@ -170,4 +171,82 @@ fn texture_file(value: &str) -> &str {
     } else {
         v
     }
+}
+
+/// Checks every face index of an OBJ against the vertices, texture coordinates and normals the
+/// file defines, before `tobj` sees them: `tobj` 4 indexes its arrays with unchecked arithmetic
+/// on the file's numbers (a huge `vt` index overflows, which panics in debug builds and reads a
+/// wrong texel pair in release). Positive indices may refer to elements defined later in the
+/// file (as `tobj` resolves them per object); relative (negative) ones count back from the line.
+///
+/// # Errors
+/// The 1-based line and what is wrong.
+fn check_face_indices(path: &Path) -> Result<(), (usize, String)> {
+    use std::io::BufRead;
+    const KINDS: [&str; 3] = ["vertex", "texture coordinate", "normal"];
+    let file = std::fs::File::open(path).map_err(|e| (0, e.to_string()))?;
+    let mut counts = [0i64; 3];
+    // The largest positive index of each kind, and the line it is on.
+    let mut largest = [(0i64, 0usize); 3];
+    let mut line = Vec::new();
+    let mut reader = std::io::BufReader::new(file);
+    let mut number = 0usize;
+    loop {
+        line.clear();
+        match reader.read_until(b'\n', &mut line) {
+            Ok(0) => break,
+            Ok(_) => number += 1,
+            Err(e) => return Err((number + 1, e.to_string())),
+        }
+        let text = String::from_utf8_lossy(&line);
+        let mut words = text.split_whitespace();
+        match words.next() {
+            Some("v") => counts[0] += 1,
+            Some("vt") => counts[1] += 1,
+            Some("vn") => counts[2] += 1,
+            Some("f") => {
+                for corner in words {
+                    for (kind, part) in corner.split('/').enumerate().take(3) {
+                        if part.is_empty() {
+                            continue;
+                        }
+                        // Not a number: left to tobj, which refuses it with its own message.
+                        let Ok(i) = part.parse::<i64>() else { continue };
+                        let bad = |why: &str| {
+                            Err((
+                                number,
+                                format!(
+                                    "face index {i}: {why} {} ({} defined so far)",
+                                    KINDS[kind], counts[kind]
+                                ),
+                            ))
+                        };
+                        if i == 0 {
+                            return bad("OBJ indices start at 1; there is no");
+                        }
+                        if i < 0 && -i > counts[kind] {
+                            return bad("counts back past the first");
+                        }
+                        if i > largest[kind].0 {
+                            largest[kind] = (i, number);
+                        }
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    for kind in 0..3 {
+        let (i, at) = largest[kind];
+        if i > counts[kind] {
+            return Err((
+                at,
+                format!(
+                    "face index {i} refers to a {} that does not exist (the file has {})",
+                    KINDS[kind], counts[kind]
+                ),
+            ));
+        }
+    }
+    Ok(())
 }

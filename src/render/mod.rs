@@ -160,14 +160,17 @@ pub fn render_scheduled_pass(
 #[must_use]
 #[inline]
 pub fn radiance(scene: &Scene, pos: Vec2, spacing: f32) -> Rgb {
+    // Without a footprint filter only the main ray is needed (saves two camera directions).
+    if !scene.needs_differentials {
+        return scene
+            .camera
+            .primary_ray(pos)
+            .map_or(Rgb::BLACK, |ray| scene.trace(&ray, None));
+    }
     match scene.camera.ray(pos, spacing) {
         Some((ray, diff)) => {
-            if scene.needs_differentials {
-                let diff = diff.scaled_about(&ray, spacing.max(MIN_FOOTPRINT_SCALE));
-                scene.trace(&ray, Some(&diff))
-            } else {
-                scene.trace(&ray, None)
-            }
+            let diff = diff.scaled_about(&ray, spacing.max(MIN_FOOTPRINT_SCALE));
+            scene.trace(&ray, Some(&diff))
         }
         None => Rgb::BLACK,
     }

@@ -125,6 +125,17 @@ impl Scene {
             .any(|o| o.casts_shadows && o.occludes(ray, t_max))
     }
 
+    /// Whether anything that casts shadows, other than object `skip`, lies on `ray` within
+    /// (0, `t_max`).
+    #[must_use]
+    #[inline]
+    pub fn occluded_except(&self, ray: &Ray, t_max: f32, skip: usize) -> bool {
+        self.objects
+            .iter()
+            .enumerate()
+            .any(|(i, o)| i != skip && o.casts_shadows && o.intersect(ray, t_max).is_some())
+    }
+
     /// Finds the nearest hit and resolves it in world space.
     #[must_use]
     #[inline]
@@ -225,6 +236,21 @@ impl Scene {
         let mut l = sp.base;
         let offset = SHADOW_OFFSET_RELATIVE
             * (max_abs(hit.p) + max_abs(obj.world_from_object.translation)).max(f32::MIN_POSITIVE);
+        // A shadow ray leaves the surface on the side it was hit from (ng . wi > 0). A flat
+        // shape cannot be met again that way, nor a closed convex one hit from outside: skip
+        // the object itself (for the Earth, the whole shadow test). An open cylinder, or a
+        // sphere seen from inside, can still shadow itself.
+        let self_shadows = match obj.shape {
+            Shape::Plane | Shape::Rectangle | Shape::Disk => false,
+            Shape::Sphere | Shape::Cylinder { capped: true } => {
+                // Hit from inside when the facing normal is the inward one (only the sign
+                // matters, so the normal is not renormalised).
+                (obj.normal_to_world * hit.local.n).dot(hit.ng) < 0.0
+            }
+            // An open cylinder and a mesh (concave in general) can shadow themselves.
+            Shape::Cylinder { capped: false } | Shape::Mesh(_) => true,
+        };
+        let skip = if self_shadows { usize::MAX } else { hit.object };
         for light in &self.lights {
             let (wi, dist, li, shadows) = light.incident(hit.p);
             if hit.ns.dot(wi) <= 0.0 || hit.ng.dot(wi) <= 0.0 {
@@ -237,7 +263,7 @@ impl Scene {
                 } else {
                     f32::INFINITY
                 };
-                if self.occluded(&Ray::new(origin, wi), t_max) {
+                if self.occluded_except(&Ray::new(origin, wi), t_max, skip) {
                     continue;
                 }
             }

@@ -13,6 +13,9 @@ use crate::scene::{AssetCache, CameraDesc, Scene, SceneDesc, build_scene, read_p
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
+/// How often the window polls a running render for a new image (30 frames per second).
+const FRAME_INTERVAL: std::time::Duration = std::time::Duration::from_millis(33);
+
 /// How the window starts.
 #[derive(Clone, Debug, Default)]
 pub struct AppOptions {
@@ -45,6 +48,10 @@ pub struct ExplorerApp {
     pub(super) ab: AbSplit,
     pub(super) speed: SpeedPanel,
     pub(super) files: Files,
+    /// Running mean of the time between frames while rendering (seconds).
+    frame_time: f32,
+    /// Running mean of the time `ui()` itself takes (seconds): the rest of a frame is painting.
+    layout_time: f32,
 }
 
 impl ExplorerApp {
@@ -75,6 +82,8 @@ impl ExplorerApp {
             ab: AbSplit::default(),
             speed: SpeedPanel::default(),
             files: Files::new(options.recent_file),
+            frame_time: FRAME_INTERVAL.as_secs_f32(),
+            layout_time: 0.0,
         };
         app.open_file(&path);
         app
@@ -271,6 +280,16 @@ impl ExplorerApp {
                 p.rays_per_second / 1e6,
                 p.elapsed.as_secs_f64()
             ));
+            // The UI's own frame rate while it renders (idle, it only redraws on input).
+            if !p.finished {
+                ui.separator();
+                ui.label(format!(
+                    "UI {:.0} fps ({:.1} ms to lay out a frame)",
+                    1.0 / self.frame_time.max(1e-3),
+                    self.layout_time * 1e3
+                ))
+                .on_hover_text("Frames per second of the window while it renders");
+            }
             false
         })
         .inner
@@ -295,6 +314,15 @@ impl Drop for ExplorerApp {
 
 impl eframe::App for ExplorerApp {
     fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
+        let started = std::time::Instant::now();
+        self.frame(ui);
+        let t = started.elapsed().as_secs_f32();
+        self.layout_time += (t - self.layout_time) * 0.2;
+    }
+}
+
+impl ExplorerApp {
+    fn frame(&mut self, ui: &mut egui::Ui) {
         let ctx = ui.ctx().clone();
 
         // Files: menus, dialogs, drops, the unsaved-changes prompt.
@@ -362,7 +390,7 @@ impl eframe::App for ExplorerApp {
 
         if self.inspector.open {
             egui::Panel::right("inspector")
-                .default_size(360.0)
+                .default_size(440.0)
                 .resizable(true)
                 .show(ui, |ui| {
                     egui::ScrollArea::vertical().show(ui, |ui| self.inspector.ui(ui));
@@ -379,7 +407,11 @@ impl eframe::App for ExplorerApp {
         }
         busy |= self.ab.poll(&ctx);
         if busy {
-            ctx.request_repaint();
+            let dt = ctx.input(|i| i.unstable_dt).min(1.0);
+            self.frame_time += (dt - self.frame_time) * 0.2;
+            // Poll the render at the target frame rate, not as fast as possible: a software
+            // rasteriser (lavapipe) would otherwise take a core from the render threads.
+            ctx.request_repaint_after(FRAME_INTERVAL);
         }
         let size = self
             .scene

@@ -226,7 +226,6 @@ impl AbSplit {
         for side in 0..2 {
             let name = ["A", "B"][side];
             ui.horizontal(|ui| {
-                ui.strong(name);
                 let m = &mut self.modes[side];
                 let mut changed = super::widgets::enum_combo(
                     ui,

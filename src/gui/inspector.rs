@@ -11,7 +11,7 @@ use std::sync::Arc;
 /// Largest side of the texture overview uploaded to the GPU (bigger images are subsampled).
 const OVERVIEW_MAX: u32 = 4096;
 /// Smallest and largest side of the zoomed texel view, in texels.
-const ZOOM_TEXELS: (u32, u32) = (12, 64);
+const ZOOM_TEXELS: (u32, u32) = (8, 64);
 
 /// The inspector's state.
 pub struct Inspector {
@@ -186,6 +186,10 @@ impl Inspector {
                 }
             });
         }
+        if i.image.is_some() {
+            ui.separator();
+            self.texture_views(ui, &i);
+        }
         if let Some(read) = &i.image {
             ui.separator();
             ui.strong(format!(
@@ -209,8 +213,6 @@ impl Inspector {
                     ui.monospace(format!("  {l}"));
                 }
             }
-            ui.separator();
-            self.texture_views(ui, &i);
         }
     }
 
@@ -232,8 +234,12 @@ impl Inspector {
             self.overview = Some((key, tex));
         }
         let texel_xy = Vec2::new(uv.x * w as f32, (1.0 - uv.y) * h as f32); // file space, y down
+        let col = ((ui.available_width() - 8.0) * 0.5).max(120.0);
+        ui.horizontal_top(|ui| {
+        ui.vertical(|ui| {
+        ui.set_width(col);
         if let Some((_, tex)) = &self.overview {
-            let width = ui.available_width().min(420.0);
+            let width = col;
             let size = egui::vec2(width, width * h as f32 / w as f32);
             let (rect, _) = ui.allocate_exact_size(size, egui::Sense::hover());
             let p = ui.painter_at(rect);
@@ -261,12 +267,16 @@ impl Inspector {
             );
             p.circle_stroke(at, 5.0, stroke);
         }
+        ui.label(
+            "Right: the texels around the hit. Yellow: the centred lookup's texel; cyan: the lecture's; magenta: the pixel's footprint.",
+        );
+        });
         // Zoom: a square of texels around the hit, big enough for the footprint.
         let major = i
             .footprint
             .and_then(|f| f.axes_texels)
             .map_or(1.0, |(a, _)| a);
-        let n = ((major * 3.0).ceil() as u32).clamp(ZOOM_TEXELS.0, ZOOM_TEXELS.1);
+        let n = ((major * 2.5).ceil() as u32).clamp(ZOOM_TEXELS.0, ZOOM_TEXELS.1);
         let origin = (
             texel_xy.x.floor() as i64 - i64::from(n / 2),
             texel_xy.y.floor() as i64 - i64::from(n / 2),
@@ -298,8 +308,7 @@ impl Inspector {
             self.zoom = Some((zkey, tex));
         }
         let Some((_, tex)) = &self.zoom else { return };
-        ui.label(format!("{n} x {n} texels around the hit: yellow = centred lookup, cyan = lecture lookup, magenta = the pixel's footprint"));
-        let side = ui.available_width().min(420.0);
+        let side = col;
         let (rect, _) = ui.allocate_exact_size(egui::vec2(side, side), egui::Sense::hover());
         let p = ui.painter_at(rect);
         p.image(
@@ -376,6 +385,7 @@ impl Inspector {
                 egui::Color32::from_rgb(255, 60, 255),
             );
         }
+        });
     }
 }
 

@@ -176,8 +176,9 @@ pub fn show_split(ui: &mut egui::Ui, ab: &mut AbSplit, size: Option<Vec2>) -> Vi
         ),
         (
             1,
-            rect.right_top() + egui::vec2(-6.0, 6.0),
-            egui::Align2::RIGHT_TOP,
+            // B at the bottom, so long captions never overlap.
+            rect.right_bottom() + egui::vec2(-6.0, -6.0),
+            egui::Align2::RIGHT_BOTTOM,
         ),
     ] {
         let text = ab.caption(side);

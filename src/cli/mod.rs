@@ -3,6 +3,7 @@
 
 mod bench;
 mod map;
+mod mesh_info;
 mod probe;
 mod render;
 mod snapshot;
@@ -40,6 +41,9 @@ pub enum Command {
     Probe(probe::ProbeArgs),
     /// Time full 1-spp passes and the first preview of a preset with 1, 2, ... threads.
     Bench(bench::BenchArgs),
+    /// Print a mesh file's vertex and triangle counts, (u, v) and normals, bounding box and
+    /// degenerate triangles.
+    MeshInfo(mesh_info::MeshInfoArgs),
 }
 
 /// Runs a subcommand.
@@ -53,5 +57,6 @@ pub fn run(command: Command) -> Result<()> {
         Command::Map(a) => map::run(&a),
         Command::Probe(a) => probe::run(&a),
         Command::Bench(a) => bench::run(&a),
+        Command::MeshInfo(a) => mesh_info::run(&a),
     }
 }

@@ -7,7 +7,7 @@ use super::desc::{
 use super::{RenderSettings, Scene};
 use crate::camera::{Camera, Projection};
 use crate::error::{Error, Result};
-use crate::geometry::Object;
+use crate::geometry::{Mesh, MeshShape, Object, Shape};
 use crate::material::{Light, Material};
 use crate::math::{Affine3A, Quat, Vec3, Vec3A};
 use crate::sampler::PixelSampler;
@@ -90,6 +90,7 @@ pub fn save_preset(desc: &SceneDesc, path: &Path) -> Result<()> {
 pub struct AssetCache {
     images: HashMap<(PathBuf, bool), Arc<ImageData>>,
     uv_grid: Option<Arc<ImageData>>,
+    meshes: HashMap<PathBuf, Arc<Mesh>>,
 }
 
 impl AssetCache {
@@ -111,6 +112,24 @@ impl AssetCache {
         let img = Arc::new(load_image(path, srgb)?);
         self.images.insert(key, img.clone());
         Ok(img)
+    }
+
+    /// The mesh at `path`, read and its BVH built once (every instance shares it).
+    ///
+    /// # Errors
+    /// See [`crate::meshio::load_mesh`] and [`Mesh::new`].
+    pub fn mesh(&mut self, path: &Path) -> Result<Arc<Mesh>> {
+        if let Some(m) = self.meshes.get(path) {
+            return Ok(m.clone());
+        }
+        let mesh = Arc::new(Mesh::new(crate::meshio::load_mesh(path)?, path)?);
+        self.meshes.insert(path.to_path_buf(), mesh.clone());
+        Ok(mesh)
+    }
+
+    /// Makes `mesh` what presets naming `path` get (a generated mesh, for benchmarks).
+    pub fn insert_mesh(&mut self, path: &Path, mesh: Arc<Mesh>) {
+        self.meshes.insert(path.to_path_buf(), mesh);
     }
 
     /// The generated UV test grid.
@@ -167,17 +186,36 @@ pub fn build_scene(desc: &SceneDesc, preset_path: &Path, cache: &mut AssetCache)
         };
         let transform =
             transform(&o.transform).map_err(|m| bad(format!("{what}.transform: {m}")))?;
-        let material = material(&o.material, base, cache).map_err(|e| match e {
+        let shape = match &o.shape {
+            super::ShapeDesc::Mesh { path, shading } => Shape::Mesh(MeshShape {
+                mesh: cache.mesh(&base.join(path))?,
+                shading: *shading,
+            }),
+            generic => generic
+                .generic()
+                .ok_or_else(|| bad(format!("{what}.shape: {generic:?} is not a generic shape")))?,
+        };
+        let mesh = match &shape {
+            Shape::Mesh(m) => Some(&*m.mesh),
+            _ => None,
+        };
+        let material_desc = super::mesh::resolve_mesh_material(&o.material, mesh)
+            .map_err(|m| bad(format!("{what}.material: {m}")))?;
+        if let Some(mesh) = mesh {
+            super::mesh::check_uv_mapping(&material_desc, mesh)
+                .map_err(|m| bad(format!("{what}.material: {m}")))?;
+        }
+        let material = material(&material_desc, base, cache).map_err(|e| match e {
             Error::Invalid { message, .. } => bad(format!("{what}.material: {message}")),
             other => other,
         })?;
         needs_differentials |= material.texture().needs_differentials();
-        let name = if o.name.is_empty() {
-            format!("{:?} {i}", o.shape)
-        } else {
-            o.name.clone()
+        let name = match (&o.shape, o.name.is_empty()) {
+            (_, false) => o.name.clone(),
+            (super::ShapeDesc::Mesh { path, .. }, true) => format!("{path} {i}"),
+            (s, true) => format!("{s:?} {i}"),
         };
-        let mut obj = Object::new(o.shape, transform, materials.len(), name);
+        let mut obj = Object::new(shape, transform, materials.len(), name);
         obj.casts_shadows = o.casts_shadows.unwrap_or(material.is_lit());
         materials.push(material);
         objects.push(obj);
@@ -419,6 +457,11 @@ fn texture(t: &TextureDesc, base: &Path, cache: &mut AssetCache) -> Result<Textu
                 colors: *colors,
             })
         }
+        TextureDesc::MeshMaterial { .. } => {
+            return Err(invalid(
+                "MeshMaterial: only a Mesh shape names a material".into(),
+            ));
+        }
         TextureDesc::UvGrid {
             mapping,
             filter,
@@ -444,8 +487,9 @@ pub fn apply_overrides(desc: &mut SceneDesc, o: Overrides) {
     r.sampler = o.sampler.unwrap_or(r.sampler);
     if let Some(f) = o.filter {
         for obj in &mut desc.objects {
-            if let TextureDesc::Image { filter, .. } | TextureDesc::UvGrid { filter, .. } =
-                obj.material.texture_mut()
+            if let TextureDesc::Image { filter, .. }
+            | TextureDesc::UvGrid { filter, .. }
+            | TextureDesc::MeshMaterial { filter, .. } = obj.material.texture_mut()
             {
                 *filter = f;
             }

@@ -4,6 +4,7 @@
 mod build;
 mod desc;
 mod files;
+mod mesh;
 
 pub use build::{
     AssetCache, MAX_RESOLUTION, MAX_SPP, Overrides, apply_overrides, build_scene, load_preset,
@@ -108,7 +109,7 @@ impl Scene {
     pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
         self.objects
             .iter()
-            .any(|o| o.casts_shadows && o.intersect(ray, t_max).is_some())
+            .any(|o| o.casts_shadows && o.occludes(ray, t_max))
     }
 
     /// Finds the nearest hit and resolves it in world space.
@@ -161,13 +162,24 @@ impl Scene {
             }
             _ => (Vec3A::ZERO, Vec3A::ZERO),
         };
-        TextureContext {
+        let mut ctx = TextureContext {
             p: hit.local.p,
             dpdx,
             dpdy,
             shape_uv: hit.local.uv.map(|uv| (uv, hit.local.dpduv)),
             natural: natural_mapping(&obj.shape),
+        };
+        if let Shape::Mesh(m) = &obj.shape {
+            // Generated mappings see the model fitted into the generic objects' [-1, 1]^3.
+            let (p, s) = m.mesh.to_mapping_frame(ctx.p);
+            ctx.p = p;
+            ctx.dpdx *= s;
+            ctx.dpdy *= s;
+            ctx.shape_uv = ctx
+                .shape_uv
+                .map(|(uv, d)| (uv, d.map(|(du, dv)| (du * s, dv * s))));
         }
+        ctx
     }
 
     /// Radiance along a camera ray: the lecture's shading (ambient + direct light with shadows,
@@ -225,5 +237,7 @@ pub const fn natural_mapping(shape: &Shape) -> Mapping {
         Shape::Sphere => Mapping::Spherical,
         Shape::Cylinder { .. } => Mapping::Cylindrical,
         Shape::Plane | Shape::Rectangle | Shape::Disk => Mapping::Rectangular,
+        // Never used: building refuses `Uv` on a mesh without (u, v) (see `check_uv_mapping`).
+        Shape::Mesh(_) => Mapping::Spherical,
     }
 }

@@ -67,8 +67,8 @@ pub struct Inspection {
     pub object: usize,
     /// Its name.
     pub object_name: String,
-    /// Its generic shape.
-    pub shape: Shape,
+    /// Its shape, in words ("Sphere", "mesh bunny.ply, triangle 812").
+    pub shape: String,
     /// World-space hit point.
     pub world_point: Vec3A,
     /// Object-space hit point: the lecture's `local_hit_point`.
@@ -202,7 +202,7 @@ impl Scene {
             pixel,
             object: hit.object,
             object_name: obj.name.clone(),
-            shape: obj.shape,
+            shape: shape_label(&obj.shape, hit.local.part),
             world_point: hit.p,
             local_point: hit.local.p,
             texture_kind: kind,
@@ -216,6 +216,25 @@ impl Scene {
             texture_colour,
             radiance,
         })
+    }
+}
+
+/// A shape in words, with the triangle hit for meshes.
+fn shape_label(shape: &Shape, part: u32) -> String {
+    match shape {
+        Shape::Sphere => "Sphere".into(),
+        Shape::Cylinder { .. } => "Cylinder".into(),
+        Shape::Plane => "Plane".into(),
+        Shape::Rectangle => "Rectangle".into(),
+        Shape::Disk => "Disk".into(),
+        Shape::Mesh(m) => format!(
+            "mesh {}, triangle {part} of {}",
+            m.mesh
+                .path()
+                .file_name()
+                .map_or_else(String::new, |n| n.to_string_lossy().into_owned()),
+            m.mesh.triangle_count()
+        ),
     }
 }
 

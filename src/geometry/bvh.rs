@@ -389,7 +389,9 @@ fn choose_split(
         Vec3::ZERO,
     );
     for p in prims.iter() {
-        let b = ((p.centre - centres.min) * scale).as_uvec3().min(glam::UVec3::splat(BINS as u32 - 1));
+        let b = ((p.centre - centres.min) * scale)
+            .as_uvec3()
+            .min(glam::UVec3::splat(BINS as u32 - 1));
         for axis in 0..3 {
             let i = b[axis] as usize;
             counts[axis][i] += 1;

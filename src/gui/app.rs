@@ -480,6 +480,14 @@ impl ExplorerApp {
                     self.restart();
                 }
             }
+            FileAction::UseMesh(p) => {
+                if let Some(desc) = &mut self.desc {
+                    let dir = self.path.parent().unwrap_or(Path::new("."));
+                    let rel = crate::scene::relative_asset_path(&p, dir);
+                    self.scene_panel.use_mesh(desc, rel);
+                    self.restart();
+                }
+            }
             FileAction::Error(e) => self.error = Some(e),
             FileAction::Quit => ctx.send_viewport_cmd(egui::ViewportCommand::Close),
         }

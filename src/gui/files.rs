@@ -21,6 +21,8 @@ pub enum FileAction {
     Screenshot(PathBuf),
     /// Put this image on the selected object.
     UseImage(PathBuf),
+    /// Make the selected object this mesh (PLY or OBJ).
+    UseMesh(PathBuf),
     /// Show this message.
     Error(String),
     /// Close the window.
@@ -196,8 +198,8 @@ impl Files {
         action
     }
 
-    /// Files dropped on the window: presets and texplore PNGs open; other images go on the
-    /// selected object.
+    /// Files dropped on the window: presets and texplore PNGs open; other images and meshes go
+    /// on the selected object.
     pub fn dropped(&mut self, ctx: &egui::Context) -> Vec<FileAction> {
         let dropped = ctx.input(|i| i.raw.dropped_files.clone());
         let mut out = Vec::new();
@@ -212,9 +214,10 @@ impl Files {
                 Some("png") if read_png_preset(&p).is_ok() => {
                     self.requested = Some(Pending::Open(p));
                 }
+                Some("ply" | "obj") => out.push(FileAction::UseMesh(p)),
                 _ if is_image(&p) => out.push(FileAction::UseImage(p)),
                 _ => out.push(FileAction::Error(format!(
-                    "{}: not a preset (.ron), a texplore PNG or an image",
+                    "{}: not a preset (.ron), a texplore PNG, an image or a mesh (.ply, .obj)",
                     p.display()
                 ))),
             }

@@ -117,7 +117,7 @@ impl Inspector {
             ui.label(format!("({:.0}, {:.0})", i.pixel.x.floor(), i.pixel.y.floor()));
             ui.end_row();
             ui.label("object");
-            ui.label(format!("{} ({:?})", i.object_name, i.shape));
+            ui.label(format!("{} ({})", i.object_name, i.shape));
             ui.end_row();
             ui.label("world hit point");
             ui.label(v3(i.world_point));

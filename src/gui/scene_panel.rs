@@ -5,12 +5,12 @@
 use super::widgets::{
     choice_combo, colour, enum_combo, filter_tip, lookup_tip, number, vec3, wrap_tip,
 };
-use crate::geometry::Shape;
+use crate::geometry::Shading;
 use crate::mapping::Mapping;
 use crate::math::{Rgb, Vec3};
 use crate::sampler::PixelSampler;
 use crate::scene::{
-    LightDesc, MaterialDesc, ObjectDesc, ProjectionDesc, SceneDesc, TextureDesc,
+    LightDesc, MaterialDesc, ObjectDesc, ProjectionDesc, SceneDesc, ShapeDesc, TextureDesc,
     relative_asset_path,
 };
 use crate::texture::{Filter, Lookup, Wrap};
@@ -28,10 +28,12 @@ pub struct ScenePanel {
     pub selected: usize,
     /// The image path being typed, applied with Enter or "Load".
     path_text: Option<(usize, String)>,
+    /// The mesh path being typed.
+    mesh_text: Option<(usize, String)>,
     assets: Option<Vec<PathBuf>>,
 }
 
-const SHAPES: [(&str, &str); 5] = [
+const SHAPES: [(&str, &str); 6] = [
     (
         "Sphere",
         "The unit sphere at the origin (place it with the transform).",
@@ -46,6 +48,10 @@ const SHAPES: [(&str, &str); 5] = [
         "The generic rectangle (x, z) in [-1, 1]^2 in the plane y = 0.",
     ),
     ("Disk", "The unit disk in the plane y = 0."),
+    (
+        "Mesh",
+        "A triangle mesh from a PLY or OBJ file: type its path or drop the file on the window.",
+    ),
 ];
 
 const MATERIALS: [(&str, &str); 3] = [
@@ -60,13 +66,17 @@ const MATERIALS: [(&str, &str); 3] = [
     ),
 ];
 
-const TEXTURES: [(&str, &str); 4] = [
+const TEXTURES: [(&str, &str); 5] = [
     ("Constant", "One colour everywhere."),
     ("Image", "An image file read through a mapping."),
     ("Checker", "A procedural checkerboard in (u, v)."),
     (
         "UV grid",
         "The labelled UV test grid: cells A1 (u = v = 0) to H8.",
+    ),
+    (
+        "Mesh material",
+        "The image or colour the mesh file's material names (OBJ .mtl); meshes only.",
     ),
 ];
 
@@ -82,12 +92,15 @@ const PROJECTIONS: [(&str, &str); 3] = [
     ),
 ];
 
-fn shape_name(s: &Shape) -> String {
-    let d = format!("{s:?}");
-    d.split([' ', '{', '('])
-        .next()
-        .unwrap_or_default()
-        .to_owned()
+fn shape_name(s: &ShapeDesc) -> &'static str {
+    match s {
+        ShapeDesc::Sphere => "Sphere",
+        ShapeDesc::Cylinder { .. } => "Cylinder",
+        ShapeDesc::Plane => "Plane",
+        ShapeDesc::Rectangle => "Rectangle",
+        ShapeDesc::Disk => "Disk",
+        ShapeDesc::Mesh { .. } => "Mesh",
+    }
 }
 
 fn object_label(i: usize, o: &ObjectDesc) -> String {
@@ -154,6 +167,17 @@ impl ScenePanel {
         self.path_text = None;
     }
 
+    /// Makes the selected object the mesh at `path` (relative to the preset).
+    pub fn use_mesh(&mut self, desc: &mut SceneDesc, path: String) {
+        if let Some(obj) = desc.objects.get_mut(self.selected) {
+            obj.shape = ShapeDesc::Mesh {
+                path,
+                shading: Shading::default(),
+            };
+            self.mesh_text = None;
+        }
+    }
+
     /// The panel. Returns whether the scene changed.
     pub fn ui(
         &mut self,
@@ -172,6 +196,7 @@ impl ScenePanel {
             {
                 self.selected = i;
                 self.path_text = None;
+                self.mesh_text = None;
             }
         }
         ui.horizontal(|ui| {
@@ -221,21 +246,38 @@ impl ScenePanel {
             .default_open(true)
             .show(ui, |ui| {
                 let current = shape_name(&obj.shape);
-                if let Some(i) = choice_combo(ui, "Shape", &current, &SHAPES) {
+                if let Some(i) = choice_combo(ui, "Shape", current, &SHAPES) {
                     obj.shape = match i {
-                        0 => Shape::Sphere,
-                        1 => Shape::Cylinder { capped: false },
-                        2 => Shape::Plane,
-                        3 => Shape::Rectangle,
-                        _ => Shape::Disk,
+                        0 => ShapeDesc::Sphere,
+                        1 => ShapeDesc::Cylinder { capped: false },
+                        2 => ShapeDesc::Plane,
+                        3 => ShapeDesc::Rectangle,
+                        4 => ShapeDesc::Disk,
+                        _ => ShapeDesc::Mesh {
+                            path: String::new(),
+                            shading: Shading::default(),
+                        },
                     };
-                    changed = true;
+                    // An empty mesh path builds nothing: wait for a path before re-rendering.
+                    changed =
+                        !matches!(&obj.shape, ShapeDesc::Mesh { path, .. } if path.is_empty());
                 }
-                if let Shape::Cylinder { capped } = &mut obj.shape {
-                    changed |= ui
-                        .checkbox(capped, "capped")
-                        .on_hover_text("Close the cylinder's ends with disks")
-                        .changed();
+                match &mut obj.shape {
+                    ShapeDesc::Cylinder { capped } => {
+                        changed |= ui
+                            .checkbox(capped, "capped")
+                            .on_hover_text("Close the cylinder's ends with disks")
+                            .changed();
+                    }
+                    ShapeDesc::Mesh { path, shading } => {
+                        changed |= path_field(ui, "mesh file", path, &mut self.mesh_text);
+                        changed |=
+                            enum_combo(ui, "Shading", shading, |s: Shading| match s.name() {
+                                "flat" => "One normal per triangle: facets show.",
+                                _ => "Vertex normals interpolated across each triangle: smooth.",
+                            });
+                    }
+                    _ => {}
                 }
                 let t = &mut obj.transform;
                 changed |= vec3(ui, "translate", &mut t.translate, 0.02);
@@ -271,6 +313,7 @@ impl ScenePanel {
             TextureDesc::Image { .. } => 1,
             TextureDesc::Checker { .. } => 2,
             TextureDesc::UvGrid { .. } => 3,
+            TextureDesc::MeshMaterial { .. } => 4,
         };
         if let Some(i) = choice_combo(ui, "Texture", TEXTURES[kind].0, &TEXTURES) {
             let mapping = tex.mapping().unwrap_or_default();
@@ -287,9 +330,15 @@ impl ScenePanel {
                     squares: (8.0, 8.0),
                     colors: (Rgb::grey(0.8), Rgb::grey(0.05)),
                 },
-                _ => TextureDesc::UvGrid {
+                3 => TextureDesc::UvGrid {
                     mapping,
                     filter: Filter::default(),
+                    wrap: Wrap::default(),
+                },
+                _ => TextureDesc::MeshMaterial {
+                    mapping: Mapping::Uv,
+                    filter: Filter::default(),
+                    lookup: Lookup::default(),
                     wrap: Wrap::default(),
                 },
             };
@@ -333,6 +382,16 @@ impl ScenePanel {
                 changed |= number(ui, "squares along v", &mut squares.1, 0.01..=1e6, 0.1);
                 changed |= colour(ui, "colour 1", &mut colors.0);
                 changed |= colour(ui, "colour 2", &mut colors.1);
+            }
+            TextureDesc::MeshMaterial {
+                filter,
+                lookup,
+                wrap,
+                ..
+            } => {
+                changed |= enum_combo(ui, "Filter", filter, |f: Filter| filter_tip(f.name()));
+                changed |= enum_combo(ui, "Lookup", lookup, |l: Lookup| lookup_tip(l.name()));
+                changed |= enum_combo(ui, "Wrap", wrap, |w: Wrap| wrap_tip(w.name()));
             }
             TextureDesc::UvGrid { filter, wrap, .. } => {
                 changed |= enum_combo(ui, "Filter", filter, |f: Filter| filter_tip(f.name()));
@@ -405,6 +464,40 @@ impl ScenePanel {
         }
         changed
     }
+}
+
+/// A labelled path field applied with Enter or "Load"; `text` holds the typing (keyed by
+/// nothing more than being present: cleared when the path is applied).
+fn path_field(
+    ui: &mut egui::Ui,
+    label: &str,
+    path: &mut String,
+    text: &mut Option<(usize, String)>,
+) -> bool {
+    let buf = &mut text.get_or_insert_with(|| (0, path.clone())).1;
+    let mut changed = false;
+    ui.horizontal(|ui| {
+        let l = ui.label(label);
+        let r = ui
+            .add(egui::TextEdit::singleline(buf).desired_width(150.0))
+            .labelled_by(l.id)
+            .on_hover_text("Path relative to the preset's folder; Enter loads it");
+        let enter = r.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
+        if (ui
+            .button("Load")
+            .on_hover_text("Load the file at this path")
+            .clicked()
+            || enter)
+            && *buf != *path
+        {
+            path.clone_from(buf);
+            changed = true;
+        }
+    });
+    if changed {
+        *text = None;
+    }
+    changed
 }
 
 fn image_texture(path: String, mapping: Mapping) -> TextureDesc {

@@ -83,9 +83,9 @@ pub fn read_obj(path: &Path) -> Result<MeshData> {
         format: "obj".into(),
         ..MeshData::default()
     };
-    let has_uv = models
-        .iter()
-        .all(|m| !m.mesh.texcoords.is_empty() && m.mesh.texcoords.len() / 2 == m.mesh.positions.len() / 3);
+    let has_uv = models.iter().all(|m| {
+        !m.mesh.texcoords.is_empty() && m.mesh.texcoords.len() / 2 == m.mesh.positions.len() / 3
+    });
     let has_normals = models
         .iter()
         .all(|m| !m.mesh.normals.is_empty() && m.mesh.normals.len() == m.mesh.positions.len());
@@ -104,8 +104,11 @@ pub fn read_obj(path: &Path) -> Result<MeshData> {
                 .map(|p| Vec3::new(p[0], p[1], p[2])),
         );
         if has_uv {
-            data.uvs
-                .extend(mesh.texcoords.chunks_exact(2).map(|t| Vec2::new(t[0], t[1])));
+            data.uvs.extend(
+                mesh.texcoords
+                    .chunks_exact(2)
+                    .map(|t| Vec2::new(t[0], t[1])),
+            );
         }
         if has_normals {
             data.normals.extend(
@@ -115,11 +118,8 @@ pub fn read_obj(path: &Path) -> Result<MeshData> {
             );
         }
         for t in mesh.indices.chunks_exact(3) {
-            data.triangles.push([
-                t[0] + base as u32,
-                t[1] + base as u32,
-                t[2] + base as u32,
-            ]);
+            data.triangles
+                .push([t[0] + base as u32, t[1] + base as u32, t[2] + base as u32]);
         }
         if data.triangles.len() > MAX_TRIANGLES {
             return Err(fail(

@@ -41,8 +41,15 @@ fn toolbar(ui: &mut egui::Ui, out: &mut ViewOutput) {
         {
             out.edit = Some(ViewEdit::Reset);
         }
-        ui.weak(
-            "drag: orbit · right-drag or shift-drag: pan · wheel: zoom · click: pin the inspector",
+        // Truncated, so the hint never asks the panels around the viewport for width.
+        ui.add(
+            egui::Label::new(
+                egui::RichText::new(
+                    "drag: orbit · right-drag or shift-drag: pan · wheel: zoom · click: pin the inspector",
+                )
+                .weak(),
+            )
+            .truncate(),
         );
     });
 }

@@ -196,3 +196,74 @@ fn hovering_the_earth_explains_the_pixel() {
             .is_some()
     );
 }
+
+#[test]
+fn unsaved_changes_are_asked_about_before_another_preset_opens() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut h = harness(small_earth(dir.path()));
+    h.get_by_role_and_label(Role::ComboBox, "Mapping").click();
+    h.run_steps(3);
+    h.get_by_label("cylindrical").click();
+    settle(&mut h);
+    let here = h.state().path().to_path_buf();
+    let open_checker = |h: &mut Harness<'_, ExplorerApp>| {
+        h.get_by_label("Presets").click();
+        h.run_steps(3);
+        h.get_by_label("checker").click();
+        h.run_steps(3);
+    };
+
+    open_checker(&mut h);
+    assert!(
+        h.query_all_by_label_contains("not saved").next().is_some(),
+        "the prompt shows"
+    );
+    assert_eq!(h.state().path(), here, "nothing opens before the answer");
+    h.get_by_label("Cancel").click();
+    settle(&mut h);
+    assert_eq!(h.state().path(), here);
+    assert_eq!(
+        texture_mapping(h.state()),
+        Some(Mapping::Cylindrical),
+        "the edit stays"
+    );
+
+    open_checker(&mut h);
+    h.get_by_label("Discard changes").click();
+    settle(&mut h);
+    assert!(
+        h.state().path().ends_with("presets/checker.ron"),
+        "{:?}",
+        h.state().path()
+    );
+    assert!(!h.state().is_dirty());
+}
+
+#[test]
+fn opening_a_preset_with_a_missing_image_keeps_the_scene() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let here = small_earth(dir.path());
+    let text = std::fs::read_to_string(&here).expect("read");
+    let broken = dir.path().join("broken.ron");
+    std::fs::write(&broken, text.replace("earth_2048x1024.jpg", "missing.jpg")).expect("write");
+    let mut h = harness(here.clone());
+    let desc_before = h.state().desc().cloned();
+    let image_before = image_bytes(h.state());
+
+    // File > Open..., type the path, Open.
+    h.get_by_label("File").click();
+    h.run_steps(3);
+    h.get_by_label("Open…").click();
+    h.run_steps(3);
+    h.get_by_role_and_label(Role::TextInput, "Path")
+        .set_text_value_accesskit(&broken.display().to_string());
+    h.step();
+    h.get_by_label("Open").click();
+    settle(&mut h);
+
+    let err = h.state().error().expect("an error is shown").to_owned();
+    assert!(err.contains("missing.jpg"), "{err}");
+    assert_eq!(h.state().path(), here);
+    assert_eq!(h.state().desc().cloned(), desc_before);
+    assert_eq!(image_bytes(h.state()), image_before);
+}

@@ -94,15 +94,21 @@ impl ExplorerApp {
     pub fn open_file(&mut self, path: &Path) {
         match read_preset_or_png(path) {
             Ok(desc) => {
-                self.path = path.to_path_buf();
-                self.home_camera = Some(desc.camera);
-                self.saved_desc = Some(desc.clone());
-                self.desc = Some(desc);
-                self.good_desc = None;
-                self.scene_panel.selected = 0;
-                self.inspector.clear();
-                self.files.add_recent(path);
-                self.restart();
+                // Try the new scene; if it does not build (a missing image), keep the old one.
+                let old_desc = self.desc.replace(desc.clone());
+                let old_good = self.good_desc.take();
+                let old_path = std::mem::replace(&mut self.path, path.to_path_buf());
+                if self.restart() {
+                    self.home_camera = Some(desc.camera);
+                    self.saved_desc = Some(desc);
+                    self.scene_panel.selected = 0;
+                    self.inspector.clear();
+                    self.files.add_recent(path);
+                } else {
+                    self.desc = old_desc;
+                    self.good_desc = old_good;
+                    self.path = old_path;
+                }
             }
             Err(e) => self.error = Some(e.to_string()),
         }
@@ -183,9 +189,9 @@ impl ExplorerApp {
     /// Rebuilds the scene from the description and starts a new progressive render; on an
     /// error the previous scene and render stay, the description goes back to the last one that
     /// built, and the message is shown.
-    pub(super) fn restart(&mut self) {
+    pub(super) fn restart(&mut self) -> bool {
         let Some(desc) = self.desc.clone() else {
-            return;
+            return false;
         };
         let rdesc = self.render_desc(&desc);
         match build_scene(&rdesc, &self.path, &mut self.cache) {
@@ -210,12 +216,14 @@ impl ExplorerApp {
                 self.good_desc = Some(desc);
                 self.error = None;
                 self.inspector.refresh(self.scene.as_deref());
+                true
             }
             Err(e) => {
                 self.error = Some(e.to_string());
                 if let Some(good) = &self.good_desc {
                     self.desc = Some(good.clone());
                 }
+                false
             }
         }
     }

@@ -335,20 +335,18 @@ impl ExplorerApp {
 
         // Files: menus, dialogs, drops, the unsaved-changes prompt.
         let ab_before = self.ab.enabled;
-        let action = egui::Panel::top("menu")
-            .show(ui, |ui| {
-                self.files.menu_bar(
-                    ui,
-                    &self.path,
-                    [
-                        (&mut self.inspector.open, "Inspector"),
-                        (&mut self.ab.enabled, "A/B split"),
-                        (&mut self.speed.open, "Speed and error"),
-                    ],
-                )
-            })
-            .inner;
-        let mut actions: Vec<FileAction> = action.into_iter().collect();
+        egui::Panel::top("menu").show(ui, |ui| {
+            self.files.menu_bar(
+                ui,
+                &self.path,
+                [
+                    (&mut self.inspector.open, "Inspector"),
+                    (&mut self.ab.enabled, "A/B split"),
+                    (&mut self.speed.open, "Speed and error"),
+                ],
+            )
+        });
+        let mut actions: Vec<FileAction> = Vec::new();
         actions.extend(self.files.dropped(&ctx));
         actions.extend(self.files.dialogs(&ctx, self.is_dirty()));
         if self.files.close_requested(&ctx, self.is_dirty()) {

@@ -131,9 +131,32 @@ impl Files {
         ui: &mut egui::Ui,
         current: &Path,
         toggles: [(&mut bool, &str); N],
-    ) -> Option<FileAction> {
+    ) {
         self.current = current.to_path_buf();
-        let mut action = None;
+        // Ctrl+S saves (over a .ron, else asks where), Ctrl+O opens.
+        let (save, open) = ui.input_mut(|i| {
+            (
+                i.consume_shortcut(&egui::KeyboardShortcut::new(
+                    egui::Modifiers::COMMAND,
+                    egui::Key::S,
+                )),
+                i.consume_shortcut(&egui::KeyboardShortcut::new(
+                    egui::Modifiers::COMMAND,
+                    egui::Key::O,
+                )),
+            )
+        });
+        if save {
+            if current.extension().is_some_and(|e| e == "ron") {
+                // Never overwrite without asking: the replace prompt confirms.
+                self.overwrite = Some(FileAction::Save(current.to_path_buf()));
+            } else {
+                self.dialog = Some((DialogKind::SaveAs, String::new()));
+            }
+        }
+        if open {
+            self.dialog = Some((DialogKind::Open, String::new()));
+        }
         egui::MenuBar::new().ui(ui, |ui| {
             ui.menu_button("File", |ui| {
                 if ui.button("Open…").clicked() {
@@ -146,7 +169,8 @@ impl Files {
                     .clicked()
                 {
                     if is_ron {
-                        action = Some(FileAction::Save(current.to_path_buf()));
+                        // Never overwrite without asking: the replace prompt confirms.
+                self.overwrite = Some(FileAction::Save(current.to_path_buf()));
                     } else {
                         self.dialog = Some((DialogKind::SaveAs, String::new()));
                     }
@@ -195,7 +219,6 @@ impl Files {
             ui.weak(format!("  {name}"))
                 .on_hover_text(current.display().to_string());
         });
-        action
     }
 
     /// Files dropped on the window: presets and texplore PNGs open; other images and meshes go

@@ -103,6 +103,15 @@ pub fn rebase_assets(desc: &mut SceneDesc, from: &Path, to: &Path) {
     }
 }
 
+/// `asset` written relative to the folder `preset_dir`, as a preset stores asset paths
+/// (absolute when the two share no root).
+#[must_use]
+pub fn relative_asset_path(asset: &Path, preset_dir: &Path) -> String {
+    relative_to(&absolute(asset), &absolute(preset_dir))
+        .to_string_lossy()
+        .into_owned()
+}
+
 fn absolute(p: &Path) -> PathBuf {
     std::fs::canonicalize(p)
         .unwrap_or_else(|_| std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf()))

@@ -12,7 +12,8 @@ pub use build::{
 };
 pub use desc::*;
 pub use files::{
-    PRESET_CHUNK, read_png_preset, read_preset_or_png, rebase_assets, save_render_png,
+    PRESET_CHUNK, read_png_preset, read_preset_or_png, rebase_assets, relative_asset_path,
+    save_render_png,
 };
 
 use crate::camera::Camera;

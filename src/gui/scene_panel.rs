@@ -13,7 +13,7 @@ use crate::scene::{
     LightDesc, MaterialDesc, ObjectDesc, ProjectionDesc, SceneDesc, ShapeDesc, TextureDesc,
     relative_asset_path,
 };
-use crate::texture::{Filter, Lookup, Wrap};
+use crate::texture::{DEFAULT_MAX_ANISOTROPY, Filter, Lookup, Wrap};
 use std::path::{Path, PathBuf};
 
 /// Image files the texture list offers.
@@ -329,17 +329,20 @@ impl ScenePanel {
                     mapping,
                     squares: (8.0, 8.0),
                     colors: (Rgb::grey(0.8), Rgb::grey(0.05)),
+                    filter: Filter::default(),
                 },
                 3 => TextureDesc::UvGrid {
                     mapping,
                     filter: Filter::default(),
                     wrap: Wrap::default(),
+                    max_anisotropy: DEFAULT_MAX_ANISOTROPY,
                 },
                 _ => TextureDesc::MeshMaterial {
                     mapping: Mapping::Uv,
                     filter: Filter::default(),
                     lookup: Lookup::default(),
                     wrap: Wrap::default(),
+                    max_anisotropy: DEFAULT_MAX_ANISOTROPY,
                 },
             };
             self.path_text = None;
@@ -509,6 +512,7 @@ fn image_texture(path: String, mapping: Mapping) -> TextureDesc {
         wrap: Wrap::default(),
         scale: 1.0,
         srgb: true,
+        max_anisotropy: DEFAULT_MAX_ANISOTROPY,
     }
 }
 

@@ -315,7 +315,8 @@ pub enum Stage {
 pub struct ProgressUpdate<'a> {
     /// Samples done.
     pub done: u64,
-    /// Samples planned in total (grows by nothing; shrinks never: skipped runs count as done).
+    /// Samples planned in total, fixed for a run (timed runs skipped by the time budget are
+    /// counted as done, so `done` ends equal to `total`).
     pub total: u64,
     /// What is being rendered.
     pub stage: Stage,
@@ -326,7 +327,7 @@ pub struct ProgressUpdate<'a> {
 /// Renders `scene` (a preset read from `preset_path`, whose directory resolves asset paths) in
 /// every mode at every spp of `config` on the current rayon pool, and measures each against
 /// the reference (loaded from the cache or rendered and stored). `progress` is called after
-/// every pass; raising `cancel` stops within one tile.
+/// every reference pass and every complete render; raising `cancel` stops within one tile.
 ///
 /// # Errors
 /// The scene cannot be built, the cache cannot be written, or `cancel` was raised.

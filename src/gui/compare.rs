@@ -2,7 +2,6 @@
 //! with its time and its error against a high-spp reference) and the speed/error plot.
 
 use super::live::LiveImage;
-use super::widgets::filter_tip;
 use crate::inspect::{AaMode, ModeResult, measure_modes, rmse};
 use crate::render::{Generation, RenderJob, RenderOptions};
 use crate::sampler::PixelSampler;
@@ -253,7 +252,7 @@ impl AbSplit {
                         for f in Filter::ALL {
                             changed |= ui
                                 .selectable_value(&mut m.filter, Some(f), f.name())
-                                .on_hover_text(filter_tip(f.name()))
+                                .on_hover_text(f.description())
                                 .changed();
                         }
                     })

@@ -1,20 +1,17 @@
-//! What the renderer did at one pixel (the window's inspector), and small timed comparisons of
-//! antialiasing modes (the window's A/B split and speed/error panel).
+//! What the renderer did at one pixel (the window's inspector), and antialiasing modes with
+//! their error against a reference (the window's A/B split).
 //!
 //! Everything here is computed by the library; the GUI only displays it.
 
-use crate::error::Result;
 use crate::geometry::Shape;
 use crate::mapping::{Mapping, TexCoord, explain_lookup, explain_mapping};
 use crate::math::{Rgb, Vec2, Vec3A};
-use crate::render::{Film, render_blocking};
+use crate::render::Film;
 use crate::sampler::PixelSampler;
-use crate::scene::{AssetCache, Overrides, SceneDesc, apply_overrides, build_scene};
+use crate::scene::{Overrides, SceneDesc, apply_overrides};
 use crate::texture::{Filter, ImageData, Lookup, Texture, Wrap};
 use crate::{material::Material, scene::Scene};
-use std::path::Path;
 use std::sync::Arc;
-use std::time::{Duration, Instant};
 
 /// The texel one lookup picks for the inspected (u, v).
 #[derive(Clone, Debug, PartialEq)]
@@ -301,62 +298,12 @@ pub fn rmse(a: &Film, b: &Film) -> Option<f32> {
     Some((sum / n).sqrt() as f32)
 }
 
-/// One mode's time and error.
-#[derive(Clone, Debug, PartialEq)]
-pub struct ModeResult {
-    /// The mode.
-    pub mode: AaMode,
-    /// Wall time of the render (all passes, no preview).
-    pub time: Duration,
-    /// RMSE against the reference (see [`rmse`]).
-    pub error: f32,
-}
-
-/// Renders `desc` once per mode and once as a reference (`reference` mode), all at
-/// `width` x `height`, and returns each mode's time and error against the reference.
-/// `cancelled` is polled between renders.
-///
-/// # Errors
-/// The scene cannot be built.
-pub fn measure_modes(
-    desc: &SceneDesc,
-    preset_path: &Path,
-    cache: &mut AssetCache,
-    modes: &[AaMode],
-    reference: AaMode,
-    size: (u32, u32),
-    cancelled: &dyn Fn() -> bool,
-) -> Result<Vec<ModeResult>> {
-    let mut sized = desc.clone();
-    sized.render.width = size.0;
-    sized.render.height = size.1;
-    let render = |mode: &AaMode, cache: &mut AssetCache| -> Result<(Film, Duration)> {
-        let scene = build_scene(&mode.apply(&sized), preset_path, cache)?;
-        let t0 = Instant::now();
-        let film = render_blocking(&scene, |_| {});
-        Ok((film, t0.elapsed()))
-    };
-    let (reference_film, _) = render(&reference, cache)?;
-    let mut out = Vec::with_capacity(modes.len());
-    for mode in modes {
-        if cancelled() {
-            break;
-        }
-        let (film, time) = render(mode, cache)?;
-        let error = rmse(&film, &reference_film).unwrap_or(f32::NAN);
-        out.push(ModeResult {
-            mode: *mode,
-            time,
-            error,
-        });
-    }
-    Ok(out)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::load_preset;
+    use crate::render::render_blocking;
+    use crate::scene::{AssetCache, build_scene, load_preset};
+    use std::path::Path;
 
     fn earth() -> (SceneDesc, std::path::PathBuf) {
         let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("presets/earth.ron");
@@ -406,26 +353,23 @@ mod tests {
     }
 
     #[test]
-    fn more_samples_have_less_error_and_identical_films_none() {
+    fn more_samples_have_less_error_and_a_film_none_against_itself() {
         let (desc, path) = earth();
         let mut cache = AssetCache::new();
-        let mode = |spp| AaMode {
-            sampler: PixelSampler::Jittered,
-            spp,
-            filter: None,
+        let mut render = |spp| {
+            let mode = AaMode {
+                sampler: PixelSampler::Jittered,
+                spp,
+                filter: None,
+            };
+            let scene = build_scene(&mode.apply(&desc), &path, &mut cache).expect("build");
+            render_blocking(&scene, |_| {})
         };
-        let r = measure_modes(
-            &desc,
-            &path,
-            &mut cache,
-            &[mode(1), mode(16), mode(64)],
-            mode(64),
-            (48, 36),
-            &|| false,
-        )
-        .expect("measure");
-        assert_eq!(r.len(), 3);
-        assert!(r[0].error > r[1].error, "{r:?}");
-        assert_eq!(r[2].error, 0.0, "the reference against itself");
+        let (one, sixteen, reference) = (render(1), render(16), render(64));
+        let e1 = rmse(&one, &reference).expect("same size");
+        let e16 = rmse(&sixteen, &reference).expect("same size");
+        assert!(e1 > e16 && e16 > 0.0, "{e1} {e16}");
+        assert_eq!(rmse(&reference, &reference), Some(0.0));
+        assert_eq!(rmse(&one, &Film::new(3, 3)), None);
     }
 }

@@ -267,3 +267,32 @@ fn opening_a_preset_with_a_missing_image_keeps_the_scene() {
     assert_eq!(h.state().desc().cloned(), desc_before);
     assert_eq!(image_bytes(h.state()), image_before);
 }
+
+#[test]
+fn the_uv_debug_view_shows_u_in_red_and_v_in_green() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let path = small_earth(dir.path());
+    let mut h = harness(path.clone());
+    h.get_by_role_and_label(Role::ComboBox, "View").click();
+    h.run_steps(3);
+    h.get_by_label("uv").click();
+    settle(&mut h);
+    let desc = h.state().desc().cloned().expect("scene");
+    assert_eq!(desc.render.view.name(), "uv");
+
+    // The pixel at the centre of the Earth against the library's own (u, v) there.
+    let scene = texplore::scene::build_scene(&desc, &path, &mut texplore::scene::AssetCache::new())
+        .expect("build");
+    let (x, y) = (80u32, 60u32);
+    let i = scene
+        .inspect(texplore::math::Vec2::new(x as f32 + 0.5, y as f32 + 0.5))
+        .expect("the Earth is at the centre");
+    let uv = i.wrapped_uv.expect("uv");
+    let image = h.state().image().expect("image");
+    let px = &image.rgba[((y * image.width + x) * 4) as usize..][..2];
+    let (r, g) = (f32::from(px[0]) / 255.0, f32::from(px[1]) / 255.0);
+    assert!(
+        (r - uv.x).abs() < 0.02 && (g - uv.y).abs() < 0.02,
+        "pixel ({r}, {g}) against (u, v) = {uv}"
+    );
+}

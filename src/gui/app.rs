@@ -425,15 +425,19 @@ impl ExplorerApp {
             .map(|s| Vec2::new(s.settings.width as f32, s.settings.height as f32));
         let out = egui::CentralPanel::default()
             .show(ui, |ui| {
+                let view = self.desc.as_mut().map(|d| &mut d.render.view);
                 if self.ab.enabled {
-                    viewport::show_split(ui, &mut self.ab, size)
+                    viewport::show_split(ui, &mut self.ab, size, view)
                 } else {
-                    viewport::show(ui, self.live.texture(), size)
+                    viewport::show(ui, self.live.texture(), size, view)
                 }
             })
             .inner;
         if let Some(edit) = out.edit {
             self.apply_view_edit(edit);
+        }
+        if out.view_changed {
+            self.restart();
         }
         if self.ab.take_restart() {
             self.restart();

@@ -2,9 +2,9 @@
 //! with its time and its error against a high-spp reference) and the speed/error plot.
 
 use super::live::LiveImage;
-use super::widgets::filter_tip;
-use crate::inspect::{AaMode, ModeResult, measure_modes, rmse};
+use crate::inspect::{AaMode, rmse};
 use crate::render::{Generation, RenderJob, RenderOptions};
+use crate::report::{Mode, ProgressUpdate, ReferenceSettings, ReportConfig, Row, run_scene};
 use crate::sampler::PixelSampler;
 use crate::scene::{AssetCache, Scene, SceneDesc, build_scene};
 use crate::texture::Filter;
@@ -253,7 +253,7 @@ impl AbSplit {
                         for f in Filter::ALL {
                             changed |= ui
                                 .selectable_value(&mut m.filter, Some(f), f.name())
-                                .on_hover_text(filter_tip(f.name()))
+                                .on_hover_text(f.description())
                                 .changed();
                         }
                     })
@@ -265,20 +265,29 @@ impl AbSplit {
     }
 }
 
-type Measured = Result<Vec<ModeResult>, String>;
+/// What the measuring thread tells the window.
+enum Measured {
+    /// One (mode, spp) measured.
+    Row(Box<Row>),
+    /// Camera samples done and planned.
+    Progress(u64, u64),
+    /// Finished (or failed, or cancelled).
+    Done(Result<(), String>),
+}
 
-/// The speed/error panel: time against error for every sampler at a few sample counts,
-/// measured on demand on a background thread at a small resolution.
+/// The speed/error panel: the report's runs (`report::run_scene`) for the current scene at a
+/// small resolution, on demand on a background thread, plotted live as time against RMSE.
 #[derive(Default)]
 pub struct SpeedPanel {
     /// Whether the window is open.
     pub open: bool,
-    results: Vec<ModeResult>,
+    rows: Vec<Row>,
     running: Option<(Receiver<Measured>, Arc<AtomicBool>)>,
+    progress: (u64, u64),
     error: Option<String>,
 }
 
-/// Sample counts measured per sampler.
+/// Sample counts measured per mode.
 const SPEED_SPP: [u32; 5] = [1, 2, 4, 8, 16];
 /// Resolution of the measurement renders.
 const SPEED_SIZE: (u32, u32) = (160, 120);
@@ -289,51 +298,69 @@ impl SpeedPanel {
         let stop = Arc::new(AtomicBool::new(false));
         let (desc, path, stop2): (SceneDesc, PathBuf, _) =
             (desc.clone(), path.to_path_buf(), stop.clone());
+        let config = ReportConfig {
+            modes: Mode::default_set(),
+            spp: SPEED_SPP.to_vec(),
+            // The median of three runs: a shared machine's timing noise shows otherwise.
+            repeat: 3,
+            time_budget: Duration::from_millis(500),
+            width: Some(SPEED_SIZE.0),
+            height: Some(SPEED_SIZE.1),
+            reference: ReferenceSettings {
+                spp: REFERENCE_SPP,
+                ..ReferenceSettings::default()
+            },
+            heatmap_spp: None,
+        };
         let spawned = std::thread::Builder::new()
             .name("texplore-measure".into())
             .spawn(move || {
-                let modes: Vec<AaMode> = PixelSampler::ALL
-                    .iter()
-                    .flat_map(|&sampler| {
-                        SPEED_SPP.iter().map(move |&spp| AaMode {
-                            sampler,
-                            spp,
-                            filter: None,
-                        })
-                    })
-                    .collect();
-                let r = measure_modes(
-                    &desc,
-                    &path,
-                    &mut AssetCache::new(),
-                    &modes,
-                    REFERENCE,
-                    SPEED_SIZE,
-                    &|| stop2.load(Ordering::Relaxed),
-                )
-                .map_err(|e| e.to_string());
-                let _ = tx.send(r);
+                let tx2 = tx.clone();
+                let mut progress = move |u: &ProgressUpdate<'_>| {
+                    if let Some(row) = u.row {
+                        let _ = tx2.send(Measured::Row(Box::new(row.clone())));
+                    }
+                    let _ = tx2.send(Measured::Progress(u.done, u.total));
+                };
+                let name = path
+                    .file_stem()
+                    .map_or_else(|| "scene".into(), |s| s.to_string_lossy().into_owned());
+                let r = run_scene(&name, &desc, &path, &config, &mut progress, &stop2)
+                    .map(|_| ())
+                    .map_err(|e| e.to_string());
+                let _ = tx.send(Measured::Done(r));
             });
         match spawned {
-            Ok(_) => self.running = Some((rx, stop)),
+            Ok(_) => {
+                self.rows.clear();
+                self.progress = (0, 1);
+                self.running = Some((rx, stop));
+            }
             Err(e) => self.error = Some(format!("cannot start the measurement: {e}")),
+        }
+    }
+
+    fn receive(&mut self) {
+        let Some((rx, _)) = &self.running else {
+            return;
+        };
+        let mut done = None;
+        while let Ok(m) = rx.try_recv() {
+            match m {
+                Measured::Row(r) => self.rows.push(*r),
+                Measured::Progress(d, t) => self.progress = (d, t.max(1)),
+                Measured::Done(r) => done = Some(r),
+            }
+        }
+        if let Some(r) = done {
+            self.error = r.err();
+            self.running = None;
         }
     }
 
     /// The window, when open.
     pub fn window(&mut self, ctx: &egui::Context, desc: Option<&SceneDesc>, path: &Path) {
-        if let Some((rx, _)) = &self.running
-            && let Ok(r) = rx.try_recv()
-        {
-            match r {
-                Ok(v) => {
-                    self.results = v;
-                    self.error = None;
-                }
-                Err(e) => self.error = Some(e),
-            }
-            self.running = None;
-        }
+        self.receive();
         if !self.open {
             if let Some((_, stop)) = self.running.take() {
                 stop.store(true, Ordering::Relaxed);
@@ -343,21 +370,31 @@ impl SpeedPanel {
         let mut open = self.open;
         egui::Window::new("Speed and error")
             .open(&mut open)
-            .default_size([520.0, 380.0])
+            .default_pos([340.0, 80.0])
+            .default_size([560.0, 420.0])
             .show(ctx, |ui| {
                 ui.horizontal(|ui| {
                     let busy = self.running.is_some();
                     if ui
                         .add_enabled(!busy && desc.is_some(), egui::Button::new("Measure"))
-                        .on_hover_text("Render the scene with every sampler at 1 to 16 spp (160 x 120) and compare with a 256-spp reference")
+                        .on_hover_text("Time every filter with the jittered sampler and every sampler with the bilinear filter at 1 to 16 spp (160 x 120), and compare each with a 256-spp reference")
                         .clicked()
                         && let Some(d) = desc
                     {
                         self.measure(d, path);
                     }
                     if busy {
-                        ui.spinner();
-                        ui.label("measuring…");
+                        let (d, t) = self.progress;
+                        ui.add(
+                            egui::ProgressBar::new(d as f32 / t as f32)
+                                .desired_width(200.0)
+                                .show_percentage(),
+                        );
+                        if ui.button("Stop").on_hover_text("Cancel the measurement").clicked()
+                            && let Some((_, stop)) = &self.running
+                        {
+                            stop.store(true, Ordering::Relaxed);
+                        }
                         ctx.request_repaint_after(Duration::from_millis(100));
                     }
                 });
@@ -365,26 +402,37 @@ impl SpeedPanel {
                     ui.colored_label(egui::Color32::LIGHT_RED, e);
                 }
                 ui.label(format!(
-                    "x: render time (ms) at {}x{}; y: RMSE against {REFERENCE_SPP} spp multi-jittered. Points are 1, 2, 4, 8, 16 spp.",
+                    "log-log: x = log10 of the render time (ms) at {}x{}, y = log10 of the RMSE against {REFERENCE_SPP} spp; points are 1, 2, 4, 8, 16 spp (the report's runs).",
                     SPEED_SIZE.0, SPEED_SIZE.1
                 ));
+                let mut modes: Vec<Mode> = Vec::new();
+                for r in &self.rows {
+                    if !modes.contains(&r.mode) {
+                        modes.push(r.mode);
+                    }
+                }
                 egui_plot::Plot::new("speed-error")
                     .legend(egui_plot::Legend::default())
-                    .x_axis_label("time (ms)")
-                    .y_axis_label("RMSE")
+                    .x_axis_label("log10 time (ms)")
+                    .y_axis_label("log10 RMSE")
                     .show(ui, |plot| {
-                        for sampler in PixelSampler::ALL {
+                        for mode in &modes {
                             let pts: Vec<[f64; 2]> = self
-                                .results
+                                .rows
                                 .iter()
-                                .filter(|r| r.mode.sampler == sampler)
-                                .map(|r| [r.time.as_secs_f64() * 1e3, f64::from(r.error)])
+                                .filter(|r| r.mode == *mode && r.metrics.rmse > 0.0)
+                                .map(|r| {
+                                    [
+                                        (r.time.as_secs_f64() * 1e3).max(1e-3).log10(),
+                                        r.metrics.rmse.log10(),
+                                    ]
+                                })
                                 .collect();
                             if pts.is_empty() {
                                 continue;
                             }
-                            plot.line(egui_plot::Line::new(sampler.name(), pts.clone()));
-                            plot.points(egui_plot::Points::new(sampler.name(), pts).radius(3.0));
+                            plot.line(egui_plot::Line::new(mode.name(), pts.clone()));
+                            plot.points(egui_plot::Points::new(mode.name(), pts).radius(3.0));
                         }
                     });
             });

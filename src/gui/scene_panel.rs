@@ -2,9 +2,7 @@
 //! mapping, filter and wrap; globally the sampler, samples, camera, lights, exposure and the
 //! resolution scale. Returns whether anything changed, so the app re-renders.
 
-use super::widgets::{
-    choice_combo, colour, enum_combo, filter_tip, lookup_tip, number, vec3, wrap_tip,
-};
+use super::widgets::{choice_combo, colour, enum_combo, lookup_tip, number, vec3, wrap_tip};
 use crate::geometry::Shading;
 use crate::mapping::Mapping;
 use crate::math::{Rgb, Vec3};
@@ -13,7 +11,7 @@ use crate::scene::{
     LightDesc, MaterialDesc, ObjectDesc, ProjectionDesc, SceneDesc, ShapeDesc, TextureDesc,
     relative_asset_path,
 };
-use crate::texture::{DEFAULT_MAX_ANISOTROPY, Filter, Lookup, Wrap};
+use crate::texture::{DEFAULT_MAX_ANISOTROPY, Filter, Lookup, MAX_ANISOTROPY_LIMIT, Wrap};
 use std::path::{Path, PathBuf};
 
 /// Image files the texture list offers.
@@ -364,10 +362,12 @@ impl ScenePanel {
                 wrap,
                 scale,
                 srgb,
+                max_anisotropy,
                 ..
             } => {
                 changed |= self.image_path_ui(ui, path, preset);
-                changed |= enum_combo(ui, "Filter", filter, |f: Filter| filter_tip(f.name()));
+                changed |= enum_combo(ui, "Filter", filter, Filter::description);
+                changed |= anisotropy(ui, max_anisotropy);
                 changed |= enum_combo(ui, "Lookup", lookup, |l: Lookup| lookup_tip(l.name()));
                 changed |= enum_combo(ui, "Wrap", wrap, |w: Wrap| wrap_tip(w.name()));
                 changed |= number(ui, "scale", scale, 0.0..=1e4, 0.01);
@@ -379,8 +379,12 @@ impl ScenePanel {
                     .changed();
             }
             TextureDesc::Checker {
-                squares, colors, ..
+                squares,
+                colors,
+                filter,
+                ..
             } => {
+                changed |= enum_combo(ui, "Filter", filter, Filter::description);
                 changed |= number(ui, "squares along u", &mut squares.0, 0.01..=1e6, 0.1);
                 changed |= number(ui, "squares along v", &mut squares.1, 0.01..=1e6, 0.1);
                 changed |= colour(ui, "colour 1", &mut colors.0);
@@ -390,14 +394,22 @@ impl ScenePanel {
                 filter,
                 lookup,
                 wrap,
+                max_anisotropy,
                 ..
             } => {
-                changed |= enum_combo(ui, "Filter", filter, |f: Filter| filter_tip(f.name()));
+                changed |= enum_combo(ui, "Filter", filter, Filter::description);
+                changed |= anisotropy(ui, max_anisotropy);
                 changed |= enum_combo(ui, "Lookup", lookup, |l: Lookup| lookup_tip(l.name()));
                 changed |= enum_combo(ui, "Wrap", wrap, |w: Wrap| wrap_tip(w.name()));
             }
-            TextureDesc::UvGrid { filter, wrap, .. } => {
-                changed |= enum_combo(ui, "Filter", filter, |f: Filter| filter_tip(f.name()));
+            TextureDesc::UvGrid {
+                filter,
+                wrap,
+                max_anisotropy,
+                ..
+            } => {
+                changed |= enum_combo(ui, "Filter", filter, Filter::description);
+                changed |= anisotropy(ui, max_anisotropy);
                 changed |= enum_combo(ui, "Wrap", wrap, |w: Wrap| wrap_tip(w.name()));
             }
         }
@@ -514,6 +526,18 @@ fn image_texture(path: String, mapping: Mapping) -> TextureDesc {
         srgb: true,
         max_anisotropy: DEFAULT_MAX_ANISOTROPY,
     }
+}
+
+/// The largest footprint elongation the EWA and trilinear filters follow before they blur.
+fn anisotropy(ui: &mut egui::Ui, value: &mut f32) -> bool {
+    ui.horizontal(|ui| {
+        let l = ui.label("max anisotropy");
+        ui.add(egui::DragValue::new(value).range(1.0..=MAX_ANISOTROPY_LIMIT).speed(0.1))
+            .labelled_by(l.id)
+            .on_hover_text("How elongated a pixel's footprint may be before the filter blurs it instead (EWA and trilinear)")
+            .changed()
+    })
+    .inner
 }
 
 fn material_ui(ui: &mut egui::Ui, m: &mut MaterialDesc) -> bool {

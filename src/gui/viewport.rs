@@ -3,7 +3,9 @@
 //! inspector. In A/B mode, two images side by side with a draggable divider.
 
 use super::compare::AbSplit;
+use super::widgets::{enum_combo, view_tip};
 use crate::math::Vec2;
+use crate::texture::View;
 
 /// A camera edit asked for by the pointer.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -27,13 +29,18 @@ pub struct ViewOutput {
     pub hover: Option<Vec2>,
     /// Film position clicked.
     pub click: Option<Vec2>,
+    /// The debug view was changed.
+    pub view_changed: bool,
 }
 
 /// Wheel points to a zoom factor: one notch (about 50 points) is 10 %.
 const ZOOM_PER_POINT: f32 = 0.002;
 
-fn toolbar(ui: &mut egui::Ui, out: &mut ViewOutput) {
+fn toolbar(ui: &mut egui::Ui, out: &mut ViewOutput, view: Option<&mut View>) {
     ui.horizontal(|ui| {
+        if let Some(view) = view {
+            out.view_changed = enum_combo(ui, "View", view, |v: View| view_tip(v.name()));
+        }
         if ui
             .button("Reset view")
             .on_hover_text("Back to the camera the scene was opened with")
@@ -106,9 +113,10 @@ pub fn show(
     ui: &mut egui::Ui,
     texture: Option<&egui::TextureHandle>,
     size: Option<Vec2>,
+    view: Option<&mut View>,
 ) -> ViewOutput {
     let mut out = ViewOutput::default();
-    toolbar(ui, &mut out);
+    toolbar(ui, &mut out, view);
     let avail = ui.available_rect_before_wrap();
     let (Some(t), Some(size)) = (texture, size) else {
         ui.centered_and_justified(|ui| ui.spinner());
@@ -126,9 +134,14 @@ pub fn show(
 }
 
 /// The A/B viewport: A left of the divider, B right of it; the divider drags.
-pub fn show_split(ui: &mut egui::Ui, ab: &mut AbSplit, size: Option<Vec2>) -> ViewOutput {
+pub fn show_split(
+    ui: &mut egui::Ui,
+    ab: &mut AbSplit,
+    size: Option<Vec2>,
+    view: Option<&mut View>,
+) -> ViewOutput {
     let mut out = ViewOutput::default();
-    toolbar(ui, &mut out);
+    toolbar(ui, &mut out, view);
     ab.controls(ui);
     let avail = ui.available_rect_before_wrap();
     let Some(size) = size else {

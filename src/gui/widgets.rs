@@ -120,22 +120,22 @@ pub fn colour(ui: &mut egui::Ui, label: &str, c: &mut Rgb) -> bool {
     .inner
 }
 
-/// One sentence on a texture filter. Filters other helpers add fall back to a generic line.
+/// One sentence on a debug view.
 #[must_use]
-pub fn filter_tip(name: &str) -> &'static str {
+pub fn view_tip(name: &str) -> &'static str {
     match name {
-        "nearest" => "Reads the one texel the lookup picks: sharp, but aliases when minified.",
-        "bilinear" => {
-            "Blends the four nearest texel centres: smooth when magnified, aliases when minified."
+        "shaded" => "The rendered image.",
+        "uv" => "(u, v) as colour: red is u, green is v, after the wrap mode.",
+        "mip-level" => {
+            "The mip level each pixel's footprint selects: blue magnified, then green, yellow, red, white for coarser levels."
         }
-        "trilinear" | "mip" | "trilinear-mip" => {
-            "Blends two mip levels chosen from the pixel's footprint: no aliasing, a little blurry."
+        "texel-grid" => {
+            "The image with the texel grid drawn on it (the base texels, or a mip level's far away)."
         }
-        "ewa" => {
-            "Averages the texels under the pixel's elliptical footprint: sharp and alias-free."
+        "seams" => {
+            "The image with the mapping's seams: magenta where u wraps, yellow at the poles, cyan at tile edges."
         }
-        "anisotropic" => "Takes several mip lookups along the footprint's long axis.",
-        _ => "A texture filter: how the texels under a pixel become one colour.",
+        _ => "What the viewport shows: the image or a debug view of the texture stage.",
     }
 }
 

@@ -1,16 +1,28 @@
 //! `texplore bench`: full-pass and preview timings per thread count.
 
+use crate::geometry::Mesh;
 use crate::render::{Film, PREVIEW_BLOCKS, render_pass, render_preview};
-use crate::scene::{AssetCache, Overrides, apply_overrides, build_scene, read_preset_or_png};
+use crate::scene::{
+    AssetCache, Overrides, apply_overrides, build_scene, parse_preset, read_preset_or_png,
+};
 use anyhow::Result;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 /// `texplore bench`.
 #[derive(Debug, clap::Args)]
 pub struct BenchArgs {
     /// The preset.
-    pub preset: PathBuf,
+    #[arg(required_unless_present = "mesh")]
+    pub preset: Option<PathBuf>,
+    /// Instead of a preset: a generated bumpy sphere of about this many triangles (with UVs)
+    /// filling the view; also reports the BVH build time and bytes per triangle.
+    #[arg(long, value_name = "TRIANGLES", conflicts_with = "preset")]
+    pub mesh: Option<u32>,
+    /// With `--mesh`: the light casts shadows (one shadow ray per pixel through the BVH).
+    #[arg(long, requires = "mesh")]
+    pub shadows: bool,
     /// Image width.
     #[arg(long, default_value_t = 800)]
     pub width: u32,
@@ -30,8 +42,61 @@ fn median(mut v: Vec<Duration>) -> Duration {
     v[v.len() / 2]
 }
 
+/// The generated mesh scene: its BVH built (and timed) once per thread count.
+fn mesh_scene(a: &BenchArgs, triangles: u32) -> Result<(crate::scene::SceneDesc, AssetCache)> {
+    let rings = ((f64::from(triangles) / 4.0).sqrt().round() as u32).max(2) + 1;
+    let data = crate::meshio::bumpy_sphere(2 * (rings - 1), rings, 0.03);
+    let path = Path::new("generated-sphere");
+    println!(
+        "generated sphere: {} vertices, {} triangles",
+        data.positions.len(),
+        data.triangles.len()
+    );
+    let mut mesh = None;
+    for &threads in &a.threads {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()?;
+        let mut times = Vec::new();
+        for _ in 0..3 {
+            let d = data.clone();
+            let t0 = Instant::now();
+            let m = pool.install(|| Mesh::new(d, path))?;
+            times.push(t0.elapsed());
+            mesh = Some(m);
+        }
+        println!(
+            "threads {threads}: BVH build (with vertex normals) {:.0} ms (median of 3)",
+            median(times).as_secs_f64() * 1e3
+        );
+    }
+    let mesh = mesh.map_or_else(|| Mesh::new(data, path), Ok)?;
+    println!(
+        "memory: {:.1} bytes per triangle (mesh + BVH of {} nodes)",
+        mesh.bytes_per_triangle(),
+        mesh.bvh_nodes()
+    );
+    let mut cache = AssetCache::new();
+    cache.insert_mesh(path, Arc::new(mesh));
+    let text = format!(
+        "(version: 1, camera: (eye: (0, 0, 2.2), projection: Pinhole(fov: 36)),
+          ambient: (ls: 0.3), lights: [Directional(direction: (1, 1, 2), shadows: {})],
+          objects: [(shape: Mesh(path: \"generated-sphere\", shading: Smooth),
+                     material: Matte(cd: UvGrid(mapping: Uv, filter: Bilinear)))])",
+        a.shadows
+    );
+    Ok((parse_preset(&text, Path::new("generated"))?, cache))
+}
+
 pub fn run(a: &BenchArgs) -> Result<()> {
-    let mut desc = read_preset_or_png(&a.preset)?;
+    let (mut desc, preset, mut cache) = match (&a.preset, a.mesh) {
+        (_, Some(n)) => {
+            let (desc, cache) = mesh_scene(a, n)?;
+            (desc, PathBuf::from("generated"), cache)
+        }
+        (Some(p), None) => (read_preset_or_png(p)?, p.clone(), AssetCache::new()),
+        (None, None) => anyhow::bail!("name a preset or --mesh TRIANGLES"),
+    };
     apply_overrides(
         &mut desc,
         Overrides {
@@ -41,11 +106,11 @@ pub fn run(a: &BenchArgs) -> Result<()> {
             ..Overrides::default()
         },
     );
-    let scene = build_scene(&desc, &a.preset, &mut AssetCache::new())?;
+    let scene = build_scene(&desc, &preset, &mut cache)?;
     let rays = f64::from(a.width) * f64::from(a.height);
     println!(
         "{} at {}x{}, 1 spp, median of {} passes after a warm-up",
-        a.preset.display(),
+        preset.display(),
         a.width,
         a.height,
         a.repeat.max(1)

@@ -129,11 +129,8 @@ impl MeshData {
             };
             d.zero_area += usize::from(is_zero_area(*pa, *pb, *pc));
             if !self.uvs.is_empty() {
-                d.zero_uv_area += usize::from(is_zero_uv_area(
-                    self.uvs[a],
-                    self.uvs[b],
-                    self.uvs[c],
-                ));
+                d.zero_uv_area +=
+                    usize::from(is_zero_uv_area(self.uvs[a], self.uvs[b], self.uvs[c]));
             }
         }
         d
@@ -278,6 +275,8 @@ impl Mesh {
         let (bvh, order) = Bvh::build(&bounds);
         drop(bounds);
         let triangles: Vec<[u32; 3]> = order.iter().map(|&i| triangles[i as usize]).collect();
+        let (positions, uvs, normals, triangles) =
+            renumber_vertices(positions, uvs, normals, triangles);
         let half = ((bbox.max - bbox.min) * 0.5).max_element();
         Ok(Self {
             path: path.to_path_buf(),
@@ -447,18 +446,19 @@ impl Mesh {
             return false;
         };
         let box_ray = BoxRay::new(ray.origin, ray.dir);
-        self.bvh.traverse(&box_ray, t_max, true, |first, count, t_max| {
-            (first..first + count).find_map(|i| {
-                let [a, b, c] = self.triangles[i as usize];
-                woop.test(
-                    self.positions[a as usize],
-                    self.positions[b as usize],
-                    self.positions[c as usize],
-                    t_max,
-                )
-                .map(|(t, _)| t)
+        self.bvh
+            .traverse(&box_ray, t_max, true, |first, count, t_max| {
+                (first..first + count).find_map(|i| {
+                    let [a, b, c] = self.triangles[i as usize];
+                    woop.test(
+                        self.positions[a as usize],
+                        self.positions[b as usize],
+                        self.positions[c as usize],
+                        t_max,
+                    )
+                    .map(|(t, _)| t)
+                })
             })
-        })
     }
 
     /// The nearest hit as a [`LocalHit`].
@@ -513,14 +513,7 @@ impl Mesh {
 
 /// dp/du and dp/dv of a triangle (pbrt's solve), or `None` where the (u, v) triangle has zero
 /// area: the texture's derivatives are then zero (the finest level), never NaN.
-fn dp_duv(
-    p0: Vec3,
-    p1: Vec3,
-    p2: Vec3,
-    t0: Vec2,
-    t1: Vec2,
-    t2: Vec2,
-) -> Option<(Vec3A, Vec3A)> {
+fn dp_duv(p0: Vec3, p1: Vec3, p2: Vec3, t0: Vec2, t1: Vec2, t2: Vec2) -> Option<(Vec3A, Vec3A)> {
     if is_zero_uv_area(t0, t1, t2) {
         return None;
     }
@@ -531,6 +524,43 @@ fn dp_duv(
     let dpdu = (dp02 * d12.y - dp12 * d02.y) * inv;
     let dpdv = (dp12 * d02.x - dp02 * d12.x) * inv;
     (dpdu.is_finite() && dpdv.is_finite()).then(|| (dpdu.into(), dpdv.into()))
+}
+
+/// Renumbers the vertices in the order the (BVH-ordered) triangles first use them, so the
+/// vertices of a leaf, and of nearby leaves, sit together in memory. Unused vertices go last.
+fn renumber_vertices(
+    positions: Vec<Vec3>,
+    uvs: Vec<Vec2>,
+    normals: Vec<Vec3>,
+    mut triangles: Vec<[u32; 3]>,
+) -> (Vec<Vec3>, Vec<Vec2>, Vec<Vec3>, Vec<[u32; 3]>) {
+    const UNSEEN: u32 = u32::MAX;
+    let mut new_index = vec![UNSEEN; positions.len()];
+    let mut old_of_new = Vec::with_capacity(positions.len());
+    for t in &mut triangles {
+        for k in t.iter_mut() {
+            let slot = &mut new_index[*k as usize];
+            if *slot == UNSEEN {
+                *slot = old_of_new.len() as u32;
+                old_of_new.push(*k);
+            }
+            *k = *slot;
+        }
+    }
+    for (old, slot) in new_index.iter().enumerate() {
+        if *slot == UNSEEN {
+            old_of_new.push(old as u32);
+        }
+    }
+    let pick = |i: &u32| *i as usize;
+    let positions = old_of_new.iter().map(|i| positions[pick(i)]).collect();
+    let uvs = if uvs.is_empty() {
+        uvs
+    } else {
+        old_of_new.iter().map(|i| uvs[pick(i)]).collect()
+    };
+    let normals = old_of_new.iter().map(|i| normals[pick(i)]).collect();
+    (positions, uvs, normals, triangles)
 }
 
 /// Area-weighted vertex normals: each triangle adds its unnormalised cross product (twice its
@@ -662,7 +692,13 @@ mod tests {
     #[test]
     fn lecture_triangles_interpolate_uv() {
         let m = Mesh::new(quad(), Path::new("quad")).unwrap();
-        for (x, z) in [(0.5, -0.5), (-0.7, 0.6), (0.9, 0.95), (-0.2, -0.9), (0.0, 0.0)] {
+        for (x, z) in [
+            (0.5, -0.5),
+            (-0.7, 0.6),
+            (0.9, 0.95),
+            (-0.2, -0.9),
+            (0.0, 0.0),
+        ] {
             for shading in Shading::ALL {
                 let h = m.intersect(&down(x, z), f32::INFINITY, shading).unwrap();
                 let uv = h.uv.unwrap();
@@ -675,8 +711,12 @@ mod tests {
         let f1 = m.intersect(&down(0.3, -0.6), 1e9, Shading::Flat).unwrap();
         let f2 = m.intersect(&down(-0.3, 0.6), 1e9, Shading::Flat).unwrap();
         assert!((f1.ns - f2.ns).length() > 0.5);
-        let s1 = m.intersect(&down(0.3001, 0.3), 1e9, Shading::Smooth).unwrap();
-        let s2 = m.intersect(&down(0.2999, 0.3), 1e9, Shading::Smooth).unwrap();
+        let s1 = m
+            .intersect(&down(0.3001, 0.3), 1e9, Shading::Smooth)
+            .unwrap();
+        let s2 = m
+            .intersect(&down(0.2999, 0.3), 1e9, Shading::Smooth)
+            .unwrap();
         assert!((s1.ns - s2.ns).length() < 1e-3);
         assert_ne!(s1.part, s2.part);
         // dp/du points along +z (u grows with z), dp/dv along +x.
@@ -726,7 +766,10 @@ mod tests {
         let mut d = quad();
         d.triangles[1] = [0, 2, 4];
         let e = Mesh::new(d, Path::new("x.ply")).unwrap_err().to_string();
-        assert!(e.contains("x.ply") && e.contains("triangle 1") && e.contains("4"), "{e}");
+        assert!(
+            e.contains("x.ply") && e.contains("triangle 1") && e.contains("4"),
+            "{e}"
+        );
         let mut d = quad();
         d.positions[2].y = f32::NAN;
         let e = Mesh::new(d, Path::new("x.ply")).unwrap_err().to_string();

@@ -70,7 +70,6 @@ pub fn read_obj(path: &Path) -> Result<MeshData> {
         single_index: true,
         ignore_points: true,
         ignore_lines: true,
-        ..tobj::LoadOptions::default()
     };
     let (models, materials) = tobj::load_obj_buf(&mut reader, &options, |mtl| {
         let full = dir.join(mtl);
@@ -83,9 +82,9 @@ pub fn read_obj(path: &Path) -> Result<MeshData> {
         format: "obj".into(),
         ..MeshData::default()
     };
-    let has_uv = models
-        .iter()
-        .all(|m| !m.mesh.texcoords.is_empty() && m.mesh.texcoords.len() / 2 == m.mesh.positions.len() / 3);
+    let has_uv = models.iter().all(|m| {
+        !m.mesh.texcoords.is_empty() && m.mesh.texcoords.len() / 2 == m.mesh.positions.len() / 3
+    });
     let has_normals = models
         .iter()
         .all(|m| !m.mesh.normals.is_empty() && m.mesh.normals.len() == m.mesh.positions.len());
@@ -104,8 +103,11 @@ pub fn read_obj(path: &Path) -> Result<MeshData> {
                 .map(|p| Vec3::new(p[0], p[1], p[2])),
         );
         if has_uv {
-            data.uvs
-                .extend(mesh.texcoords.chunks_exact(2).map(|t| Vec2::new(t[0], t[1])));
+            data.uvs.extend(
+                mesh.texcoords
+                    .chunks_exact(2)
+                    .map(|t| Vec2::new(t[0], t[1])),
+            );
         }
         if has_normals {
             data.normals.extend(
@@ -115,11 +117,8 @@ pub fn read_obj(path: &Path) -> Result<MeshData> {
             );
         }
         for t in mesh.indices.chunks_exact(3) {
-            data.triangles.push([
-                t[0] + base as u32,
-                t[1] + base as u32,
-                t[2] + base as u32,
-            ]);
+            data.triangles
+                .push([t[0] + base as u32, t[1] + base as u32, t[2] + base as u32]);
         }
         if data.triangles.len() > MAX_TRIANGLES {
             return Err(fail(

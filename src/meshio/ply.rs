@@ -38,11 +38,7 @@ pub enum PlyFormat {
 
 impl PlyFormat {
     /// Every encoding.
-    pub const ALL: [Self; 3] = [
-        Self::Ascii,
-        Self::BinaryLittleEndian,
-        Self::BinaryBigEndian,
-    ];
+    pub const ALL: [Self; 3] = [Self::Ascii, Self::BinaryLittleEndian, Self::BinaryBigEndian];
 
     /// The name in the `format` header line.
     #[must_use]
@@ -228,13 +224,13 @@ pub fn read_ply_from(r: &mut impl BufRead, path: &Path) -> Result<MeshData> {
                 "the face element has no 'vertex_indices' (or 'vertex_index') list".into(),
             )
         })?;
-    if let Property::List { item, .. } = &face.props[face_list] {
-        if !item.is_int() {
-            return Err(fail(
-                format!("header line {}", face.line),
-                "vertex indices must be an integer type".into(),
-            ));
-        }
+    if let Property::List { item, .. } = &face.props[face_list]
+        && !item.is_int()
+    {
+        return Err(fail(
+            format!("header line {}", face.line),
+            "vertex indices must be an integer type".into(),
+        ));
     }
     if face.count > MAX_TRIANGLES as u64 {
         return Err(fail(
@@ -339,7 +335,8 @@ pub fn read_ply_from(r: &mut impl BufRead, path: &Path) -> Result<MeshData> {
                                 ));
                             }
                             for k in 1..corners.len() - 1 {
-                                data.triangles.push([corners[0], corners[k], corners[k + 1]]);
+                                data.triangles
+                                    .push([corners[0], corners[k], corners[k + 1]]);
                             }
                             if data.triangles.len() > MAX_TRIANGLES {
                                 return Err(fail(
@@ -422,7 +419,10 @@ fn read_header(r: &mut impl BufRead, path: &Path) -> Result<Header> {
             if words != ["ply"] {
                 return Err(fail(
                     1,
-                    format!("not a PLY file (it starts with '{}')", text.chars().take(20).collect::<String>()),
+                    format!(
+                        "not a PLY file (it starts with '{}')",
+                        text.chars().take(20).collect::<String>()
+                    ),
                 ));
             }
             continue;
@@ -456,8 +456,7 @@ fn read_header(r: &mut impl BufRead, path: &Path) -> Result<Header> {
                 let el = elements
                     .last_mut()
                     .ok_or_else(|| fail(line_no, "a property before any element".into()))?;
-                let (Some(count), Some(item)) = (Scalar::parse(count), Scalar::parse(item))
-                else {
+                let (Some(count), Some(item)) = (Scalar::parse(count), Scalar::parse(item)) else {
                     return Err(fail(line_no, format!("unknown type in '{text}'")));
                 };
                 if !count.is_int() {
@@ -487,8 +486,8 @@ fn read_header(r: &mut impl BufRead, path: &Path) -> Result<Header> {
                 });
             }
             ["end_header"] => {
-                let format =
-                    format.ok_or_else(|| fail(line_no, "no 'format' line before end_header".into()))?;
+                let format = format
+                    .ok_or_else(|| fail(line_no, "no 'format' line before end_header".into()))?;
                 return Ok(Header {
                     format,
                     elements,
@@ -499,7 +498,10 @@ fn read_header(r: &mut impl BufRead, path: &Path) -> Result<Header> {
             _ => {
                 return Err(fail(
                     line_no,
-                    format!("cannot read '{}'", text.chars().take(60).collect::<String>()),
+                    format!(
+                        "cannot read '{}'",
+                        text.chars().take(60).collect::<String>()
+                    ),
                 ));
             }
         }

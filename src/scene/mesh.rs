@@ -28,13 +28,19 @@ pub(super) fn resolve_mesh_material<'a>(
         return Err("MeshMaterial: only a Mesh shape names a material".into());
     };
     let file = mesh.path().display();
-    let material = mesh.material().ok_or_else(|| match mesh.material_problem() {
-        Some(p) => format!("MeshMaterial: {file}: {p}"),
-        None => format!("MeshMaterial: {file} names no material (no .mtl with Kd or map_Kd)"),
-    })?;
+    let material = mesh
+        .material()
+        .ok_or_else(|| match mesh.material_problem() {
+            Some(p) => format!("MeshMaterial: {file}: {p}"),
+            None => format!("MeshMaterial: {file} names no material (no .mtl with Kd or map_Kd)"),
+        })?;
     let texture = match (&material.diffuse_texture, material.diffuse) {
         (Some(image), _) => TextureDesc::Image {
-            path: image.to_string_lossy().into_owned(),
+            // Absolute: the preset's folder must not be prefixed again.
+            path: std::path::absolute(image)
+                .unwrap_or_else(|_| image.clone())
+                .to_string_lossy()
+                .into_owned(),
             mapping: *mapping,
             filter: *filter,
             lookup: *lookup,

@@ -58,15 +58,24 @@ fn mesh_scene(a: &BenchArgs, triangles: u32) -> Result<(crate::scene::SceneDesc,
             .num_threads(threads)
             .build()?;
         let mut times = Vec::new();
+        let mut cpu = Vec::new();
         for _ in 0..3 {
             let d = data.clone();
-            let t0 = Instant::now();
+            let (t0, c0) = (Instant::now(), process_cpu_seconds());
             let m = pool.install(|| Mesh::new(d, path))?;
             times.push(t0.elapsed());
+            if let (Some(c0), Some(c1)) = (c0, process_cpu_seconds()) {
+                cpu.push(Duration::from_secs_f64(c1 - c0));
+            }
             mesh = Some(m);
         }
+        let cpu = if cpu.len() == 3 {
+            format!(", {:.0} ms of CPU time", median(cpu).as_secs_f64() * 1e3)
+        } else {
+            String::new()
+        };
         println!(
-            "threads {threads}: BVH build (with vertex normals) {:.0} ms (median of 3)",
+            "threads {threads}: BVH build (with vertex normals) {:.0} ms{cpu} (median of 3)",
             median(times).as_secs_f64() * 1e3
         );
     }
@@ -121,21 +130,28 @@ pub fn run(a: &BenchArgs) -> Result<()> {
             .num_threads(threads)
             .build()?;
         let never = || false;
-        let (passes, previews) = pool.install(|| {
+        let passes = pool.install(|| {
             let mut film = Film::new(a.width, a.height);
             let _ = render_pass(&scene, &mut film, 0, &never);
             let mut passes = Vec::new();
             let mut previews = Vec::new();
+            let mut cpu = Some(0.0);
             for i in 0..a.repeat.max(1) {
-                let t0 = Instant::now();
+                let (t0, c0) = (Instant::now(), process_cpu_seconds());
                 let _ = render_pass(&scene, &mut film, i as u32, &never);
                 passes.push(t0.elapsed());
+                cpu = match (cpu, c0, process_cpu_seconds()) {
+                    (Some(sum), Some(c0), Some(c1)) => Some(sum + c1 - c0),
+                    _ => None,
+                };
                 let t0 = Instant::now();
                 let _ = render_preview(&scene, PREVIEW_BLOCKS[0], &never);
                 previews.push(t0.elapsed());
             }
-            (passes, previews)
+            (passes, previews, cpu)
         });
+        let (passes, previews, cpu) = (passes.0, passes.1, passes.2);
+        let n_passes = passes.len() as f64;
         let (pass, preview) = (median(passes), median(previews));
         let rate = rays / pass.as_secs_f64();
         let speedup = base.map_or(1.0, |b: f64| rate / b);
@@ -147,6 +163,23 @@ pub fn run(a: &BenchArgs) -> Result<()> {
             preview.as_secs_f64() * 1e3,
             block = PREVIEW_BLOCKS[0],
         );
+        if let Some(cpu) = cpu.filter(|c| *c > 0.0) {
+            // On a shared machine wall time includes waiting for a core; CPU time does not.
+            println!(
+                "           {:.1} M primary rays per CPU-second (process CPU time over all passes)",
+                rays * n_passes / cpu / 1e6
+            );
+        }
     }
     Ok(())
+}
+
+/// CPU seconds (user + system) this process has used, from `/proc/self/stat` (Linux; `None`
+/// elsewhere). Ticks are USER_HZ = 100 on every Linux.
+fn process_cpu_seconds() -> Option<f64> {
+    let stat = std::fs::read_to_string("/proc/self/stat").ok()?;
+    let rest = &stat[stat.rfind(')')? + 1..];
+    let fields: Vec<&str> = rest.split_ascii_whitespace().collect();
+    let ticks = fields.get(11)?.parse::<f64>().ok()? + fields.get(12)?.parse::<f64>().ok()?;
+    Some(ticks / 100.0)
 }

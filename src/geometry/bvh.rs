@@ -13,7 +13,7 @@ const BINS: usize = 16;
 const TRAVERSAL_COST: f32 = 1.0;
 /// Nodes with at most this many primitives become leaves without asking the SAH (small leaves
 /// cost memory, a node per triangle, and save little time).
-const MIN_SPLIT: usize = 3;
+const MIN_SPLIT: usize = 4;
 /// Nodes with more primitives than this are binned along their widest centroid axis only (the
 /// SAH's choice among axes matters little for big nodes and binning one axis is 3 times faster).
 const ONE_AXIS_ABOVE: usize = 1024;

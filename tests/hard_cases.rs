@@ -506,3 +506,80 @@ fn obj_face_indices_out_of_range_name_the_line() {
     let m = texplore::meshio::load_mesh(&p).unwrap();
     assert_eq!(m.triangles.len(), 2);
 }
+
+/// Degenerate triangles: collinear corners, a repeated corner, corners at one point, and
+/// zero (u, v) area. They load, `mesh-info` counts them, and a render of them under every
+/// filter (the footprint of a zero-UV-area triangle has no derivatives) stays finite.
+#[test]
+fn degenerate_triangles_load_count_and_render_finite() {
+    let dir = tempfile::tempdir().unwrap();
+    let ply = dir.path().join("degenerate.ply");
+    std::fs::write(
+        &ply,
+        "ply\nformat ascii 1.0\nelement vertex 7\nproperty float x\nproperty float y\nproperty float z\nproperty float u\nproperty float v\nelement face 5\nproperty list uchar int vertex_indices\nend_header\n\
+         -1 0 -1 0 0\n1 0 -1 1 0\n1 0 1 1 1\n0 0 0 0.5 0.5\n2 0 2 1 1\n-1 0 1 0.3 0.3\n-1 0 1 0.3 0.3\n\
+         3 0 1 2\n3 0 3 4\n3 0 0 1\n3 5 6 5\n3 1 2 5\n",
+    )
+    .unwrap();
+    // Faces: a good one; collinear (0, 3, 4); a repeated corner; all corners at one point
+    // (5, 6 duplicate vertices); and (1, 2, 5), of positive area and positive (u, v) area.
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_texplore"))
+        .args(["mesh-info", "--json"])
+        .arg(&ply)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["triangles"], 5);
+    assert_eq!(v["degenerate"], 3, "{v}");
+    // A triangle whose (u, v) are collinear: add one by giving three corners the same (u, v).
+    let flat_uv = dir.path().join("flat_uv.ply");
+    std::fs::write(
+        &flat_uv,
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nproperty float u\nproperty float v\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n-1 0 -1 0.5 0.5\n1 0 -1 0.5 0.5\n0 0 1 0.5 0.5\n3 0 1 2\n",
+    )
+    .unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_texplore"))
+        .args(["mesh-info", "--json"])
+        .arg(&flat_uv)
+        .output()
+        .unwrap();
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(
+        (v["degenerate"].as_u64(), v["degenerate_uv"].as_u64()),
+        (Some(0), Some(1)),
+        "{v}"
+    );
+    // Both render finite under every filter, seen from above through the UV grid.
+    for (file, lit) in [("degenerate.ply", 1), ("flat_uv.ply", 1)] {
+        for filter in Filter::ALL {
+            let text = format!(
+                "(version: 1, camera: (eye: (0.1, 4, 0.2), look_at: (0, 0, 0)), render: (width: 32, height: 32, spp: 2),
+                  lights: [Directional(direction: (0.2, 1, 0.1), ls: 1, shadows: true)],
+                  objects: [(shape: Mesh(path: \"{file}\"), material: Matte(cd: UvGrid(mapping: Uv)))])"
+            );
+            let preset = dir.path().join("m.ron");
+            let mut desc = parse_preset(&text, &preset).unwrap();
+            apply_overrides(
+                &mut desc,
+                Overrides {
+                    filter: Some(filter),
+                    ..Overrides::default()
+                },
+            );
+            let scene = build_scene(&desc, &preset, &mut AssetCache::new()).unwrap();
+            let film = render_blocking(&scene, |_| {});
+            assert!(film.is_finite(), "{file} {filter}");
+            let seen = film
+                .to_linear()
+                .iter()
+                .filter(|c| c.max_channel() > 0.0)
+                .count();
+            assert!(seen >= lit, "{file} {filter}: nothing rendered");
+        }
+    }
+}

@@ -40,7 +40,10 @@ pub fn run(a: &MeshInfoArgs) -> Result<()> {
             "has_normals": mesh.has_file_normals(),
             "bbox_min": b.min.to_array(),
             "bbox_max": b.max.to_array(),
-            "degenerate": d,
+            // Triangles of zero area (never hit), and of zero (u, v) area (no texture
+            // derivatives): plain counts, as a script expects of `degenerate`.
+            "degenerate": d.zero_area,
+            "degenerate_uv": d.zero_uv_area,
             "material": material.map(|m| m.name.clone()),
             "material_texture": material
                 .and_then(|m| m.diffuse_texture.as_ref())

@@ -275,6 +275,8 @@ impl Mesh {
         let (bvh, order) = Bvh::build(&bounds);
         drop(bounds);
         let triangles: Vec<[u32; 3]> = order.iter().map(|&i| triangles[i as usize]).collect();
+        let (positions, uvs, normals, triangles) =
+            renumber_vertices(positions, uvs, normals, triangles);
         let half = ((bbox.max - bbox.min) * 0.5).max_element();
         Ok(Self {
             path: path.to_path_buf(),
@@ -522,6 +524,43 @@ fn dp_duv(p0: Vec3, p1: Vec3, p2: Vec3, t0: Vec2, t1: Vec2, t2: Vec2) -> Option<
     let dpdu = (dp02 * d12.y - dp12 * d02.y) * inv;
     let dpdv = (dp12 * d02.x - dp02 * d12.x) * inv;
     (dpdu.is_finite() && dpdv.is_finite()).then(|| (dpdu.into(), dpdv.into()))
+}
+
+/// Renumbers the vertices in the order the (BVH-ordered) triangles first use them, so the
+/// vertices of a leaf, and of nearby leaves, sit together in memory. Unused vertices go last.
+fn renumber_vertices(
+    positions: Vec<Vec3>,
+    uvs: Vec<Vec2>,
+    normals: Vec<Vec3>,
+    mut triangles: Vec<[u32; 3]>,
+) -> (Vec<Vec3>, Vec<Vec2>, Vec<Vec3>, Vec<[u32; 3]>) {
+    const UNSEEN: u32 = u32::MAX;
+    let mut new_index = vec![UNSEEN; positions.len()];
+    let mut old_of_new = Vec::with_capacity(positions.len());
+    for t in &mut triangles {
+        for k in t.iter_mut() {
+            let slot = &mut new_index[*k as usize];
+            if *slot == UNSEEN {
+                *slot = old_of_new.len() as u32;
+                old_of_new.push(*k);
+            }
+            *k = *slot;
+        }
+    }
+    for (old, slot) in new_index.iter().enumerate() {
+        if *slot == UNSEEN {
+            old_of_new.push(old as u32);
+        }
+    }
+    let pick = |i: &u32| *i as usize;
+    let positions = old_of_new.iter().map(|i| positions[pick(i)]).collect();
+    let uvs = if uvs.is_empty() {
+        uvs
+    } else {
+        old_of_new.iter().map(|i| uvs[pick(i)]).collect()
+    };
+    let normals = old_of_new.iter().map(|i| normals[pick(i)]).collect();
+    (positions, uvs, normals, triangles)
 }
 
 /// Area-weighted vertex normals: each triangle adds its unnormalised cross product (twice its

@@ -67,7 +67,13 @@ pub fn bumpy_sphere(segments: u32, rings: u32, bump: f32) -> MeshData {
         let theta = PI * j as f32 / rings as f32; // from the north pole
         for i in 0..=segments {
             let phi = TAU * (i % segments) as f32 / segments as f32;
-            let r = 1.0 + bump * (7.0 * phi).sin() * (6.0 * theta).sin();
+            // No bump at the poles, so every copy of a pole vertex is the same point.
+            let pole = j == 0 || j == rings;
+            let r = if pole {
+                1.0
+            } else {
+                1.0 + bump * (7.0 * phi).sin() * (6.0 * theta).sin()
+            };
             let (s, c) = if j == 0 {
                 (0.0, 1.0)
             } else if j == rings {

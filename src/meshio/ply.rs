@@ -224,13 +224,13 @@ pub fn read_ply_from(r: &mut impl BufRead, path: &Path) -> Result<MeshData> {
                 "the face element has no 'vertex_indices' (or 'vertex_index') list".into(),
             )
         })?;
-    if let Property::List { item, .. } = &face.props[face_list] {
-        if !item.is_int() {
-            return Err(fail(
-                format!("header line {}", face.line),
-                "vertex indices must be an integer type".into(),
-            ));
-        }
+    if let Property::List { item, .. } = &face.props[face_list]
+        && !item.is_int()
+    {
+        return Err(fail(
+            format!("header line {}", face.line),
+            "vertex indices must be an integer type".into(),
+        ));
     }
     if face.count > MAX_TRIANGLES as u64 {
         return Err(fail(

@@ -37,7 +37,11 @@ pub(super) fn resolve_mesh_material<'a>(
         })?;
     let texture = match (&material.diffuse_texture, material.diffuse) {
         (Some(image), _) => TextureDesc::Image {
-            path: image.to_string_lossy().into_owned(),
+            // Absolute: the preset's folder must not be prefixed again.
+            path: std::path::absolute(image)
+                .unwrap_or_else(|_| image.clone())
+                .to_string_lossy()
+                .into_owned(),
             mapping: *mapping,
             filter: *filter,
             lookup: *lookup,

@@ -85,19 +85,26 @@ pub fn render_pass_masked(
 ) -> Result<(), Cancelled> {
     let s = &scene.settings;
     let width = film.width() as usize;
-    let spacing = 1.0 / (s.spp as f32).sqrt();
+    // Adaptive samples past `spp` are finer: their footprints shrink with `max_spp`.
+    let spacing = if sample < s.spp {
+        1.0 / (s.spp as f32).sqrt()
+    } else {
+        1.0 / (s.max_spp() as f32).sqrt()
+    };
     let stats_on = s.adaptive.is_some();
-    let (sums, stats) = film.sums_mut();
+    let rows = width * TILE_ROWS;
+    let (sums, stats, keys) = film.buffers_mut();
     let result: Result<(), Cancelled> = sums
-        .par_chunks_mut(width * TILE_ROWS)
-        .zip(stats.par_chunks_mut(width * TILE_ROWS))
+        .par_chunks_mut(rows)
+        .zip(stats.par_chunks_mut(rows))
+        .zip(keys.par_chunks_mut(rows))
         .enumerate()
-        .try_for_each(|(tile, (chunk, stat))| {
+        .try_for_each(|(tile, ((chunk, stat), key))| {
             if cancelled() {
                 return Err(Cancelled);
             }
             let y0 = tile * TILE_ROWS;
-            for (i, (px, st)) in chunk.iter_mut().zip(stat.iter_mut()).enumerate() {
+            for (i, ((px, st), k)) in chunk.iter_mut().zip(stat).zip(key).enumerate() {
                 let (x, y) = (i % width, y0 + i / width);
                 if let Some(m) = mask {
                     if !m[y * width + x] {
@@ -105,17 +112,20 @@ pub fn render_pass_masked(
                     }
                 }
                 let pos = sample_position(s, x as u32, y as u32, sample);
-                let l = radiance(scene, pos, spacing);
+                let (l, edge_key) = radiance_keyed(scene, pos, spacing);
                 debug_assert!(l.is_finite(), "non-finite radiance at pixel ({x}, {y})");
-                px[0] += l.0;
-                px[1] += l.1;
-                px[2] += l.2;
-                px[3] += 1.0;
                 if stats_on {
+                    if px[3] == 0.0 {
+                        *k = edge_key;
+                    }
                     let e = display_luminance(l, s.exposure_scale);
                     st[0] += e;
                     st[1] += e * e;
                 }
+                px[0] += l.0;
+                px[1] += l.1;
+                px[2] += l.2;
+                px[3] += 1.0;
             }
             Ok(())
         });
@@ -160,16 +170,23 @@ pub fn render_scheduled_pass(
 #[must_use]
 #[inline]
 pub fn radiance(scene: &Scene, pos: Vec2, spacing: f32) -> Rgb {
+    radiance_keyed(scene, pos, spacing).0
+}
+
+/// [`radiance`] with the hit's edge key (see [`Scene::trace_keyed`]).
+#[must_use]
+#[inline]
+pub fn radiance_keyed(scene: &Scene, pos: Vec2, spacing: f32) -> (Rgb, u32) {
     match scene.camera.ray(pos, spacing) {
         Some((ray, diff)) => {
             if scene.needs_differentials {
                 let diff = diff.scaled_about(&ray, spacing.max(MIN_FOOTPRINT_SCALE));
-                scene.trace(&ray, Some(&diff))
+                scene.trace_keyed(&ray, Some(&diff))
             } else {
-                scene.trace(&ray, None)
+                scene.trace_keyed(&ray, None)
             }
         }
-        None => Rgb::BLACK,
+        None => (Rgb::BLACK, 0),
     }
 }
 

@@ -78,11 +78,7 @@ fn display(film: &Film, exposure: f32) -> Vec<f32> {
 }
 
 fn rmse(a: &[f32], b: &[f32]) -> f64 {
-    let s: f64 = a
-        .iter()
-        .zip(b)
-        .map(|(x, y)| f64::from(x - y).powi(2))
-        .sum();
+    let s: f64 = a.iter().zip(b).map(|(x, y)| f64::from(x - y).powi(2)).sum();
     (s / a.len() as f64).sqrt()
 }
 
@@ -92,7 +88,9 @@ fn main() {
     let (w, h) = (arg(&args, "--width", 640), arg(&args, "--height", 480));
     let ref_spp = arg(&args, "--ref-spp", 1024);
     let exposure = load_preset(&preset).expect("preset").render.exposure.exp2();
-    let stem = preset.file_stem().map_or_else(String::new, |s| s.to_string_lossy().into());
+    let stem = preset
+        .file_stem()
+        .map_or_else(String::new, |s| s.to_string_lossy().into());
     let cache = std::env::temp_dir().join(format!("aa_ref_{stem}_{w}x{h}_{ref_spp}.f32"));
     let reference: Vec<f32> = if let Ok(bytes) = std::fs::read(&cache) {
         bytes
@@ -122,7 +120,10 @@ fn main() {
         );
         let scene = build_scene(&desc, &preset, &mut AssetCache::new()).expect("scene");
         let film = render_blocking(&scene, |_| {});
-        eprintln!("reference: {ref_spp} spp in {:.1} s", t0.elapsed().as_secs_f64());
+        eprintln!(
+            "reference: {ref_spp} spp in {:.1} s",
+            t0.elapsed().as_secs_f64()
+        );
         let d = display(&film, exposure);
         let bytes: Vec<u8> = d.iter().flat_map(|v| v.to_le_bytes()).collect();
         let _ = std::fs::write(&cache, bytes);

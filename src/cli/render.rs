@@ -3,8 +3,8 @@
 use crate::render::render_blocking;
 use crate::sampler::{PixelFilter, PixelSampler};
 use crate::scene::{
-    AdaptiveDesc, AssetCache, DEFAULT_ADAPTIVE_THRESHOLD, Overrides, apply_overrides,
-    build_scene, read_preset_or_png, save_render_png,
+    AdaptiveDesc, AssetCache, DEFAULT_ADAPTIVE_THRESHOLD, Overrides, apply_overrides, build_scene,
+    read_preset_or_png, save_render_png,
 };
 use crate::texture::{Filter, View};
 use anyhow::{Context, Result};

@@ -79,8 +79,7 @@ pub fn adaptive_mask(film: &Film, a: &AdaptiveDesc) -> Vec<bool> {
                 let prefiltered = keys[i] & PREFILTERED != 0;
                 neighbours.iter().flatten().any(|&j| {
                     (keys[j] & !PREFILTERED) != (keys[i] & !PREFILTERED)
-                        || (!prefiltered
-                            && (mean[j] - mean[i]).abs() > CONTRAST_FACTOR * threshold)
+                        || (!prefiltered && (mean[j] - mean[i]).abs() > CONTRAST_FACTOR * threshold)
                 })
             } else {
                 noisy[i] || neighbours.iter().flatten().any(|&j| noisy[j])
@@ -132,7 +131,13 @@ mod tests {
         // different object.
         let mut f = film_with(&[&[0.1], &[0.9], &[0.1], &[0.9], &[0.9]]);
         let (_, _, keys) = f.buffers_mut();
-        keys.copy_from_slice(&[1 | PREFILTERED, 1 | PREFILTERED, 1 | PREFILTERED, 1 | PREFILTERED, 2]);
+        keys.copy_from_slice(&[
+            1 | PREFILTERED,
+            1 | PREFILTERED,
+            1 | PREFILTERED,
+            1 | PREFILTERED,
+            2,
+        ]);
         assert_eq!(adaptive_mask(&f, &a), [false, false, false, true, true]);
         // A shadow edge: same object, one light blocked.
         let mut f = film_with(&[&[0.5], &[0.5], &[0.5]]);

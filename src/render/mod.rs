@@ -106,10 +106,8 @@ pub fn render_pass_masked(
             let y0 = tile * TILE_ROWS;
             for (i, ((px, st), k)) in chunk.iter_mut().zip(stat).zip(key).enumerate() {
                 let (x, y) = (i % width, y0 + i / width);
-                if let Some(m) = mask {
-                    if !m[y * width + x] {
-                        continue;
-                    }
+                if mask.is_some_and(|m| !m[y * width + x]) {
+                    continue;
                 }
                 let pos = sample_position(s, x as u32, y as u32, sample);
                 let (l, edge_key) = radiance_keyed(scene, pos, spacing);

@@ -1,8 +1,8 @@
 //! Reading, validating and writing presets, and building the runtime [`Scene`] from one.
 
 use super::desc::{
-    AdaptiveDesc, CameraDesc, LightDesc, MaterialDesc, PRESET_VERSION, ProjectionDesc,
-    RenderDesc, SceneDesc, TextureDesc, TransformDesc,
+    AdaptiveDesc, CameraDesc, LightDesc, MaterialDesc, PRESET_VERSION, ProjectionDesc, RenderDesc,
+    SceneDesc, TextureDesc, TransformDesc,
 };
 use super::{RenderSettings, Scene};
 use crate::camera::{Camera, Projection};

@@ -145,7 +145,10 @@ impl Texture {
                         let (wu, wv) = t.wraps();
                         (wu.coord(tc.uv.x), wv.coord(tc.uv.y))
                     }
-                    _ => (Some(tc.uv.x - tc.uv.x.floor()), Some(tc.uv.y - tc.uv.y.floor())),
+                    _ => (
+                        Some(tc.uv.x - tc.uv.x.floor()),
+                        Some(tc.uv.y - tc.uv.y.floor()),
+                    ),
                 };
                 match (u, v) {
                     (Some(u), Some(v)) => Rgb(srgb_to_linear(u), srgb_to_linear(v), 0.0),
@@ -220,7 +223,10 @@ mod tests {
             Rgb::BLACK,
         );
         let enc = |x: f32| crate::math::linear_to_srgb(x);
-        assert!((enc(c.0) - 0.25).abs() < 1e-4 && (enc(c.1) - 0.5).abs() < 1e-4, "{c:?}");
+        assert!(
+            (enc(c.0) - 0.25).abs() < 1e-4 && (enc(c.1) - 0.5).abs() < 1e-4,
+            "{c:?}"
+        );
     }
 
     #[test]
@@ -235,7 +241,11 @@ mod tests {
         // Near the north pole: yellow.
         let p = Vec3A::new(0.3, 1.0, 0.2).normalize() * 1.0;
         let near_pole = Vec3A::new(1e-4, 1.0, 1e-4).normalize();
-        let c = t.debug_color(&ctx(near_pole, d, Vec3A::new(0.0, 0.0, 1e-3)), View::Seams, shaded);
+        let c = t.debug_color(
+            &ctx(near_pole, d, Vec3A::new(0.0, 0.0, 1e-3)),
+            View::Seams,
+            shaded,
+        );
         assert_eq!(c, Rgb(0.9, 0.8, 0.0));
         // Elsewhere: the shaded colour.
         let c = t.debug_color(&ctx(p, d * 0.01, e * 0.01), View::Seams, shaded);

@@ -235,7 +235,8 @@ fn ewa_level(
         // Only the span of this row inside the ellipse: A ss^2 + (B tt) ss + (C tt^2 - 1) < 0.
         let (qb, qc) = (b * tt, c * tt * tt - 1.0);
         let disc = qb * qb - 4.0 * a * qc;
-        if !(disc > 0.0) {
+        // (NaN fails the comparison too.)
+        if disc.is_nan() || disc <= 0.0 {
             continue;
         }
         let root = disc.sqrt();
@@ -254,7 +255,11 @@ fn ewa_level(
             wsum += wgt;
             // Outside under `Black`: black texels still count in the average.
             let Some(row) = row else { continue };
-            let col = if inside { Some(is as u32) } else { wu.index(is, w) };
+            let col = if inside {
+                Some(is as u32)
+            } else {
+                wu.index(is, w)
+            };
             if let Some(col) = col {
                 sum += img.texel(col, row) * wgt;
             }
@@ -322,7 +327,7 @@ fn taps(n: u32, i: u32, at: impl Fn(u32) -> Rgb) -> Rgb {
     if n <= 1 {
         return at(0);
     }
-    if n % 2 == 0 {
+    if n.is_multiple_of(2) {
         return (at(2 * i) + at(2 * i + 1)) * 0.5;
     }
     let m = (n - 1) / 2;
@@ -348,7 +353,16 @@ mod tests {
 
     #[test]
     fn odd_and_thin_sizes_reduce_to_one_texel_keeping_the_mean() {
-        for (w, h) in [(1, 1), (1, 7), (7, 1), (3, 5), (5, 3), (6, 9), (2048, 1024), (17, 2)] {
+        for (w, h) in [
+            (1, 1),
+            (1, 7),
+            (7, 1),
+            (3, 5),
+            (5, 3),
+            (6, 9),
+            (2048, 1024),
+            (17, 2),
+        ] {
             let img = Arc::new(ImageData::from_fn(w, h, "t", |c, r| {
                 Rgb(c as f32, r as f32, ((c * 7 + r * 3) % 5) as f32)
             }));
@@ -393,7 +407,13 @@ mod tests {
     fn srgb_levels_average_in_linear_colour() {
         // Black and white columns: the linear mean 0.5 is sRGB byte 188, not 128.
         let texels = (0..4)
-            .map(|i| if i % 2 == 0 { [0, 0, 0, 255] } else { [255, 255, 255, 255] })
+            .map(|i| {
+                if i % 2 == 0 {
+                    [0, 0, 0, 255]
+                } else {
+                    [255, 255, 255, 255]
+                }
+            })
             .collect();
         let img = Arc::new(ImageData::new(2, 2, Texels::Srgb8(texels), "bw"));
         let p = MipPyramid::build(img);
@@ -414,7 +434,11 @@ mod tests {
         let p = MipPyramid::build(img);
         let d = Vec2::new(16.0 / 64.0, 0.0);
         let e = Vec2::new(0.0, 16.0 / 64.0);
-        for uv in [Vec2::new(0.3, 0.7), Vec2::new(0.0, 0.0), Vec2::new(0.99, 0.5)] {
+        for uv in [
+            Vec2::new(0.3, 0.7),
+            Vec2::new(0.0, 0.0),
+            Vec2::new(0.99, 0.5),
+        ] {
             let t = p.trilinear(uv, d, e, Wrap::Repeat, Wrap::Repeat);
             assert!((t.0 - 0.5).abs() < 0.02, "{uv}: {t:?}");
             let x = p.ewa(uv, d, e, 8.0, Wrap::Repeat, Wrap::Repeat);
@@ -438,7 +462,9 @@ mod tests {
     fn ewa_is_anisotropic_and_respects_max_anisotropy() {
         // Vertical stripes, one texel wide: a footprint long along v and one texel along u keeps
         // them; a footprint long along u averages them.
-        let img = Arc::new(ImageData::from_fn(64, 64, "s", |c, _| Rgb::grey((c % 2) as f32)));
+        let img = Arc::new(ImageData::from_fn(64, 64, "s", |c, _| {
+            Rgb::grey((c % 2) as f32)
+        }));
         let p = MipPyramid::build(img);
         let uv = Vec2::new(1.5 / 64.0, 0.5);
         let along_v = p.ewa(
@@ -491,7 +517,9 @@ mod tests {
 
     #[test]
     fn degenerate_footprints_are_finite() {
-        let img = Arc::new(ImageData::from_fn(8, 4, "d", |c, r| Rgb::grey((c + r) as f32)));
+        let img = Arc::new(ImageData::from_fn(8, 4, "d", |c, r| {
+            Rgb::grey((c + r) as f32)
+        }));
         let p = MipPyramid::build(img);
         for (d, e) in [
             (Vec2::ZERO, Vec2::ZERO),

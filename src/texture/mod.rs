@@ -11,7 +11,7 @@ mod procedural;
 
 pub use debug::{View, mip_level_color};
 pub use image::{ImageData, MAX_IMAGE_BYTES, MAX_IMAGE_DIMENSION, Texels, load_image, save_png};
-pub use mip::{DEFAULT_MAX_ANISOTROPY, MAX_ANISOTROPY_LIMIT, MipPyramid};
+pub use mip::{DEFAULT_MAX_ANISOTROPY, EWA_FOOTPRINT_SCALE, MAX_ANISOTROPY_LIMIT, MipPyramid};
 pub use procedural::{Checker, uv_grid_image};
 
 use crate::mapping::{Mapping, TexCoord};
@@ -241,7 +241,9 @@ impl Filter {
     pub const fn description(self) -> &'static str {
         match self {
             Self::Nearest => "One texel per sample: blocky when magnified, aliases when minified.",
-            Self::Bilinear => "Blends the four nearest texels: smooth up close, still aliases far away.",
+            Self::Bilinear => {
+                "Blends the four nearest texels: smooth up close, still aliases far away."
+            }
             Self::Bicubic => "Catmull-Rom over 4 x 4 texels: sharper than bilinear up close.",
             Self::Trilinear => {
                 "Mip-mapping: averages as many texels as the pixel covers, but isotropically (blurs at grazing angles)."
@@ -330,9 +332,7 @@ impl ImageTexture {
             }
             (Filter::Bicubic, _) => self.image.bicubic(tc.uv, wu, wv),
             (Filter::Trilinear, Some(m)) => m.trilinear(tc.uv, tc.duvdx, tc.duvdy, wu, wv),
-            (Filter::Ewa, Some(m)) => {
-                m.ewa(tc.uv, tc.duvdx, tc.duvdy, self.max_anisotropy, wu, wv)
-            }
+            (Filter::Ewa, Some(m)) => m.ewa(tc.uv, tc.duvdx, tc.duvdy, self.max_anisotropy, wu, wv),
         }
     }
 

@@ -54,7 +54,11 @@ impl Checker {
         let share = |a: f32, b: f32, d: f32| {
             if d <= 0.0 {
                 // Zero width: a point along this axis.
-                if a.floor().rem_euclid(2.0) < 0.5 { 0.0 } else { 1.0 }
+                if a.floor().rem_euclid(2.0) < 0.5 {
+                    0.0
+                } else {
+                    1.0
+                }
             } else if d > 1e5 {
                 0.5
             } else {
@@ -231,12 +235,32 @@ mod tests {
     fn closed_form_box_filter_matches_brute_force() {
         let c = checker(Filter::Ewa);
         for (uv, dx, dy) in [
-            (Vec2::new(0.3, 0.41), Vec2::new(0.1, 0.0), Vec2::new(0.0, 0.03)),
-            (Vec2::new(0.25, 0.25), Vec2::new(0.2, 0.05), Vec2::new(-0.04, 0.3)),
-            (Vec2::new(-1.37, 2.6), Vec2::new(0.9, 0.0), Vec2::new(0.0, 0.9)),
-            (Vec2::new(0.6, 0.1), Vec2::new(0.01, 0.0), Vec2::new(0.0, 0.5)),
+            (
+                Vec2::new(0.3, 0.41),
+                Vec2::new(0.1, 0.0),
+                Vec2::new(0.0, 0.03),
+            ),
+            (
+                Vec2::new(0.25, 0.25),
+                Vec2::new(0.2, 0.05),
+                Vec2::new(-0.04, 0.3),
+            ),
+            (
+                Vec2::new(-1.37, 2.6),
+                Vec2::new(0.9, 0.0),
+                Vec2::new(0.0, 0.9),
+            ),
+            (
+                Vec2::new(0.6, 0.1),
+                Vec2::new(0.01, 0.0),
+                Vec2::new(0.0, 0.5),
+            ),
         ] {
-            let tc = TexCoord { uv, duvdx: dx, duvdy: dy };
+            let tc = TexCoord {
+                uv,
+                duvdx: dx,
+                duvdy: dy,
+            };
             let exact = c.box_filtered(&tc).0;
             let b = brute(&c, &tc);
             assert!((exact - b).abs() < 0.01, "{uv} {dx} {dy}: {exact} vs {b}");

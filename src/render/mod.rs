@@ -245,3 +245,72 @@ pub fn render_blocking(scene: &Scene, mut on_pass: impl FnMut(u32)) -> Film {
     }
     film
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sampler::PixelSampler;
+    use crate::scene::{AdaptiveDesc, AssetCache, build_scene, parse_preset};
+    use std::path::Path;
+
+    fn scene(adaptive: bool) -> Scene {
+        let text = r#"(
+            version: 1,
+            camera: (eye: (0, 0, 4)),
+            render: (width: 24, height: 16, spp: 1, background: (0.2, 0.3, 0.4)),
+            lights: [Directional(direction: (1, 1, 1))],
+            objects: [(shape: Sphere, material: Matte(cd: Checker(mapping: Spherical, filter: Ewa)))],
+        )"#;
+        let mut desc = parse_preset(text, Path::new("test.ron")).unwrap();
+        if adaptive {
+            desc.render.adaptive = Some(AdaptiveDesc {
+                max_spp: 9,
+                threshold: 0.01,
+            });
+        }
+        build_scene(&desc, Path::new("test.ron"), &mut AssetCache::new()).unwrap()
+    }
+
+    #[test]
+    fn adaptive_samples_past_spp_form_a_whole_stratified_set() {
+        // spp 1, max 17: the 16 extra samples of a pixel are the jittered set of 16 in a
+        // shuffled order, one per cell of a 4 x 4 grid.
+        let mut s = scene(false).settings;
+        s.sampler = PixelSampler::Jittered;
+        s.adaptive = Some(AdaptiveDesc {
+            max_spp: 17,
+            threshold: 0.01,
+        });
+        let mut seen = [false; 16];
+        for k in 1..17 {
+            let p = sample_position(&s, 5, 7, k) - Vec2::new(5.0, 7.0);
+            let cell = (p.y * 4.0) as usize * 4 + (p.x * 4.0) as usize;
+            assert!(!seen[cell], "sample {k} lands in a taken cell");
+            seen[cell] = true;
+        }
+        // The order is shuffled per pixel, not the same for every pixel.
+        assert_ne!(
+            sample_position(&s, 5, 7, 1) - Vec2::new(5.0, 7.0),
+            sample_position(&s, 6, 7, 1) - Vec2::new(6.0, 7.0)
+        );
+    }
+
+    #[test]
+    fn progressive_job_and_blocking_render_give_the_same_adaptive_film() {
+        let sc = scene(true);
+        let blocking = render_blocking(&sc, |_| {});
+        // Some pixels were refined, others were not.
+        let counts: Vec<f32> = blocking.pixels().iter().map(|p| p[3]).collect();
+        assert!(counts.iter().any(|&c| c == 1.0) && counts.iter().any(|&c| c > 1.0));
+        let job = RenderJob::start(
+            std::sync::Arc::new(sc),
+            RenderOptions {
+                threads: 2,
+                preview: true,
+            },
+            &Generation::new(),
+        );
+        let film = job.film_when_done();
+        assert!(film.as_deref() == Some(&blocking));
+    }
+}

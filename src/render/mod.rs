@@ -301,7 +301,7 @@ mod tests {
         let blocking = render_blocking(&sc, |_| {});
         // Some pixels were refined, others were not.
         let counts: Vec<f32> = blocking.pixels().iter().map(|p| p[3]).collect();
-        assert!(counts.iter().any(|&c| c == 1.0) && counts.iter().any(|&c| c > 1.0));
+        assert!(counts.contains(&1.0) && counts.iter().any(|&c| c > 1.0));
         let job = RenderJob::start(
             std::sync::Arc::new(sc),
             RenderOptions {

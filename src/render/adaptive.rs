@@ -18,6 +18,7 @@
 use super::Film;
 use crate::math::{Rgb, linear_to_srgb};
 use crate::scene::AdaptiveDesc;
+use rayon::prelude::*;
 
 /// After one sample, a pixel is refined when it differs from a neighbour by this many
 /// thresholds: neighbours of a smooth, filtered texture differ a little; edges differ a lot.
@@ -45,12 +46,12 @@ pub fn adaptive_mask(film: &Film, a: &AdaptiveDesc) -> Vec<bool> {
     let max_spp = a.max_spp as f32;
     // Mean display luminance and, where it has 2+ samples, whether the pixel is noisy.
     let mean: Vec<f32> = stats
-        .iter()
+        .par_iter()
         .zip(pixels)
         .map(|(s, p)| if p[3] > 0.0 { s[0] / p[3] } else { 0.0 })
         .collect();
     let noisy: Vec<bool> = stats
-        .iter()
+        .par_iter()
         .zip(pixels)
         .map(|(s, p)| {
             let n = p[3];
@@ -62,8 +63,8 @@ pub fn adaptive_mask(film: &Film, a: &AdaptiveDesc) -> Vec<bool> {
         })
         .collect();
     let mut mask = vec![false; w * h];
-    for y in 0..h {
-        for x in 0..w {
+    mask.par_chunks_mut(w).enumerate().for_each(|(y, row)| {
+        for (x, m) in row.iter_mut().enumerate() {
             let i = y * w + x;
             let n = pixels[i][3];
             if n >= max_spp {
@@ -75,7 +76,7 @@ pub fn adaptive_mask(film: &Film, a: &AdaptiveDesc) -> Vec<bool> {
                 (y > 0).then(|| i - w),
                 (y + 1 < h).then(|| i + w),
             ];
-            mask[i] = if n < 2.0 {
+            *m = if n < 2.0 {
                 let prefiltered = keys[i] & PREFILTERED != 0;
                 neighbours.iter().flatten().any(|&j| {
                     (keys[j] & !PREFILTERED) != (keys[i] & !PREFILTERED)
@@ -85,7 +86,7 @@ pub fn adaptive_mask(film: &Film, a: &AdaptiveDesc) -> Vec<bool> {
                 noisy[i] || neighbours.iter().flatten().any(|&j| noisy[j])
             };
         }
-    }
+    });
     mask
 }
 

@@ -435,3 +435,55 @@ fn render_command_takes_the_antialiasing_options() {
     assert!(!o.status.success());
     assert!(String::from_utf8_lossy(&o.stderr).contains("texel-grid"));
 }
+
+#[test]
+fn mip_pyramids_are_built_only_for_mip_filters_and_once_per_image() {
+    let path = preset("checker-plane");
+    let mut desc = load_preset(&path).unwrap();
+    let mut cache = AssetCache::new();
+    for filter in [Filter::Nearest, Filter::Bilinear, Filter::Bicubic] {
+        desc.objects[0].material.texture_mut().set_filter(filter);
+        build_scene(&desc, &path, &mut cache).unwrap();
+    }
+    assert_eq!(cache.mip_count(), 0);
+    for filter in [Filter::Ewa, Filter::Trilinear, Filter::Ewa] {
+        desc.objects[0].material.texture_mut().set_filter(filter);
+        build_scene(&desc, &path, &mut cache).unwrap();
+    }
+    assert_eq!(cache.mip_count(), 1);
+}
+
+#[test]
+fn presets_name_ewa_plainly_and_refuse_bad_anisotropy() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("presets/x.ron");
+    let text = |extra: &str| {
+        format!(
+            r#"(
+            version: 1,
+            camera: (eye: (0, 0, 3)),
+            objects: [(shape: Sphere, material: Matte(cd: Image(path: "../assets/earth_2048x1024.jpg", filter: Ewa{extra})))],
+        )"#
+        )
+    };
+    let desc = parse_preset(&text(""), &path).unwrap();
+    let scene = build_scene(&desc, &path, &mut AssetCache::new()).unwrap();
+    assert!(scene.needs_differentials);
+    let desc = parse_preset(&text(", max_anisotropy: 16"), &path).unwrap();
+    assert!(build_scene(&desc, &path, &mut AssetCache::new()).is_ok());
+    let desc = parse_preset(&text(", max_anisotropy: 0"), &path).unwrap();
+    let e = build_scene(&desc, &path, &mut AssetCache::new())
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("max_anisotropy") && e.contains("x.ron"), "{e}");
+    // Adaptive settings are checked too.
+    let mut desc = parse_preset(&text(""), &path).unwrap();
+    desc.render.spp = 8;
+    desc.render.adaptive = Some(AdaptiveDesc {
+        max_spp: 4,
+        threshold: 0.01,
+    });
+    let e = build_scene(&desc, &path, &mut AssetCache::new())
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("render.adaptive.max_spp"), "{e}");
+}

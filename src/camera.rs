@@ -1,7 +1,7 @@
 //! Cameras: pinhole, fisheye and spherical panorama (the book's chapter 9-11 cameras), each
 //! turning a film position into a world-space ray.
 
-use crate::math::{Ray, RayDifferential, Vec2, Vec3A};
+use crate::math::{Quat, Ray, RayDifferential, Vec2, Vec3, Vec3A};
 
 /// A camera with its orthonormal frame already computed.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -16,6 +16,9 @@ pub struct Camera {
     pub width: u32,
     /// Film height in pixels.
     pub height: u32,
+    /// The pinhole's film-plane size of one pixel, tan(fov_y / 2) 2 / height, computed once
+    /// here instead of a `tan` per ray (same value, so the same images).
+    pixel_scale: f32,
 }
 
 /// How film positions become directions.
@@ -64,12 +67,17 @@ impl Camera {
         }
         let u = u.normalize();
         let v = w.cross(u);
+        let pixel_scale = match projection {
+            Projection::Pinhole { fov_y } => (fov_y * 0.5).tan() * 2.0 / height as f32,
+            Projection::Fisheye { .. } | Projection::Spherical { .. } => 0.0,
+        };
         Self {
             eye,
             frame: [u, v, w],
             projection,
             width,
             height,
+            pixel_scale,
         }
     }
 
@@ -81,8 +89,8 @@ impl Camera {
         let (w, h) = (self.width as f32, self.height as f32);
         let [u, v, back] = self.frame;
         match self.projection {
-            Projection::Pinhole { fov_y } => {
-                let scale = (fov_y * 0.5).tan() * 2.0 / h;
+            Projection::Pinhole { .. } => {
+                let scale = self.pixel_scale;
                 let x = (pos.x - 0.5 * w) * scale;
                 let y = (0.5 * h - pos.y) * scale;
                 Some(x * u + y * v - back)
@@ -116,6 +124,14 @@ impl Camera {
         }
     }
 
+    /// The ray through `pos` without differentials: one direction instead of three, for scenes
+    /// whose filters need no footprint.
+    #[must_use]
+    #[inline]
+    pub fn primary_ray(&self, pos: Vec2) -> Option<Ray> {
+        self.direction(pos).map(|d| Ray::new(self.eye, d))
+    }
+
     /// The ray through `pos`, with its neighbours one pixel right and one pixel down as ray
     /// differentials scaled by `spacing` (1 for one sample per pixel; smaller when a pixel is
     /// covered by several samples).
@@ -136,6 +152,56 @@ impl Camera {
         };
         Some((ray, diff))
     }
+}
+
+/// Orbits `eye` about `look_at`: `yaw` radians about `up`, then `pitch` radians up or down,
+/// keeping the distance and stopping 1 degree short of the poles (where `up` stops defining a
+/// frame).
+#[must_use]
+pub fn orbit(eye: Vec3, look_at: Vec3, up: Vec3, yaw: f32, pitch: f32) -> Vec3 {
+    let up = up.try_normalize().unwrap_or(Vec3::Y);
+    let offset = eye - look_at;
+    let dist = offset.length();
+    if dist == 0.0 || !dist.is_finite() {
+        return eye;
+    }
+    let dir = offset / dist;
+    let elevation = dir.dot(up).clamp(-1.0, 1.0).asin();
+    let limit = std::f32::consts::FRAC_PI_2 - 1f32.to_radians();
+    let new_elevation = (elevation + pitch).clamp(-limit, limit);
+    let flat = (dir - up * dir.dot(up))
+        .try_normalize()
+        .unwrap_or_else(|| up.any_orthonormal_vector());
+    let flat = Quat::from_axis_angle(up, yaw) * flat;
+    look_at + (flat * new_elevation.cos() + up * new_elevation.sin()) * dist
+}
+
+/// Moves the eye toward `look_at` by the factor `scale` of the distance (below 1 comes closer),
+/// never closer than `min_distance`.
+#[must_use]
+pub fn dolly(eye: Vec3, look_at: Vec3, scale: f32, min_distance: f32) -> Vec3 {
+    let offset = eye - look_at;
+    let dist = offset.length();
+    if dist == 0.0 || !scale.is_finite() || scale <= 0.0 {
+        return eye;
+    }
+    look_at + offset * ((dist * scale).max(min_distance) / dist)
+}
+
+/// The world-space shift of eye and look-at that moves the view by (`dx`, `dy`) of the distance
+/// to the look-at point, along the camera's right and up axes.
+#[must_use]
+pub fn pan_offset(eye: Vec3, look_at: Vec3, up: Vec3, dx: f32, dy: f32) -> Vec3 {
+    let cam = Camera::new(
+        eye.into(),
+        look_at.into(),
+        up.into(),
+        Projection::Pinhole { fov_y: 1.0 },
+        1,
+        1,
+    );
+    let dist = (eye - look_at).length();
+    Vec3::from(cam.frame[0] * dx + cam.frame[1] * dy) * dist
 }
 
 #[cfg(test)]
@@ -210,5 +276,22 @@ mod tests {
         assert!((d - Vec3A::Y).length() < 1e-5);
         let d = pano.direction(Vec2::new(150.0, 50.0)).unwrap();
         assert!((d - Vec3A::X).length() < 1e-5);
+    }
+
+    #[test]
+    fn orbit_keeps_distance_and_turns_about_up() {
+        let eye = Vec3::new(0.0, 0.0, 4.0);
+        let e = orbit(eye, Vec3::ZERO, Vec3::Y, std::f32::consts::FRAC_PI_2, 0.0);
+        assert!((e - Vec3::new(4.0, 0.0, 0.0)).length() < 1e-5, "{e}");
+        let e = orbit(eye, Vec3::ZERO, Vec3::Y, 0.0, 3.0);
+        assert!(
+            (e.length() - 4.0).abs() < 1e-5 && e.y < 4.0 && e.y > 3.99,
+            "{e}"
+        );
+        let d = dolly(eye, Vec3::ZERO, 0.5, 0.1);
+        assert!((d - Vec3::new(0.0, 0.0, 2.0)).length() < 1e-6);
+        assert!((dolly(eye, Vec3::ZERO, 1e-9, 0.1).length() - 0.1).abs() < 1e-6);
+        let p = pan_offset(eye, Vec3::ZERO, Vec3::Y, 0.25, 0.0);
+        assert!((p - Vec3::new(1.0, 0.0, 0.0)).length() < 1e-5, "{p}");
     }
 }

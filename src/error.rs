@@ -34,6 +34,16 @@ pub enum Error {
         /// What was expected.
         message: String,
     },
+    /// A mesh file could not be read: `at` says where (line or byte, and which element).
+    #[error("{}: {at}: {message}", path.display())]
+    Mesh {
+        /// The mesh file.
+        path: PathBuf,
+        /// Where parsing stopped: `line 14 (face 1)`, `byte 812 (vertex 3)`, `header line 4`.
+        at: String,
+        /// What was wrong or expected.
+        message: String,
+    },
     /// A value is out of range or inconsistent (a zero scale, spp = 0, an absurd resolution).
     #[error("{}: {message}", path.display())]
     Invalid {

@@ -132,3 +132,35 @@ fn presets_round_trip_through_ron() {
         assert_eq!(desc, back, "{}", p.display());
     }
 }
+
+/// Saves go through a temporary file and a rename: the result is complete, nothing is left
+/// beside it, and a save that fails leaves the file the user had untouched.
+#[test]
+fn saves_are_atomic_and_a_failed_save_keeps_the_old_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("mine.ron");
+    let desc = load_preset(&presets()[0]).unwrap();
+    texplore::scene::save_preset(&desc, &path).unwrap();
+    let first = std::fs::read_to_string(&path).unwrap();
+    assert_eq!(parse_preset(&first, &path).unwrap(), desc);
+    let leftovers: Vec<_> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .filter_map(Result::ok)
+        .map(|e| e.file_name())
+        .filter(|n| n != "mine.ron")
+        .collect();
+    assert!(leftovers.is_empty(), "{leftovers:?}");
+    // The temporary file's place is taken by a directory: the write fails before the rename.
+    std::fs::create_dir(dir.path().join("mine.ron.tmp")).unwrap();
+    let mut other = desc.clone();
+    other.render.spp += 1;
+    let e = texplore::scene::save_preset(&other, &path).unwrap_err();
+    assert!(e.to_string().contains("mine.ron"), "{e}");
+    assert_eq!(std::fs::read_to_string(&path).unwrap(), first);
+    // A preset file of absurd size is refused before it is read.
+    let huge = dir.path().join("huge.ron");
+    let f = std::fs::File::create(&huge).unwrap();
+    f.set_len(1 << 30).unwrap();
+    let e = load_preset(&huge).unwrap_err().to_string();
+    assert!(e.contains("huge.ron") && e.contains("too large"), "{e}");
+}

@@ -3,8 +3,10 @@
 
 mod bench;
 mod map;
+mod mesh_info;
 mod probe;
 mod render;
+mod report;
 mod snapshot;
 
 pub use map::LookupArg;
@@ -40,6 +42,11 @@ pub enum Command {
     Probe(probe::ProbeArgs),
     /// Time full 1-spp passes and the first preview of a preset with 1, 2, ... threads.
     Bench(bench::BenchArgs),
+    /// Print a mesh file's vertex and triangle counts, (u, v) and normals, bounding box and
+    /// degenerate triangles.
+    MeshInfo(mesh_info::MeshInfoArgs),
+    /// Speed against error: time each antialiasing mode and measure its error against a reference.
+    Report(report::ReportArgs),
 }
 
 /// Runs a subcommand.
@@ -53,5 +60,7 @@ pub fn run(command: Command) -> Result<()> {
         Command::Map(a) => map::run(&a),
         Command::Probe(a) => probe::run(&a),
         Command::Bench(a) => bench::run(&a),
+        Command::MeshInfo(a) => mesh_info::run(&a),
+        Command::Report(a) => report::run(&a),
     }
 }

@@ -5,9 +5,12 @@
 //! in the y = 0 plane); an [`Object`] moves it into the world with a `world_from_object`
 //! transform. Meshes keep the coordinates of their file.
 
+pub mod bvh;
+pub mod mesh;
 mod shapes;
 
-pub use shapes::{Shape, intersect_shape};
+pub use mesh::{Mesh, MeshData, MeshMaterial, Shading};
+pub use shapes::{MeshShape, Shape, intersect_shape, occluded_shape};
 
 use crate::math::{Affine3A, Mat3A, Ray, Vec2, Vec3A};
 
@@ -78,6 +81,21 @@ impl Object {
             intersect_shape(&self.shape, ray, t_max)
         } else {
             intersect_shape(
+                &self.shape,
+                &ray.transformed(&self.object_from_world),
+                t_max,
+            )
+        }
+    }
+
+    /// Whether this object lies on a world-space ray within (0, `t_max`) (shadow rays).
+    #[must_use]
+    #[inline]
+    pub fn occludes(&self, ray: &Ray, t_max: f32) -> bool {
+        if self.identity {
+            occluded_shape(&self.shape, ray, t_max)
+        } else {
+            occluded_shape(
                 &self.shape,
                 &ray.transformed(&self.object_from_world),
                 t_max,

@@ -1,20 +1,19 @@
 //! Ray intersection with the generic shapes, written to stay accurate far from the origin.
 
 use super::LocalHit;
+use super::mesh::{Mesh, Shading};
 use crate::math::{Ray, Vec3A};
-use serde::{Deserialize, Serialize};
+use std::sync::Arc;
 
-/// A generic shape in its object space. Size, position and orientation come from the instance
+/// A shape in its object space. Size, position and orientation come from the instance
 /// transform, so the lecture's mappings see the generic object they were written for.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum Shape {
     /// The unit sphere at the origin.
     Sphere,
     /// The cylinder x^2 + z^2 = 1 with y in [-1, 1]; `capped` closes it with two disks.
     Cylinder {
         /// Close the ends with disks at y = -1 and y = 1.
-        #[serde(default)]
         capped: bool,
     },
     /// The infinite plane y = 0, normal +y.
@@ -23,6 +22,23 @@ pub enum Shape {
     Rectangle,
     /// The unit disk x^2 + z^2 <= 1 in the plane y = 0, normal +y.
     Disk,
+    /// A triangle mesh in its file's coordinates, shared by every instance of the file.
+    Mesh(MeshShape),
+}
+
+/// A mesh instance's shape: the shared mesh (and its BVH) and how this instance shades it.
+#[derive(Clone, Debug)]
+pub struct MeshShape {
+    /// The mesh.
+    pub mesh: Arc<Mesh>,
+    /// Flat or smooth normals.
+    pub shading: Shading,
+}
+
+impl PartialEq for MeshShape {
+    fn eq(&self, other: &Self) -> bool {
+        Arc::ptr_eq(&self.mesh, &other.mesh) && self.shading == other.shading
+    }
 }
 
 /// Part ids reported in [`LocalHit::part`] for the cylinder.
@@ -42,6 +58,18 @@ pub fn intersect_shape(shape: &Shape, ray: &Ray, t_max: f32) -> Option<LocalHit>
         Shape::Plane => plane(ray, t_max, |_, _| true),
         Shape::Rectangle => plane(ray, t_max, |x, z| x.abs() <= 1.0 && z.abs() <= 1.0),
         Shape::Disk => plane(ray, t_max, |x, z| x * x + z * z <= 1.0),
+        Shape::Mesh(m) => m.mesh.intersect(ray, t_max, m.shading),
+    }
+}
+
+/// Whether `shape` lies on `ray` (in object space) within (0, `t_max`): shadow rays, which need
+/// any hit, not the nearest.
+#[must_use]
+#[inline]
+pub fn occluded_shape(shape: &Shape, ray: &Ray, t_max: f32) -> bool {
+    match shape {
+        Shape::Mesh(m) => m.mesh.occluded(ray, t_max),
+        _ => intersect_shape(shape, ray, t_max).is_some(),
     }
 }
 

@@ -1,9 +1,18 @@
 //! The explorer window (eframe + wgpu). The only module that knows egui exists: it edits a
-//! [`SceneDesc`](crate::scene::SceneDesc), rebuilds the scene, and shows the render job's film.
+//! [`SceneDesc`](crate::scene::SceneDesc), rebuilds the scene, shows the render job's film, and
+//! displays what [`crate::inspect`] computes. One file per panel.
 
 mod app;
+mod compare;
+mod files;
+mod inspector;
+mod live;
+mod scene_panel;
+mod viewport;
+mod widgets;
 
-pub use app::ExplorerApp;
+pub use app::{AppOptions, ExplorerApp};
+pub use files::config_dir;
 
 use std::path::PathBuf;
 
@@ -18,17 +27,20 @@ pub fn run(open: Option<PathBuf>) -> anyhow::Result<()> {
     let options = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()
             .with_title("texplore")
-            .with_inner_size([1280.0, 820.0])
-            .with_min_inner_size([640.0, 420.0])
+            .with_inner_size([1440.0, 900.0])
+            .with_min_inner_size([800.0, 500.0])
             .with_drag_and_drop(true),
         renderer: eframe::Renderer::Wgpu,
         ..Default::default()
     };
     let path = open.unwrap_or_else(|| PathBuf::from(DEFAULT_PRESET));
+    let app_options = AppOptions {
+        recent_file: config_dir().map(|d| d.join("recent.ron")),
+    };
     eframe::run_native(
         "texplore",
         options,
-        Box::new(move |_cc| Ok(Box::new(ExplorerApp::open(path)))),
+        Box::new(move |_cc| Ok(Box::new(ExplorerApp::with_options(path, app_options)))),
     )
     .map_err(|e| anyhow::anyhow!("cannot open the window: {e}"))
 }

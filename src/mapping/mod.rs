@@ -111,10 +111,25 @@ impl Mapping {
     #[must_use]
     #[inline]
     pub fn map_point(self, p: Vec3A) -> MappedPoint {
+        self.map_impl::<true>(p)
+    }
+
+    /// (u, v) alone, without gradients: what [`Mapping::map_point`] returns as `uv`, bit for
+    /// bit, for renders whose filters need no footprint (skips the gradients' divisions).
+    #[must_use]
+    #[inline]
+    pub fn map_uv(self, p: Vec3A) -> Vec2 {
+        self.map_impl::<false>(p).uv
+    }
+
+    /// Both of the above; with `GRAD` false the spherical and cylindrical maps leave the
+    /// gradients zero instead of computing them.
+    #[inline]
+    fn map_impl<const GRAD: bool>(self, p: Vec3A) -> MappedPoint {
         let m = match self {
             Self::Rectangular => rectangular(p),
-            Self::Cylindrical => cylindrical(p),
-            Self::Spherical | Self::Uv => spherical(p),
+            Self::Cylindrical => cylindrical::<GRAD>(p),
+            Self::Spherical | Self::Uv => spherical::<GRAD>(p),
             Self::LightProbe => probe(p, false, ProbeCurve::Angular),
             Self::Panoramic => probe(p, true, ProbeCurve::Angular),
             Self::MirrorBall => probe(p, false, ProbeCurve::MirrorBall),
@@ -161,6 +176,15 @@ impl Mapping {
             (Self::Uv, None) => natural,
             (m, _) => m,
         };
+        if dpdx == Vec3A::ZERO && dpdy == Vec3A::ZERO {
+            // No footprint asked for (nearest and bilinear filters): the derivatives would be
+            // zero anyway, so skip the gradients.
+            return TexCoord {
+                uv: mapping.map_uv(p),
+                duvdx: Vec2::ZERO,
+                duvdy: Vec2::ZERO,
+            };
+        }
         let m = mapping.map_point(p);
         TexCoord {
             uv: m.uv,
@@ -241,7 +265,7 @@ fn rectangular(p: Vec3A) -> MappedPoint {
 
 /// The azimuth u = atan2(x, z) / 2 pi in [0, 1], and its gradient; bounded on the axis.
 #[inline]
-fn azimuth(x: f32, z: f32) -> (f32, Vec3A) {
+fn azimuth<const GRAD: bool>(x: f32, z: f32) -> (f32, Vec3A) {
     let mut phi = x.atan2(z);
     if phi < 0.0 {
         phi += TAU;
@@ -249,7 +273,9 @@ fn azimuth(x: f32, z: f32) -> (f32, Vec3A) {
     // phi + 2 pi can round up to exactly 2 pi: u == 1 is the seam, which wraps to 0 anyway.
     let u = (phi / TAU).clamp(0.0, 1.0);
     let rho2 = x * x + z * z;
-    let grad = if rho2 > 0.0 {
+    let grad = if !GRAD {
+        Vec3A::ZERO
+    } else if rho2 > 0.0 {
         Vec3A::new(z, 0.0, -x) / (TAU * rho2)
     } else {
         Vec3A::ZERO // exactly on the axis u is undefined; any value is as good
@@ -257,10 +283,11 @@ fn azimuth(x: f32, z: f32) -> (f32, Vec3A) {
     (u, grad)
 }
 
-fn cylindrical(p: Vec3A) -> MappedPoint {
+#[inline]
+fn cylindrical<const GRAD: bool>(p: Vec3A) -> MappedPoint {
     let (u, grad_u) = match rescaled(Vec3A::new(p.x, 0.0, p.z)) {
         Some((q, scale)) => {
-            let (u, g) = azimuth(q.x, q.z);
+            let (u, g) = azimuth::<GRAD>(q.x, q.z);
             (u, g / scale)
         }
         None => (0.0, Vec3A::ZERO),
@@ -273,7 +300,8 @@ fn cylindrical(p: Vec3A) -> MappedPoint {
     }
 }
 
-fn spherical(p: Vec3A) -> MappedPoint {
+#[inline]
+fn spherical<const GRAD: bool>(p: Vec3A) -> MappedPoint {
     let Some((q, scale)) = rescaled(p) else {
         return MappedPoint {
             uv: Vec2::new(0.0, 0.5),
@@ -281,7 +309,7 @@ fn spherical(p: Vec3A) -> MappedPoint {
             grad_v: Vec3A::ZERO,
         };
     };
-    let (u, grad_u) = azimuth(q.x, q.z);
+    let (u, grad_u) = azimuth::<GRAD>(q.x, q.z);
     // theta = acos(y / |p|), written as atan2(rho, y): exact for points off the unit sphere
     // and never the NaN of acos(1 + 1e-12).
     let rho2 = q.x * q.x + q.z * q.z;
@@ -289,7 +317,9 @@ fn spherical(p: Vec3A) -> MappedPoint {
     let r2 = rho2 + q.y * q.y;
     let theta = rho.atan2(q.y);
     let v = (1.0 - theta / PI).clamp(0.0, 1.0);
-    let grad_v = if rho > 0.0 {
+    let grad_v = if !GRAD {
+        Vec3A::ZERO
+    } else if rho > 0.0 {
         // d theta/dq = (y x / rho, -rho, y z / rho) / r^2 ; v = 1 - theta / pi
         -Vec3A::new(q.y * q.x / rho, -rho, q.y * q.z / rho) / (PI * r2)
     } else {

@@ -259,3 +259,40 @@ fn names_round_trip() {
             .contains("spherical")
     );
 }
+
+#[test]
+fn map_uv_is_map_point_without_gradients_bit_for_bit() {
+    let mut rng = crate::math::SampleRng::new(3, 1, 4);
+    let mut points = vec![
+        Vec3A::ZERO,
+        Vec3A::Y,
+        -Vec3A::Y,
+        Vec3A::Z,
+        -Vec3A::Z,
+        Vec3A::new(1e30, -1e30, 1e-30),
+        Vec3A::new(f32::NAN, 0.0, 1.0),
+        Vec3A::new(1e-40, 0.0, -1e-40),
+    ];
+    for _ in 0..2000 {
+        points.push(Vec3A::new(
+            rng.next_f32() * 4.0 - 2.0,
+            rng.next_f32() * 4.0 - 2.0,
+            rng.next_f32() * 4.0 - 2.0,
+        ));
+    }
+    for m in Mapping::ALL {
+        for &p in &points {
+            let full = m.map_point(p).uv;
+            let fast = m.map_uv(p);
+            assert!(
+                full.x.to_bits() == fast.x.to_bits() && full.y.to_bits() == fast.y.to_bits(),
+                "{m:?} at {p}: {full} != {fast}"
+            );
+            // And the zero-footprint path of map_with_differentials returns the same.
+            let tc =
+                m.map_with_differentials(p, Vec3A::ZERO, Vec3A::ZERO, None, Mapping::Spherical);
+            assert_eq!(tc.uv.x.to_bits(), full.x.to_bits());
+            assert_eq!(tc.duvdx, Vec2::ZERO);
+        }
+    }
+}

@@ -175,14 +175,17 @@ pub fn radiance(scene: &Scene, pos: Vec2, spacing: f32) -> Rgb {
 #[must_use]
 #[inline]
 pub fn radiance_keyed(scene: &Scene, pos: Vec2, spacing: f32) -> (Rgb, u32) {
+    // Without a footprint filter only the main ray is needed (saves two camera directions).
+    if !scene.needs_differentials {
+        return scene
+            .camera
+            .primary_ray(pos)
+            .map_or((Rgb::BLACK, 0), |ray| scene.trace_keyed(&ray, None));
+    }
     match scene.camera.ray(pos, spacing) {
         Some((ray, diff)) => {
-            if scene.needs_differentials {
-                let diff = diff.scaled_about(&ray, spacing.max(MIN_FOOTPRINT_SCALE));
-                scene.trace_keyed(&ray, Some(&diff))
-            } else {
-                scene.trace_keyed(&ray, None)
-            }
+            let diff = diff.scaled_about(&ray, spacing.max(MIN_FOOTPRINT_SCALE));
+            scene.trace_keyed(&ray, Some(&diff))
         }
         None => (Rgb::BLACK, 0),
     }

@@ -7,7 +7,7 @@ use super::desc::{
 use super::{RenderSettings, Scene};
 use crate::camera::{Camera, Projection};
 use crate::error::{Error, Result};
-use crate::geometry::Object;
+use crate::geometry::{Mesh, MeshShape, Object, Shape};
 use crate::material::{Light, Material};
 use crate::math::{Affine3A, Quat, Vec3, Vec3A};
 use crate::sampler::{PixelFilter, PixelSampler};
@@ -91,6 +91,7 @@ pub fn save_preset(desc: &SceneDesc, path: &Path) -> Result<()> {
 pub struct AssetCache {
     images: HashMap<(PathBuf, bool), Arc<ImageData>>,
     uv_grid: Option<Arc<ImageData>>,
+    meshes: HashMap<PathBuf, Arc<Mesh>>,
     /// Mip pyramids, built on first use by a mip filter and keyed by their base image (the
     /// cache holds every base image, so an `Arc` pointer stays a unique key).
     mips: Vec<(Arc<ImageData>, Arc<MipPyramid>)>,
@@ -115,6 +116,24 @@ impl AssetCache {
         let img = Arc::new(load_image(path, srgb)?);
         self.images.insert(key, img.clone());
         Ok(img)
+    }
+
+    /// The mesh at `path`, read and its BVH built once (every instance shares it).
+    ///
+    /// # Errors
+    /// See [`crate::meshio::load_mesh`] and [`Mesh::new`].
+    pub fn mesh(&mut self, path: &Path) -> Result<Arc<Mesh>> {
+        if let Some(m) = self.meshes.get(path) {
+            return Ok(m.clone());
+        }
+        let mesh = Arc::new(Mesh::new(crate::meshio::load_mesh(path)?, path)?);
+        self.meshes.insert(path.to_path_buf(), mesh.clone());
+        Ok(mesh)
+    }
+
+    /// Makes `mesh` what presets naming `path` get (a generated mesh, for benchmarks).
+    pub fn insert_mesh(&mut self, path: &Path, mesh: Arc<Mesh>) {
+        self.meshes.insert(path.to_path_buf(), mesh);
     }
 
     /// The generated UV test grid.
@@ -197,18 +216,37 @@ pub fn build_scene(desc: &SceneDesc, preset_path: &Path, cache: &mut AssetCache)
         };
         let transform =
             transform(&o.transform).map_err(|m| bad(format!("{what}.transform: {m}")))?;
-        let material = material(&o.material, base, cache).map_err(|e| match e {
+        let shape = match &o.shape {
+            super::ShapeDesc::Mesh { path, shading } => Shape::Mesh(MeshShape {
+                mesh: cache.mesh(&base.join(path))?,
+                shading: *shading,
+            }),
+            generic => generic
+                .generic()
+                .ok_or_else(|| bad(format!("{what}.shape: {generic:?} is not a generic shape")))?,
+        };
+        let mesh = match &shape {
+            Shape::Mesh(m) => Some(&*m.mesh),
+            _ => None,
+        };
+        let material_desc = super::mesh::resolve_mesh_material(&o.material, mesh)
+            .map_err(|m| bad(format!("{what}.material: {m}")))?;
+        if let Some(mesh) = mesh {
+            super::mesh::check_uv_mapping(&material_desc, mesh)
+                .map_err(|m| bad(format!("{what}.material: {m}")))?;
+        }
+        let material = material(&material_desc, base, cache).map_err(|e| match e {
             Error::Invalid { message, .. } => bad(format!("{what}.material: {message}")),
             other => other,
         })?;
         needs_differentials |=
             material.texture().needs_differentials() || settings.view.needs_footprint();
-        let name = if o.name.is_empty() {
-            format!("{:?} {i}", o.shape)
-        } else {
-            o.name.clone()
+        let name = match (&o.shape, o.name.is_empty()) {
+            (_, false) => o.name.clone(),
+            (super::ShapeDesc::Mesh { path, .. }, true) => format!("{path} {i}"),
+            (s, true) => format!("{s:?} {i}"),
         };
-        let mut obj = Object::new(o.shape, transform, materials.len(), name);
+        let mut obj = Object::new(shape, transform, materials.len(), name);
         obj.casts_shadows = o.casts_shadows.unwrap_or(material.is_lit());
         materials.push(material);
         objects.push(obj);
@@ -474,6 +512,11 @@ fn texture(t: &TextureDesc, base: &Path, cache: &mut AssetCache) -> Result<Textu
                 filter: *filter,
             })
         }
+        TextureDesc::MeshMaterial { .. } => {
+            return Err(invalid(
+                "MeshMaterial: only a Mesh shape names a material".into(),
+            ));
+        }
         TextureDesc::UvGrid {
             mapping,
             filter,
@@ -531,6 +574,11 @@ pub fn apply_overrides(desc: &mut SceneDesc, o: Overrides) {
                 ..
             }
             | TextureDesc::UvGrid {
+                filter,
+                max_anisotropy,
+                ..
+            }
+            | TextureDesc::MeshMaterial {
                 filter,
                 max_anisotropy,
                 ..

@@ -3,7 +3,7 @@
 //! A preset states only what its scene needs; `#[serde(default)]` fills the rest. Unknown fields
 //! are errors (a typo must not silently fall back to a default). Colours are linear RGB.
 
-use crate::geometry::Shape;
+use crate::geometry::{Shading, Shape};
 use crate::mapping::Mapping;
 use crate::math::{Rgb, Vec3};
 use crate::sampler::{PixelFilter, PixelSampler};
@@ -247,8 +247,8 @@ pub struct ObjectDesc {
     /// A name for menus and messages.
     #[serde(default, skip_serializing_if = "String::is_empty")]
     pub name: String,
-    /// The generic shape.
-    pub shape: Shape,
+    /// The generic shape or a mesh file.
+    pub shape: ShapeDesc,
     /// Scale, then rotate, then translate.
     #[serde(default)]
     pub transform: TransformDesc,
@@ -257,6 +257,50 @@ pub struct ObjectDesc {
     /// Whether it blocks shadow rays (default: yes, except emissive objects).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub casts_shadows: Option<bool>,
+}
+
+/// Shapes: the lecture's generic objects, or a triangle mesh from a file.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub enum ShapeDesc {
+    /// The unit sphere at the origin.
+    Sphere,
+    /// The cylinder x^2 + z^2 = 1 with y in [-1, 1]; `capped` closes it with two disks.
+    Cylinder {
+        /// Close the ends with disks at y = -1 and y = 1.
+        #[serde(default)]
+        capped: bool,
+    },
+    /// The infinite plane y = 0, normal +y.
+    Plane,
+    /// The generic rectangle (x, z) in [-1, 1]^2 in the plane y = 0, normal +y.
+    Rectangle,
+    /// The unit disk x^2 + z^2 <= 1 in the plane y = 0, normal +y.
+    Disk,
+    /// A triangle mesh from a PLY or OBJ file, in the file's coordinates. Instances of one file
+    /// share the mesh and its BVH.
+    Mesh {
+        /// Path, relative to the preset file.
+        path: String,
+        /// Flat (one normal per triangle) or smooth (interpolated vertex normals).
+        #[serde(default)]
+        shading: Shading,
+    },
+}
+
+impl ShapeDesc {
+    /// The runtime shape of a generic object (`None` for a mesh, which needs loading).
+    #[must_use]
+    pub const fn generic(&self) -> Option<Shape> {
+        Some(match *self {
+            Self::Sphere => Shape::Sphere,
+            Self::Cylinder { capped } => Shape::Cylinder { capped },
+            Self::Plane => Shape::Plane,
+            Self::Rectangle => Shape::Rectangle,
+            Self::Disk => Shape::Disk,
+            Self::Mesh { .. } => return None,
+        })
+    }
 }
 
 /// An instance transform: scale, then rotate (degrees about x, then y, then z), then translate.
@@ -387,6 +431,25 @@ pub enum TextureDesc {
         #[serde(default)]
         filter: Filter,
     },
+    /// The image (`map_Kd`) or colour (`Kd`) of the material a mesh file names (an OBJ's .mtl),
+    /// read through the mesh's (u, v) by default. Only on `Mesh` shapes.
+    MeshMaterial {
+        /// How hit points become (u, v).
+        #[serde(default = "uv_mapping")]
+        mapping: Mapping,
+        /// How texels are combined.
+        #[serde(default)]
+        filter: Filter,
+        /// Which texel the nearest filter picks.
+        #[serde(default)]
+        lookup: Lookup,
+        /// Outside [0, 1].
+        #[serde(default)]
+        wrap: Wrap,
+        /// Longest-to-shortest axis ratio the EWA filter honours (see the `Image` texture).
+        #[serde(default = "default_max_anisotropy")]
+        max_anisotropy: f32,
+    },
     /// The labelled UV test grid (cells A1 to H8).
     UvGrid {
         /// How hit points become (u, v).
@@ -402,6 +465,10 @@ pub enum TextureDesc {
         #[serde(default = "default_max_anisotropy")]
         max_anisotropy: f32,
     },
+}
+
+fn uv_mapping() -> Mapping {
+    Mapping::Uv
 }
 
 fn default_max_anisotropy() -> f32 {
@@ -423,16 +490,19 @@ impl TextureDesc {
             Self::Constant(_) => None,
             Self::Image { mapping, .. }
             | Self::Checker { mapping, .. }
+            | Self::MeshMaterial { mapping, .. }
             | Self::UvGrid { mapping, .. } => Some(*mapping),
         }
     }
 
-    /// Sets the filter of a texture that has one (images, the UV grid, the checker).
+    /// Sets the filter of a texture that has one (images, mesh materials, the UV grid, the
+    /// checker).
     pub fn set_filter(&mut self, f: Filter) {
         match self {
             Self::Constant(_) => {}
             Self::Image { filter, .. }
             | Self::Checker { filter, .. }
+            | Self::MeshMaterial { filter, .. }
             | Self::UvGrid { filter, .. } => *filter = f,
         }
     }
@@ -443,6 +513,7 @@ impl TextureDesc {
             Self::Constant(_) => {}
             Self::Image { mapping, .. }
             | Self::Checker { mapping, .. }
+            | Self::MeshMaterial { mapping, .. }
             | Self::UvGrid { mapping, .. } => *mapping = m,
         }
     }

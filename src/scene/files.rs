@@ -1,7 +1,7 @@
 //! Presets inside PNG files: renders and screenshots carry the preset that made them in a text
 //! chunk, so opening the PNG restores the scene.
 
-use super::{SceneDesc, TextureDesc};
+use super::{SceneDesc, ShapeDesc, TextureDesc};
 use crate::error::{Error, Result};
 use crate::render::DisplayImage;
 use crate::texture::save_png;
@@ -87,14 +87,29 @@ pub fn save_render_png(
 /// Rewrites every asset path of `desc` from relative-to-`from` to relative-to-`to` (absolute
 /// when the two share no root).
 pub fn rebase_assets(desc: &mut SceneDesc, from: &Path, to: &Path) {
+    let rebase = |path: &mut String| {
+        let abs = absolute(&from.join(&*path));
+        *path = relative_to(&abs, &absolute(to))
+            .to_string_lossy()
+            .into_owned();
+    };
     for o in &mut desc.objects {
         if let TextureDesc::Image { path, .. } = o.material.texture_mut() {
-            let abs = absolute(&from.join(&*path));
-            *path = relative_to(&abs, &absolute(to))
-                .to_string_lossy()
-                .into_owned();
+            rebase(path);
+        }
+        if let ShapeDesc::Mesh { path, .. } = &mut o.shape {
+            rebase(path);
         }
     }
+}
+
+/// `asset` written relative to the folder `preset_dir`, as a preset stores asset paths
+/// (absolute when the two share no root).
+#[must_use]
+pub fn relative_asset_path(asset: &Path, preset_dir: &Path) -> String {
+    relative_to(&absolute(asset), &absolute(preset_dir))
+        .to_string_lossy()
+        .into_owned()
 }
 
 fn absolute(p: &Path) -> PathBuf {

@@ -4,6 +4,7 @@
 mod build;
 mod desc;
 mod files;
+mod mesh;
 
 pub use build::{
     AssetCache, MAX_RESOLUTION, MAX_SPP, Overrides, apply_overrides, build_scene, load_preset,
@@ -11,7 +12,8 @@ pub use build::{
 };
 pub use desc::*;
 pub use files::{
-    PRESET_CHUNK, read_png_preset, read_preset_or_png, rebase_assets, save_render_png,
+    PRESET_CHUNK, read_png_preset, read_preset_or_png, rebase_assets, relative_asset_path,
+    save_render_png,
 };
 
 use crate::camera::Camera;
@@ -121,7 +123,18 @@ impl Scene {
     pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
         self.objects
             .iter()
-            .any(|o| o.casts_shadows && o.intersect(ray, t_max).is_some())
+            .any(|o| o.casts_shadows && o.occludes(ray, t_max))
+    }
+
+    /// Whether anything that casts shadows, other than object `skip`, lies on `ray` within
+    /// (0, `t_max`).
+    #[must_use]
+    #[inline]
+    pub fn occluded_except(&self, ray: &Ray, t_max: f32, skip: usize) -> bool {
+        self.objects
+            .iter()
+            .enumerate()
+            .any(|(i, o)| i != skip && o.casts_shadows && o.intersect(ray, t_max).is_some())
     }
 
     /// Finds the nearest hit and resolves it in world space.
@@ -174,13 +187,24 @@ impl Scene {
             }
             _ => (Vec3A::ZERO, Vec3A::ZERO),
         };
-        TextureContext {
+        let mut ctx = TextureContext {
             p: hit.local.p,
             dpdx,
             dpdy,
             shape_uv: hit.local.uv.map(|uv| (uv, hit.local.dpduv)),
             natural: natural_mapping(&obj.shape),
+        };
+        if let Shape::Mesh(m) = &obj.shape {
+            // Generated mappings see the model fitted into the generic objects' [-1, 1]^3.
+            let (p, s) = m.mesh.to_mapping_frame(ctx.p);
+            ctx.p = p;
+            ctx.dpdx *= s;
+            ctx.dpdy *= s;
+            ctx.shape_uv = ctx
+                .shape_uv
+                .map(|(uv, d)| (uv, d.map(|(du, dv)| (du * s, dv * s))));
         }
+        ctx
     }
 
     /// Radiance along a camera ray: the lecture's shading (ambient + direct light with shadows,
@@ -233,6 +257,21 @@ impl Scene {
         let mut l = sp.base;
         let offset = SHADOW_OFFSET_RELATIVE
             * (max_abs(hit.p) + max_abs(obj.world_from_object.translation)).max(f32::MIN_POSITIVE);
+        // A shadow ray leaves the surface on the side it was hit from (ng . wi > 0). A flat
+        // shape cannot be met again that way, nor a closed convex one hit from outside: skip
+        // the object itself (for the Earth, the whole shadow test). An open cylinder, or a
+        // sphere seen from inside, can still shadow itself.
+        let self_shadows = match obj.shape {
+            Shape::Plane | Shape::Rectangle | Shape::Disk => false,
+            Shape::Sphere | Shape::Cylinder { capped: true } => {
+                // Hit from inside when the facing normal is the inward one (only the sign
+                // matters, so the normal is not renormalised).
+                (obj.normal_to_world * hit.local.n).dot(hit.ng) < 0.0
+            }
+            // An open cylinder and a mesh (concave in general) can shadow themselves.
+            Shape::Cylinder { capped: false } | Shape::Mesh(_) => true,
+        };
+        let skip = if self_shadows { usize::MAX } else { hit.object };
         for (i, light) in self.lights.iter().enumerate() {
             let (wi, dist, li, shadows) = light.incident(hit.p);
             if hit.ns.dot(wi) <= 0.0 || hit.ng.dot(wi) <= 0.0 {
@@ -245,7 +284,7 @@ impl Scene {
                 } else {
                     f32::INFINITY
                 };
-                if self.occluded(&Ray::new(origin, wi), t_max) {
+                if self.occluded_except(&Ray::new(origin, wi), t_max, skip) {
                     key |= (1 << (16 + i.min(14))) as u32;
                     continue;
                 }
@@ -267,5 +306,7 @@ pub const fn natural_mapping(shape: &Shape) -> Mapping {
         Shape::Sphere => Mapping::Spherical,
         Shape::Cylinder { .. } => Mapping::Cylindrical,
         Shape::Plane | Shape::Rectangle | Shape::Disk => Mapping::Rectangular,
+        // Never used: building refuses `Uv` on a mesh without (u, v) (see `check_uv_mapping`).
+        Shape::Mesh(_) => Mapping::Spherical,
     }
 }

@@ -1,0 +1,153 @@
+//! The renderer's hot paths: ray-shape intersection per shape, each mapping, each texture filter
+//! per lookup, and one full 1-spp pass of the Earth.
+//!
+//! `cargo bench --bench hot_paths -- --warm-up-time 1 --measurement-time 3`
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use std::hint::black_box;
+use std::path::Path;
+use std::sync::Arc;
+use texplore::geometry::{Shape, intersect_shape};
+use texplore::mapping::{Mapping, TexCoord};
+use texplore::math::{Ray, SampleRng, Vec2, Vec3A};
+use texplore::render::{Film, render_pass};
+use texplore::scene::{AssetCache, Overrides, apply_overrides, build_scene, load_preset};
+use texplore::texture::{
+    DEFAULT_MAX_ANISOTROPY, Filter, ImageData, ImageTexture, Lookup, MipPyramid, Wrap, load_image,
+};
+
+/// Rays from a camera-like origin toward random points near the unit shapes, so hits and
+/// misses mix as in a render.
+fn rays(n: usize) -> Vec<Ray> {
+    let mut rng = SampleRng::new(1, 2, 3);
+    (0..n)
+        .map(|_| {
+            let target = Vec3A::new(
+                rng.next_f32() * 2.4 - 1.2,
+                rng.next_f32() * 2.4 - 1.2,
+                rng.next_f32() * 2.4 - 1.2,
+            );
+            let origin = Vec3A::new(0.3, 2.0, 3.6);
+            Ray::new(origin, target - origin)
+        })
+        .collect()
+}
+
+fn intersection(c: &mut Criterion) {
+    let rays = rays(1024);
+    let mut g = c.benchmark_group("intersect");
+    for (name, shape) in [
+        ("sphere", Shape::Sphere),
+        ("cylinder", Shape::Cylinder { capped: false }),
+        ("cylinder-capped", Shape::Cylinder { capped: true }),
+        ("plane", Shape::Plane),
+        ("rectangle", Shape::Rectangle),
+        ("disk", Shape::Disk),
+    ] {
+        let mut i = 0;
+        g.bench_function(name, |b| {
+            b.iter(|| {
+                i = (i + 1) % rays.len();
+                black_box(intersect_shape(&shape, black_box(&rays[i]), f32::INFINITY))
+            });
+        });
+    }
+    g.finish();
+}
+
+fn mappings(c: &mut Criterion) {
+    let mut rng = SampleRng::new(4, 5, 6);
+    let points: Vec<Vec3A> = (0..1024)
+        .map(|_| {
+            Vec3A::new(
+                rng.next_f32() * 2.0 - 1.0,
+                rng.next_f32() * 2.0 - 1.0,
+                rng.next_f32() * 2.0 - 1.0,
+            )
+            .normalize_or(Vec3A::Y)
+        })
+        .collect();
+    let (dpdx, dpdy) = (Vec3A::new(1e-3, 0.0, 0.0), Vec3A::new(0.0, 1e-3, 0.0));
+    let mut g = c.benchmark_group("mapping");
+    for m in Mapping::ALL {
+        let mut i = 0;
+        g.bench_function(m.name(), |b| {
+            b.iter(|| {
+                i = (i + 1) % points.len();
+                black_box(m.map_with_differentials(
+                    black_box(points[i]),
+                    dpdx,
+                    dpdy,
+                    None,
+                    Mapping::Spherical,
+                ))
+            });
+        });
+    }
+    g.finish();
+}
+
+fn filters(c: &mut Criterion) {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let image: Arc<ImageData> = Arc::new(
+        load_image(&root.join("assets/earth_2048x1024.jpg"), true).expect("the Earth texture"),
+    );
+    let mut rng = SampleRng::new(7, 8, 9);
+    // A footprint of about one texel of a 2048-wide image (magnification to mild minification).
+    let coords: Vec<TexCoord> = (0..4096)
+        .map(|_| TexCoord {
+            uv: Vec2::new(rng.next_f32(), rng.next_f32()),
+            duvdx: Vec2::new(1.0 / 1024.0, 0.0),
+            duvdy: Vec2::new(0.0, 1.0 / 1024.0),
+        })
+        .collect();
+    let mut g = c.benchmark_group("filter");
+    let mip = Arc::new(MipPyramid::build(image.clone()));
+    for filter in Filter::ALL {
+        let tex = ImageTexture {
+            image: image.clone(),
+            mapping: Mapping::Spherical,
+            filter,
+            lookup: Lookup::Centred,
+            wrap: Wrap::Repeat,
+            scale: 1.0,
+            mip: filter.needs_mip().then(|| mip.clone()),
+            max_anisotropy: DEFAULT_MAX_ANISOTROPY,
+        };
+        let mut i = 0;
+        g.bench_function(filter.name(), |b| {
+            b.iter(|| {
+                i = (i + 1) % coords.len();
+                black_box(tex.sample(black_box(coords[i])))
+            });
+        });
+    }
+    g.finish();
+}
+
+fn earth_pass(c: &mut Criterion) {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("presets/earth.ron");
+    let mut desc = load_preset(&path).expect("presets/earth.ron");
+    let (w, h) = (320, 240);
+    apply_overrides(
+        &mut desc,
+        Overrides {
+            width: Some(w),
+            height: Some(h),
+            spp: Some(1),
+            ..Overrides::default()
+        },
+    );
+    let scene = build_scene(&desc, &path, &mut AssetCache::new()).expect("the Earth builds");
+    let mut film = Film::new(w, h);
+    let never = || false;
+    let mut g = c.benchmark_group("pass");
+    g.throughput(criterion::Throughput::Elements(u64::from(w * h)));
+    g.bench_function("earth-320x240-1spp", |b| {
+        b.iter(|| black_box(render_pass(&scene, &mut film, 0, &never)));
+    });
+    g.finish();
+}
+
+criterion_group!(benches, intersection, mappings, filters, earth_pass);
+criterion_main!(benches);

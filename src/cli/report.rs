@@ -1,0 +1,210 @@
+//! `texplore report`: speed against error for presets, written as CSV, Markdown and plots.
+
+use crate::report::{
+    Mode, ProgressUpdate, ReferenceSettings, ReportConfig, Stage, default_cache_dir, run_scene,
+    write_outputs,
+};
+use crate::sampler::PixelSampler;
+use crate::scene::read_preset_or_png;
+use crate::texture::Filter;
+use anyhow::{Context, Result, bail};
+use std::path::{Path, PathBuf};
+use std::sync::atomic::AtomicBool;
+use std::time::Duration;
+
+/// `texplore report`.
+#[derive(Debug, clap::Args)]
+pub struct ReportArgs {
+    /// Presets (.ron or PNGs saved by texplore); default: presets/earth.ron and
+    /// presets/checker.ron.
+    pub presets: Vec<PathBuf>,
+    /// Output directory (report.csv, report.md, and a folder of plots per preset).
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// Modes: `default` (every filter with jittered, bilinear with every sampler), `all`
+    /// (every filter x every sampler), or a list like `nearest/jittered,bilinear/*`.
+    #[arg(long, default_value = "default")]
+    pub modes: String,
+    /// Samples per pixel of the measured renders.
+    #[arg(long, value_delimiter = ',', default_values_t = [1, 2, 4, 8, 16, 32, 64, 128, 256])]
+    pub spp: Vec<u32>,
+    /// Timed runs per render after a warm-up; the median is reported.
+    #[arg(long, default_value_t = 5)]
+    pub repeat: usize,
+    /// Seconds the timed runs of one render may take before fewer are made (at least one).
+    #[arg(long, default_value_t = 2.0)]
+    pub time_budget: f64,
+    /// Image width (overrides the presets).
+    #[arg(long)]
+    pub width: Option<u32>,
+    /// Image height (overrides the presets).
+    #[arg(long)]
+    pub height: Option<u32>,
+    /// Samples per pixel of the reference.
+    #[arg(long, default_value_t = 4096)]
+    pub reference_spp: u32,
+    /// Texture filter of the reference.
+    #[arg(long, default_value = "bilinear")]
+    pub reference_filter: Filter,
+    /// Pixel sampler of the reference.
+    #[arg(long, default_value = "jittered")]
+    pub reference_sampler: PixelSampler,
+    /// Where references are cached (default: the user's cache directory,
+    /// ~/.cache/texplore/references, else OUTPUT/.refs).
+    #[arg(long)]
+    pub cache: Option<PathBuf>,
+    /// Render the reference again and do not store it.
+    #[arg(long)]
+    pub no_cache: bool,
+    /// Samples per pixel of the renders whose error heat maps are written (default: the
+    /// smallest of --spp).
+    #[arg(long)]
+    pub heatmap_spp: Option<u32>,
+    /// Worker threads (default: one per core).
+    #[arg(long, default_value_t = 0)]
+    pub threads: usize,
+    /// Don't draw the progress bar.
+    #[arg(long, short)]
+    pub quiet: bool,
+}
+
+/// What the report's header says about the machine: cores, CPU model and load average.
+fn machine() -> String {
+    let cores = std::thread::available_parallelism().map_or(0, std::num::NonZero::get);
+    let cpu = std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("model name"))
+                .and_then(|l| l.split(':').nth(1))
+                .map(|m| m.trim().to_string())
+        })
+        .unwrap_or_else(|| "unknown CPU".into());
+    let load = std::fs::read_to_string("/proc/loadavg")
+        .ok()
+        .map(|s| s.split_whitespace().take(3).collect::<Vec<_>>().join(" "))
+        .map_or_else(String::new, |l| format!("; load average at start {l}"));
+    format!("{cores} logical cores, {cpu}{load}")
+}
+
+/// Runs the report.
+///
+/// # Errors
+/// A preset cannot be read or built, or an output cannot be written.
+pub fn run(a: &ReportArgs) -> Result<()> {
+    let presets = if a.presets.is_empty() {
+        let d = vec![
+            PathBuf::from("presets/earth.ron"),
+            PathBuf::from("presets/checker.ron"),
+        ];
+        if !d.iter().all(|p| p.exists()) {
+            bail!(
+                "no preset given and presets/earth.ron is not here: name the presets to report on"
+            );
+        }
+        d
+    } else {
+        a.presets.clone()
+    };
+    let modes = Mode::parse_list(&a.modes)?;
+    if a.spp.is_empty() || a.spp.contains(&0) {
+        bail!("--spp needs a list of positive numbers, like 1,4,16");
+    }
+    if !(a.time_budget.is_finite() && a.time_budget >= 0.0) {
+        bail!("--time-budget must be a non-negative number of seconds");
+    }
+    let cache_dir = if a.no_cache {
+        None
+    } else {
+        Some(
+            a.cache
+                .clone()
+                .unwrap_or_else(|| default_cache_dir(&a.output.join(".refs"))),
+        )
+    };
+    let config = ReportConfig {
+        modes,
+        spp: a.spp.clone(),
+        repeat: a.repeat.max(1),
+        time_budget: Duration::from_secs_f64(a.time_budget),
+        width: a.width,
+        height: a.height,
+        reference: ReferenceSettings {
+            spp: a.reference_spp.max(1),
+            filter: a.reference_filter,
+            sampler: a.reference_sampler,
+            cache_dir: cache_dir.clone(),
+        },
+        heatmap_spp: Some(
+            a.heatmap_spp
+                .unwrap_or_else(|| a.spp.iter().copied().min().unwrap_or(1)),
+        ),
+    };
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(a.threads)
+        .build()
+        .context("cannot start worker threads")?;
+    let threads = pool.current_num_threads();
+    let bar = if a.quiet {
+        indicatif::ProgressBar::hidden()
+    } else {
+        let bar = indicatif::ProgressBar::new(1);
+        bar.set_style(
+            indicatif::ProgressStyle::with_template(
+                "{spinner} {msg:40} [{bar:30}] {percent:>3}% {elapsed} elapsed, {eta} left",
+            )
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+        );
+        bar
+    };
+    let cancel = AtomicBool::new(false);
+    let mut reports = Vec::new();
+    for path in &presets {
+        let desc = read_preset_or_png(path)?;
+        let name = path
+            .file_stem()
+            .map_or_else(|| "scene".to_string(), |s| s.to_string_lossy().into_owned());
+        let mut on_progress = |p: &ProgressUpdate<'_>| {
+            bar.set_length(p.total);
+            bar.set_position(p.done);
+            bar.set_message(match &p.stage {
+                Stage::Reference => format!("{name}: reference"),
+                Stage::Mode(m, spp) => format!("{name}: {} {spp} spp", m.name()),
+            });
+        };
+        // The bar's ETA is per preset; it restarts for the next one.
+        bar.reset();
+        let rep = pool
+            .install(|| run_scene(&name, &desc, path, &config, &mut on_progress, &cancel))
+            .with_context(|| format!("report on {}", path.display()))?;
+        reports.push(rep);
+    }
+    bar.finish_and_clear();
+    let args: Vec<String> = std::env::args().collect();
+    let header = format!(
+        "Command: `{}`\n\nMachine: {}; renders on {threads} rayon threads.\n\nReference cache: {}.\n",
+        args.join(" "),
+        machine(),
+        cache_dir.as_deref().map_or_else(
+            || "off (--no-cache)".to_string(),
+            |d: &Path| d.display().to_string()
+        ),
+    );
+    let written = write_outputs(&a.output, &reports, &header)?;
+    if !a.quiet {
+        for rep in &reports {
+            eprintln!(
+                "{}: {} renders; reference {}",
+                rep.scene,
+                rep.rows.len(),
+                if rep.reference_cached {
+                    "from the cache".to_string()
+                } else {
+                    format!("rendered in {:.1} s", rep.reference_time.as_secs_f64())
+                }
+            );
+        }
+        eprintln!("wrote {} files into {}", written.len(), a.output.display());
+    }
+    Ok(())
+}

@@ -1,0 +1,549 @@
+//! A bounding volume hierarchy over primitives given by their boxes: binned SAH build (parallel
+//! for large subtrees), flattened into 32-byte nodes in depth-first order, and a traversal that
+//! never culls a box the ray touches (Ize 2013, "Robust BVH Ray Traversal"), so a watertight
+//! triangle test stays watertight.
+
+use crate::math::{Vec3, Vec3A};
+
+/// Most primitives in a leaf.
+pub const MAX_LEAF: usize = 8;
+/// SAH bins per axis.
+const BINS: usize = 16;
+/// Cost of visiting a node, relative to one primitive test.
+const TRAVERSAL_COST: f32 = 1.0;
+/// Subtrees larger than this are built on two rayon tasks.
+const PARALLEL_THRESHOLD: usize = 8192;
+/// Beyond this depth splits are by count (object median), which bounds the depth for any input.
+const SAH_DEPTH_LIMIT: u32 = 40;
+/// Deepest tree the traversal stack holds: the SAH limit plus the median splits of 2^32 items.
+pub const MAX_DEPTH: usize = SAH_DEPTH_LIMIT as usize + 33;
+/// 1 + 2 gamma(3) in f32: widening the far distance by this keeps the slab test conservative
+/// (a box a ray grazes is never culled by rounding).
+const ROBUST_FAR: f32 = 1.0 + 2.0 * (3.0 * f32::EPSILON * 0.5) / (1.0 - 3.0 * f32::EPSILON * 0.5);
+
+/// An axis-aligned box.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Aabb {
+    /// Smallest corner.
+    pub min: Vec3,
+    /// Largest corner.
+    pub max: Vec3,
+}
+
+impl Aabb {
+    /// The empty box (grows from nothing).
+    pub const EMPTY: Self = Self {
+        min: Vec3::splat(f32::INFINITY),
+        max: Vec3::splat(f32::NEG_INFINITY),
+    };
+
+    /// The box around three points.
+    #[must_use]
+    #[inline]
+    pub fn of_triangle(a: Vec3, b: Vec3, c: Vec3) -> Self {
+        Self {
+            min: a.min(b).min(c),
+            max: a.max(b).max(c),
+        }
+    }
+
+    /// The smallest box holding both.
+    #[must_use]
+    #[inline]
+    pub fn union(self, o: Self) -> Self {
+        Self {
+            min: self.min.min(o.min),
+            max: self.max.max(o.max),
+        }
+    }
+
+    /// Half the surface area (enough for SAH ratios); 0 for the empty box.
+    #[must_use]
+    #[inline]
+    pub fn half_area(self) -> f32 {
+        let d = (self.max - self.min).max(Vec3::ZERO);
+        d.x * d.y + d.y * d.z + d.z * d.x
+    }
+
+    /// The centre.
+    #[must_use]
+    #[inline]
+    pub fn centre(self) -> Vec3 {
+        (self.min + self.max) * 0.5
+    }
+}
+
+/// A flattened node: 32 bytes. Interior nodes have `count == 0`; their first child follows them
+/// and `index` is the second child. Leaves hold primitives `index .. index + count` (in the
+/// order [`Bvh::build`] returned).
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[repr(C)]
+pub struct Node {
+    min: [f32; 3],
+    index: u32,
+    max: [f32; 3],
+    count: u16,
+    axis: u16,
+}
+
+/// The hierarchy.
+#[derive(Clone, Debug, Default)]
+pub struct Bvh {
+    nodes: Vec<Node>,
+}
+
+#[derive(Clone, Copy)]
+struct Prim {
+    bounds: Aabb,
+    centre: Vec3,
+    index: u32,
+}
+
+/// A ray prepared for box tests.
+#[derive(Clone, Copy, Debug)]
+pub struct BoxRay {
+    origin: Vec3A,
+    inv_dir: Vec3A,
+    negative: [bool; 3],
+    /// Axes the ray runs parallel to (direction component exactly zero).
+    parallel: [bool; 3],
+}
+
+impl BoxRay {
+    /// Prepares `origin + t dir`. Inverses are clamped to finite values (no 0 x inf NaN in a
+    /// slab test); axes the ray runs parallel to are tested by position instead (a ray lying in
+    /// a box's face is inside it).
+    #[must_use]
+    #[inline]
+    pub fn new(origin: Vec3A, dir: Vec3A) -> Self {
+        let inv = (Vec3A::ONE / dir).clamp(Vec3A::splat(-f32::MAX), Vec3A::splat(f32::MAX));
+        let inv_dir = Vec3A::select(inv.cmpeq(inv), inv, Vec3A::splat(f32::MAX));
+        let parallel = [dir.x == 0.0, dir.y == 0.0, dir.z == 0.0];
+        Self {
+            origin,
+            inv_dir: Vec3A::select(
+                glam::BVec3A::new(parallel[0], parallel[1], parallel[2]),
+                Vec3A::ZERO,
+                inv_dir,
+            ),
+            negative: [dir.x < 0.0, dir.y < 0.0, dir.z < 0.0],
+            parallel,
+        }
+    }
+
+    #[inline(always)]
+    fn hits(&self, n: &Node, t_max: f32) -> bool {
+        let (bmin, bmax) = (Vec3A::from_array(n.min), Vec3A::from_array(n.max));
+        let lo = (bmin - self.origin) * self.inv_dir;
+        let hi = (bmax - self.origin) * self.inv_dir;
+        let (mut near_v, mut far_v) = (lo.min(hi), lo.max(hi));
+        if self.parallel.iter().any(|p| *p) {
+            // Parallel axes constrain nothing along t (their inverse is zero) but the origin
+            // must lie within the slab.
+            for axis in 0..3 {
+                if self.parallel[axis] {
+                    let o = self.origin[axis];
+                    if o < bmin[axis] || o > bmax[axis] {
+                        return false;
+                    }
+                    near_v[axis] = f32::NEG_INFINITY;
+                    far_v[axis] = f32::INFINITY;
+                }
+            }
+        }
+        let near = near_v.max_element().max(0.0);
+        let far = far_v.min_element().min(t_max) * ROBUST_FAR;
+        near <= far
+    }
+}
+
+impl Bvh {
+    /// Builds over `bounds` (one box per primitive). Returns the hierarchy and the primitive
+    /// order its leaves refer to: leaf ranges index into `order`, so callers reorder their
+    /// primitives by it.
+    #[must_use]
+    pub fn build(bounds: &[Aabb]) -> (Self, Vec<u32>) {
+        let mut prims: Vec<Prim> = bounds
+            .iter()
+            .enumerate()
+            .map(|(i, b)| Prim {
+                bounds: *b,
+                centre: b.centre(),
+                index: i as u32,
+            })
+            .collect();
+        let mut nodes = Vec::with_capacity(2 * bounds.len() / 3 + 1);
+        if !prims.is_empty() {
+            build_node(&mut prims, 0, 0, &mut nodes);
+        }
+        nodes.shrink_to_fit();
+        let order = prims.iter().map(|p| p.index).collect();
+        (Self { nodes }, order)
+    }
+
+    /// Number of nodes.
+    #[must_use]
+    pub fn node_count(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// Heap bytes held.
+    #[must_use]
+    pub fn heap_bytes(&self) -> usize {
+        self.nodes.capacity() * std::mem::size_of::<Node>()
+    }
+
+    /// The box around everything (empty for an empty hierarchy).
+    #[must_use]
+    pub fn bounds(&self) -> Aabb {
+        self.nodes.first().map_or(Aabb::EMPTY, |n| Aabb {
+            min: Vec3::from_array(n.min),
+            max: Vec3::from_array(n.max),
+        })
+    }
+
+    /// Visits the leaves `ray` may hit within (0, `t_max`), nearer children first. `leaf` gets
+    /// the primitive range and the current `t_max` and returns a closer `t_max` when it found
+    /// a hit; with `any` the walk stops at the first hit.
+    #[inline]
+    pub fn traverse(
+        &self,
+        ray: &BoxRay,
+        mut t_max: f32,
+        any: bool,
+        mut leaf: impl FnMut(u32, u32, f32) -> Option<f32>,
+    ) -> bool {
+        let mut found = false;
+        let Some(root) = self.nodes.first() else {
+            return false;
+        };
+        if !ray.hits(root, t_max) {
+            return false;
+        }
+        let mut stack = [0u32; MAX_DEPTH + 1];
+        let mut top = 0usize;
+        let mut current = 0u32;
+        loop {
+            let n = &self.nodes[current as usize];
+            if n.count > 0 {
+                if let Some(t) = leaf(n.index, u32::from(n.count), t_max) {
+                    t_max = t;
+                    found = true;
+                    if any {
+                        return true;
+                    }
+                }
+            } else {
+                let (first, second) = (current + 1, n.index);
+                let (near, far) = if ray.negative[usize::from(n.axis)] {
+                    (second, first)
+                } else {
+                    (first, second)
+                };
+                let hit_near = ray.hits(&self.nodes[near as usize], t_max);
+                let hit_far = ray.hits(&self.nodes[far as usize], t_max);
+                match (hit_near, hit_far) {
+                    (true, true) => {
+                        stack[top] = far;
+                        top += 1;
+                        current = near;
+                        continue;
+                    }
+                    (true, false) => {
+                        current = near;
+                        continue;
+                    }
+                    (false, true) => {
+                        current = far;
+                        continue;
+                    }
+                    (false, false) => {}
+                }
+            }
+            // Pop the next subtree whose box is still in reach.
+            loop {
+                if top == 0 {
+                    return found;
+                }
+                top -= 1;
+                let next = stack[top];
+                if ray.hits(&self.nodes[next as usize], t_max) {
+                    current = next;
+                    break;
+                }
+            }
+        }
+    }
+}
+
+fn bounds_of(prims: &[Prim]) -> (Aabb, Aabb) {
+    let mut b = Aabb::EMPTY;
+    let mut c = Aabb::EMPTY;
+    for p in prims {
+        b = b.union(p.bounds);
+        c.min = c.min.min(p.centre);
+        c.max = c.max.max(p.centre);
+    }
+    (b, c)
+}
+
+fn leaf(bounds: Aabb, first: usize, count: usize) -> Node {
+    Node {
+        min: bounds.min.to_array(),
+        index: first as u32,
+        max: bounds.max.to_array(),
+        count: count as u16,
+        axis: 0,
+    }
+}
+
+/// Builds the subtree of `prims` (which start at `first` in the global order) into `out`, with
+/// node indices relative to `out[0]`.
+fn build_node(prims: &mut [Prim], first: usize, depth: u32, out: &mut Vec<Node>) {
+    let (bounds, centres) = if prims.len() > PARALLEL_THRESHOLD * 8 {
+        let (a, b) = prims.split_at(prims.len() / 2);
+        let ((ba, ca), (bb, cb)) = rayon::join(|| bounds_of(a), || bounds_of(b));
+        (ba.union(bb), ca.union(cb))
+    } else {
+        bounds_of(prims)
+    };
+    let n = prims.len();
+    if n <= 2 {
+        out.push(leaf(bounds, first, n));
+        return;
+    }
+    let Some((axis, mid)) = choose_split(prims, bounds, centres, depth) else {
+        out.push(leaf(bounds, first, n));
+        return;
+    };
+    let me = out.len();
+    out.push(Node {
+        min: bounds.min.to_array(),
+        index: 0,
+        max: bounds.max.to_array(),
+        count: 0,
+        axis: axis as u16,
+    });
+    let (left, right) = prims.split_at_mut(mid);
+    if n > PARALLEL_THRESHOLD {
+        let (mut l, mut r) = (Vec::new(), Vec::new());
+        rayon::join(
+            || build_node(left, first, depth + 1, &mut l),
+            || build_node(right, first + mid, depth + 1, &mut r),
+        );
+        append(out, l);
+        out[me].index = out.len() as u32;
+        append(out, r);
+    } else {
+        build_node(left, first, depth + 1, out);
+        out[me].index = out.len() as u32;
+        build_node(right, first + mid, depth + 1, out);
+    }
+}
+
+/// Appends a subtree built with indices relative to its own start.
+fn append(out: &mut Vec<Node>, sub: Vec<Node>) {
+    let base = out.len() as u32;
+    out.extend(sub.into_iter().map(|mut n| {
+        if n.count == 0 {
+            n.index += base;
+        }
+        n
+    }));
+}
+
+/// The split axis and the count of primitives that go left (after partitioning `prims`), or
+/// `None` when a leaf is cheaper and small enough.
+fn choose_split(
+    prims: &mut [Prim],
+    bounds: Aabb,
+    centres: Aabb,
+    depth: u32,
+) -> Option<(usize, usize)> {
+    let n = prims.len();
+    let extent = centres.max - centres.min;
+    let widest = if extent.x >= extent.y && extent.x >= extent.z {
+        0
+    } else if extent.y >= extent.z {
+        1
+    } else {
+        2
+    };
+    if extent[widest] <= 0.0 || depth >= SAH_DEPTH_LIMIT {
+        // All centres coincide (or the tree is deep): split by count so the depth stays bounded.
+        if n <= MAX_LEAF {
+            return None;
+        }
+        let mid = n / 2;
+        prims.select_nth_unstable_by(mid, |a, b| a.centre[widest].total_cmp(&b.centre[widest]));
+        return Some((widest, mid));
+    }
+
+    // Bin the centres along every axis with a non-zero extent.
+    let mut best: Option<(f32, usize, usize)> = None; // cost, axis, bins on the left
+    let mut counts = [[0u32; BINS]; 3];
+    let mut boxes = [[Aabb::EMPTY; BINS]; 3];
+    let scale = Vec3::select(
+        extent.cmpgt(Vec3::ZERO),
+        Vec3::splat(BINS as f32 * (1.0 - f32::EPSILON)) / extent,
+        Vec3::ZERO,
+    );
+    for p in prims.iter() {
+        let b = ((p.centre - centres.min) * scale)
+            .as_uvec3()
+            .min(glam::UVec3::splat(BINS as u32 - 1));
+        for axis in 0..3 {
+            let i = b[axis] as usize;
+            counts[axis][i] += 1;
+            boxes[axis][i] = boxes[axis][i].union(p.bounds);
+        }
+    }
+    for axis in 0..3 {
+        if extent[axis] <= 0.0 {
+            continue;
+        }
+        // Sweep from the right, then from the left.
+        let mut right_area = [0.0f32; BINS];
+        let mut acc = Aabb::EMPTY;
+        for i in (1..BINS).rev() {
+            acc = acc.union(boxes[axis][i]);
+            right_area[i] = acc.half_area();
+        }
+        let mut acc = Aabb::EMPTY;
+        let mut left_count = 0u32;
+        for i in 0..BINS - 1 {
+            acc = acc.union(boxes[axis][i]);
+            left_count += counts[axis][i];
+            let right_count = n as u32 - left_count;
+            if left_count == 0 || right_count == 0 {
+                continue;
+            }
+            let cost = acc.half_area() * left_count as f32 + right_area[i + 1] * right_count as f32;
+            if best.is_none_or(|(c, _, _)| cost < c) {
+                best = Some((cost, axis, i + 1));
+            }
+        }
+    }
+    let area = bounds.half_area();
+    let leaf_cost = n as f32;
+    let (cost, axis, split_bin) = best?;
+    let split_cost = if area > 0.0 {
+        TRAVERSAL_COST + cost / area
+    } else {
+        f32::INFINITY
+    };
+    if split_cost >= leaf_cost && n <= MAX_LEAF {
+        return None;
+    }
+    let min = centres.min[axis];
+    let s = scale[axis];
+    let goes_left = |p: &Prim| {
+        let b = (((p.centre[axis] - min) * s) as usize).min(BINS - 1);
+        b < split_bin
+    };
+    let mid = partition(prims, goes_left);
+    if mid == 0 || mid == n {
+        let mid = n / 2;
+        prims.select_nth_unstable_by(mid, |a, b| a.centre[axis].total_cmp(&b.centre[axis]));
+        return Some((axis, mid));
+    }
+    Some((axis, mid))
+}
+
+/// Moves the elements for which `left` holds to the front; returns how many there are.
+fn partition(v: &mut [Prim], left: impl Fn(&Prim) -> bool) -> usize {
+    let mut i = 0;
+    let mut j = v.len();
+    loop {
+        while i < j && left(&v[i]) {
+            i += 1;
+        }
+        while i < j && !left(&v[j - 1]) {
+            j -= 1;
+        }
+        if i >= j {
+            return i;
+        }
+        v.swap(i, j - 1);
+        i += 1;
+        j -= 1;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::SampleRng;
+
+    fn random_boxes(n: usize, seed: u32) -> Vec<Aabb> {
+        let mut rng = SampleRng::new(seed, 0, 0);
+        (0..n)
+            .map(|_| {
+                let c = Vec3::new(rng.next_f32(), rng.next_f32(), rng.next_f32()) * 10.0;
+                let h = Vec3::new(rng.next_f32(), rng.next_f32(), rng.next_f32()) * 0.2;
+                Aabb {
+                    min: c - h,
+                    max: c + h,
+                }
+            })
+            .collect()
+    }
+
+    /// Every primitive appears once in the order, every leaf range is in bounds, and every
+    /// node's box holds its children's.
+    #[test]
+    fn build_is_a_partition_with_nested_boxes() {
+        for n in [1, 2, 3, 9, 100, 20_000] {
+            let boxes = random_boxes(n, 7);
+            let (bvh, order) = Bvh::build(&boxes);
+            let mut seen = order.clone();
+            seen.sort_unstable();
+            assert_eq!(seen, (0..n as u32).collect::<Vec<_>>());
+            let mut covered = 0usize;
+            for (i, node) in bvh.nodes.iter().enumerate() {
+                let inside = |b: &Aabb| {
+                    Vec3::from_array(node.min).cmple(b.min).all()
+                        && Vec3::from_array(node.max).cmpge(b.max).all()
+                };
+                if node.count > 0 {
+                    assert!(node.count as usize <= MAX_LEAF.max(2));
+                    for k in node.index..node.index + u32::from(node.count) {
+                        assert!(inside(&boxes[order[k as usize] as usize]));
+                    }
+                    covered += node.count as usize;
+                } else {
+                    assert!(node.index as usize > i + 1 && (node.index as usize) < bvh.nodes.len());
+                }
+            }
+            assert_eq!(covered, n);
+        }
+    }
+
+    /// Identical centres (a degenerate input) still build a shallow tree with small leaves.
+    #[test]
+    fn coincident_primitives_split_by_count() {
+        let b = Aabb {
+            min: Vec3::ZERO,
+            max: Vec3::ONE,
+        };
+        let (bvh, order) = Bvh::build(&vec![b; 1000]);
+        assert_eq!(order.len(), 1000);
+        assert!(bvh.nodes.iter().all(|n| n.count as usize <= MAX_LEAF));
+    }
+
+    /// A ray along a box's face (zero thickness box, axis-parallel ray) is not culled.
+    #[test]
+    fn flat_boxes_and_axis_parallel_rays_are_not_culled() {
+        let flat = Aabb {
+            min: Vec3::new(-1.0, 0.0, -1.0),
+            max: Vec3::new(1.0, 0.0, 1.0),
+        };
+        let (bvh, _) = Bvh::build(&[flat]);
+        let ray = BoxRay::new(Vec3A::new(0.3, 2.0, 0.7), Vec3A::new(0.0, -1.0, 0.0));
+        assert!(bvh.traverse(&ray, f32::INFINITY, true, |_, _, _| Some(1.0)));
+        let ray = BoxRay::new(Vec3A::new(1.0, 2.0, 1.0), Vec3A::new(0.0, -1.0, 0.0));
+        assert!(bvh.traverse(&ray, f32::INFINITY, true, |_, _, _| Some(1.0)));
+        let ray = BoxRay::new(Vec3A::new(1.001, 2.0, 1.0), Vec3A::new(0.0, -1.0, 0.0));
+        assert!(!bvh.traverse(&ray, f32::INFINITY, true, |_, _, _| Some(1.0)));
+    }
+}

@@ -1,0 +1,753 @@
+//! Triangle meshes: the lecture's `FlatUVMeshTriangle` and `SmoothUVMeshTriangle` as one
+//! [`Mesh`] with a [`Shading`] per instance. (u, v), normals and the hit point are interpolated
+//! by barycentrics in one place ([`Mesh::surface`]); the ray/triangle test is watertight (Woop,
+//! Benthin and Wald 2013), so rays through shared edges and vertices never slip between
+//! triangles; a [`Bvh`] finds the candidates.
+
+use super::LocalHit;
+use super::bvh::{Aabb, BoxRay, Bvh};
+use crate::error::{Error, Result};
+use crate::math::{Mat3A, Ray, Vec2, Vec3, Vec3A};
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+
+/// How a mesh's shading normal is found.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum Shading {
+    /// The lecture's `FlatUVMeshTriangle`: each triangle's own normal (facets show).
+    Flat,
+    /// The lecture's `SmoothUVMeshTriangle`: vertex normals (the file's, else area-weighted
+    /// averages of the adjacent triangles') interpolated by barycentrics.
+    #[default]
+    Smooth,
+}
+
+impl Shading {
+    /// Both shadings.
+    pub const ALL: [Self; 2] = [Self::Flat, Self::Smooth];
+
+    /// The name used on the command line and in menus.
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::Flat => "flat",
+            Self::Smooth => "smooth",
+        }
+    }
+}
+
+crate::named_enum!(Shading, "shading");
+
+/// The material a mesh file names (an OBJ's .mtl): its diffuse colour and image.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct MeshMaterial {
+    /// The material's name.
+    pub name: String,
+    /// `Kd`, linear RGB.
+    pub diffuse: Option<[f32; 3]>,
+    /// `map_Kd`, resolved against the mesh file's folder.
+    pub diffuse_texture: Option<PathBuf>,
+}
+
+/// A mesh as a file holds it, before acceleration: indexed triangles (polygons already
+/// triangulated) with optional per-vertex (u, v) and normals.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct MeshData {
+    /// Vertex positions.
+    pub positions: Vec<Vec3>,
+    /// Per-vertex (u, v); empty when the file has none.
+    pub uvs: Vec<Vec2>,
+    /// Per-vertex normals; empty when the file has none.
+    pub normals: Vec<Vec3>,
+    /// Triangles as vertex indices, counter-clockwise seen from the outside.
+    pub triangles: Vec<[u32; 3]>,
+    /// Faces in the file (polygons count once, before triangulation).
+    pub faces: usize,
+    /// The file's format, for messages (`ply ascii`, `ply binary_little_endian`, `obj`).
+    pub format: String,
+    /// The property names the (u, v) were read from (`u v`, `s t`, ...), if any.
+    pub uv_names: Option<(String, String)>,
+    /// The material the file names, if any.
+    pub material: Option<MeshMaterial>,
+    /// Why the material could not be read, if it could not (a missing .mtl).
+    pub material_problem: Option<String>,
+}
+
+/// Counts of triangles that cannot be shaded normally.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+pub struct Degenerate {
+    /// Triangles with (numerically) zero area: rays never hit them.
+    pub zero_area: usize,
+    /// Triangles whose (u, v) span zero area: their texture derivatives are taken as zero.
+    pub zero_uv_area: usize,
+}
+
+/// Whether the triangle (a, b, c) has zero area relative to its size in f32.
+#[must_use]
+pub fn is_zero_area(a: Vec3, b: Vec3, c: Vec3) -> bool {
+    let (e1, e2) = (b - a, c - a);
+    let longest = e1
+        .length_squared()
+        .max(e2.length_squared())
+        .max((c - b).length_squared());
+    e1.cross(e2).length() <= 1e-7 * longest || longest == 0.0
+}
+
+/// Whether the (u, v) triangle spans zero area.
+#[must_use]
+pub fn is_zero_uv_area(a: Vec2, b: Vec2, c: Vec2) -> bool {
+    let (e1, e2) = (b - a, c - a);
+    let longest = e1
+        .length_squared()
+        .max(e2.length_squared())
+        .max((c - b).length_squared());
+    e1.perp_dot(e2).abs() <= 1e-7 * longest || longest == 0.0
+}
+
+impl MeshData {
+    /// The bounding box of the vertices (empty for no vertices).
+    #[must_use]
+    pub fn bbox(&self) -> Aabb {
+        self.positions.iter().fold(Aabb::EMPTY, |b, p| Aabb {
+            min: b.min.min(*p),
+            max: b.max.max(*p),
+        })
+    }
+
+    /// Counts the degenerate triangles.
+    #[must_use]
+    pub fn degenerate(&self) -> Degenerate {
+        let mut d = Degenerate::default();
+        for t in &self.triangles {
+            let [a, b, c] = t.map(|i| i as usize);
+            let (Some(pa), Some(pb), Some(pc)) = (
+                self.positions.get(a),
+                self.positions.get(b),
+                self.positions.get(c),
+            ) else {
+                continue;
+            };
+            d.zero_area += usize::from(is_zero_area(*pa, *pb, *pc));
+            if !self.uvs.is_empty() {
+                d.zero_uv_area +=
+                    usize::from(is_zero_uv_area(self.uvs[a], self.uvs[b], self.uvs[c]));
+            }
+        }
+        d
+    }
+
+    /// Checks what [`Mesh::new`] relies on: indices in range, finite values, matching lengths.
+    ///
+    /// # Errors
+    /// Names `path` and the first bad triangle or vertex.
+    pub fn validate(&self, path: &Path) -> Result<()> {
+        let n = self.positions.len();
+        let bad = |at: String, message: String| Error::Mesh {
+            path: path.to_path_buf(),
+            at,
+            message,
+        };
+        if !self.uvs.is_empty() && self.uvs.len() != n {
+            return Err(bad(
+                "vertices".into(),
+                format!("{} (u, v) pairs for {n} vertices", self.uvs.len()),
+            ));
+        }
+        if !self.normals.is_empty() && self.normals.len() != n {
+            return Err(bad(
+                "vertices".into(),
+                format!("{} normals for {n} vertices", self.normals.len()),
+            ));
+        }
+        if let Some(i) = self.positions.iter().position(|p| !p.is_finite()) {
+            return Err(bad(format!("vertex {i}"), "position is not finite".into()));
+        }
+        if let Some(i) = self.uvs.iter().position(|p| !p.is_finite()) {
+            return Err(bad(format!("vertex {i}"), "(u, v) is not finite".into()));
+        }
+        if let Some(i) = self.normals.iter().position(|p| !p.is_finite()) {
+            return Err(bad(format!("vertex {i}"), "normal is not finite".into()));
+        }
+        for (i, t) in self.triangles.iter().enumerate() {
+            if let Some(k) = t.iter().find(|k| **k as usize >= n) {
+                return Err(bad(
+                    format!("triangle {i}"),
+                    format!("vertex index {k} is out of range ({n} vertices)"),
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A mesh ready to trace: vertex arrays, triangles in BVH order and the BVH. Shared by every
+/// instance of the same file (through an `Arc`).
+pub struct Mesh {
+    path: PathBuf,
+    positions: Vec<Vec3>,
+    uvs: Vec<Vec2>,
+    /// The file's normals, or area-weighted vertex normals (zero where undefined).
+    normals: Vec<Vec3>,
+    file_normals: bool,
+    /// Triangles in the BVH's leaf order.
+    triangles: Vec<[u32; 3]>,
+    /// Each triangle's index in the file, for the inspector.
+    file_index: Vec<u32>,
+    bvh: Bvh,
+    bbox: Aabb,
+    /// Generated mappings see the model fitted into the generic [-1, 1]^3 box.
+    map_centre: Vec3A,
+    map_scale: f32,
+    faces: usize,
+    format: String,
+    uv_names: Option<(String, String)>,
+    material: Option<MeshMaterial>,
+    material_problem: Option<String>,
+    degenerate: Degenerate,
+}
+
+impl std::fmt::Debug for Mesh {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Mesh")
+            .field("path", &self.path)
+            .field("vertices", &self.positions.len())
+            .field("triangles", &self.triangles.len())
+            .field("has_uv", &self.has_uv())
+            .finish_non_exhaustive()
+    }
+}
+
+/// The nearest triangle hit: index (BVH order), ray parameter and barycentrics.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TriangleHit {
+    /// Triangle index in BVH order.
+    pub triangle: u32,
+    /// Ray parameter.
+    pub t: f32,
+    /// Barycentric weights of the triangle's three vertices.
+    pub bary: Vec3,
+}
+
+impl Mesh {
+    /// Builds the BVH and vertex normals of `data` (read from `path`, which names it in
+    /// messages).
+    ///
+    /// # Errors
+    /// Indices out of range or non-finite values (see [`MeshData::validate`]), or no triangles.
+    pub fn new(data: MeshData, path: &Path) -> Result<Self> {
+        data.validate(path)?;
+        if data.triangles.is_empty() {
+            return Err(Error::Mesh {
+                path: path.to_path_buf(),
+                at: "faces".into(),
+                message: "the mesh has no triangles".into(),
+            });
+        }
+        let degenerate = data.degenerate();
+        let bbox = data.bbox();
+        let MeshData {
+            positions,
+            uvs,
+            normals,
+            triangles,
+            faces,
+            format,
+            uv_names,
+            material,
+            material_problem,
+        } = data;
+        let file_normals = !normals.is_empty();
+        let normals = if file_normals {
+            normals.iter().map(|n| n.normalize_or_zero()).collect()
+        } else {
+            area_weighted_normals(&positions, &triangles)
+        };
+        let bounds: Vec<Aabb> = triangles
+            .iter()
+            .map(|t| {
+                Aabb::of_triangle(
+                    positions[t[0] as usize],
+                    positions[t[1] as usize],
+                    positions[t[2] as usize],
+                )
+            })
+            .collect();
+        let (bvh, order) = Bvh::build(&bounds);
+        drop(bounds);
+        let triangles: Vec<[u32; 3]> = order.iter().map(|&i| triangles[i as usize]).collect();
+        let half = ((bbox.max - bbox.min) * 0.5).max_element();
+        Ok(Self {
+            path: path.to_path_buf(),
+            positions,
+            uvs,
+            normals,
+            file_normals,
+            triangles,
+            file_index: order,
+            bvh,
+            bbox,
+            map_centre: bbox.centre().into(),
+            map_scale: if half > 0.0 && half.is_finite() {
+                1.0 / half
+            } else {
+                1.0
+            },
+            faces,
+            format,
+            uv_names,
+            material,
+            material_problem,
+            degenerate,
+        })
+    }
+
+    /// The file it was read from.
+    #[must_use]
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// Number of vertices.
+    #[must_use]
+    pub fn vertex_count(&self) -> usize {
+        self.positions.len()
+    }
+
+    /// Number of triangles.
+    #[must_use]
+    pub fn triangle_count(&self) -> usize {
+        self.triangles.len()
+    }
+
+    /// Faces in the file (before triangulation).
+    #[must_use]
+    pub fn face_count(&self) -> usize {
+        self.faces
+    }
+
+    /// The file's format.
+    #[must_use]
+    pub fn format(&self) -> &str {
+        &self.format
+    }
+
+    /// Whether the vertices carry (u, v).
+    #[must_use]
+    pub fn has_uv(&self) -> bool {
+        !self.uvs.is_empty()
+    }
+
+    /// The property names the (u, v) came from.
+    #[must_use]
+    pub fn uv_names(&self) -> Option<&(String, String)> {
+        self.uv_names.as_ref()
+    }
+
+    /// Whether the file carried vertex normals (else smooth shading uses area-weighted ones).
+    #[must_use]
+    pub fn has_file_normals(&self) -> bool {
+        self.file_normals
+    }
+
+    /// The bounding box in the file's coordinates.
+    #[must_use]
+    pub fn bbox(&self) -> Aabb {
+        self.bbox
+    }
+
+    /// Degenerate triangle counts.
+    #[must_use]
+    pub fn degenerate(&self) -> Degenerate {
+        self.degenerate
+    }
+
+    /// The material the file names.
+    #[must_use]
+    pub fn material(&self) -> Option<&MeshMaterial> {
+        self.material.as_ref()
+    }
+
+    /// Why the file's material could not be read.
+    #[must_use]
+    pub fn material_problem(&self) -> Option<&str> {
+        self.material_problem.as_deref()
+    }
+
+    /// Nodes in the BVH.
+    #[must_use]
+    pub fn bvh_nodes(&self) -> usize {
+        self.bvh.node_count()
+    }
+
+    /// Heap bytes held by the mesh and its BVH.
+    #[must_use]
+    pub fn heap_bytes(&self) -> usize {
+        self.positions.capacity() * size_of::<Vec3>()
+            + self.uvs.capacity() * size_of::<Vec2>()
+            + self.normals.capacity() * size_of::<Vec3>()
+            + self.triangles.capacity() * size_of::<[u32; 3]>()
+            + self.file_index.capacity() * size_of::<u32>()
+            + self.bvh.heap_bytes()
+    }
+
+    /// Heap bytes per triangle.
+    #[must_use]
+    pub fn bytes_per_triangle(&self) -> f64 {
+        self.heap_bytes() as f64 / self.triangles.len().max(1) as f64
+    }
+
+    /// An object-space point in the frame generated mappings use: the model's bounding box
+    /// centred on the origin and scaled uniformly so its largest side spans [-1, 1] (the
+    /// generic objects' size). Returns the point and the scale applied to offsets.
+    #[must_use]
+    #[inline]
+    pub fn to_mapping_frame(&self, p: Vec3A) -> (Vec3A, f32) {
+        ((p - self.map_centre) * self.map_scale, self.map_scale)
+    }
+
+    /// The nearest triangle hit in (0, `t_max`) of an object-space ray.
+    #[must_use]
+    #[inline]
+    pub fn closest_hit(&self, ray: &Ray, t_max: f32) -> Option<TriangleHit> {
+        let woop = WoopRay::new(ray)?;
+        let box_ray = BoxRay::new(ray.origin, ray.dir);
+        let mut best = None;
+        self.bvh
+            .traverse(&box_ray, t_max, false, |first, count, t_max| {
+                let mut t_best = t_max;
+                for i in first..first + count {
+                    let [a, b, c] = self.triangles[i as usize];
+                    if let Some((t, bary)) = woop.test(
+                        self.positions[a as usize],
+                        self.positions[b as usize],
+                        self.positions[c as usize],
+                        t_best,
+                    ) {
+                        t_best = t;
+                        best = Some(TriangleHit {
+                            triangle: i,
+                            t,
+                            bary,
+                        });
+                    }
+                }
+                (t_best < t_max).then_some(t_best)
+            });
+        best
+    }
+
+    /// Whether any triangle lies on the object-space ray within (0, `t_max`) (shadow rays).
+    #[must_use]
+    #[inline]
+    pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
+        let Some(woop) = WoopRay::new(ray) else {
+            return false;
+        };
+        let box_ray = BoxRay::new(ray.origin, ray.dir);
+        self.bvh
+            .traverse(&box_ray, t_max, true, |first, count, t_max| {
+                (first..first + count).find_map(|i| {
+                    let [a, b, c] = self.triangles[i as usize];
+                    woop.test(
+                        self.positions[a as usize],
+                        self.positions[b as usize],
+                        self.positions[c as usize],
+                        t_max,
+                    )
+                    .map(|(t, _)| t)
+                })
+            })
+    }
+
+    /// The nearest hit as a [`LocalHit`].
+    #[must_use]
+    #[inline]
+    pub fn intersect(&self, ray: &Ray, t_max: f32, shading: Shading) -> Option<LocalHit> {
+        let h = self.closest_hit(ray, t_max)?;
+        Some(self.surface(h, shading))
+    }
+
+    /// Everything shading needs at a triangle hit, interpolated by its barycentrics: the point
+    /// (reprojected onto the triangle), the normals, (u, v) and dp/du, dp/dv. The one place the
+    /// flat and smooth triangles share, as the lecture's base `MeshTriangle`.
+    #[must_use]
+    pub fn surface(&self, hit: TriangleHit, shading: Shading) -> LocalHit {
+        let i = hit.triangle as usize;
+        let [a, b, c] = self.triangles[i].map(|k| k as usize);
+        let (w0, w1, w2) = (hit.bary.x, hit.bary.y, hit.bary.z);
+        let (p0, p1, p2) = (self.positions[a], self.positions[b], self.positions[c]);
+        let p = p0 * w0 + p1 * w1 + p2 * w2;
+        let mut n = (p1 - p0).cross(p2 - p0).normalize_or(Vec3::Y);
+        let ns = match shading {
+            Shading::Flat => n,
+            Shading::Smooth => {
+                let ns = (self.normals[a] * w0 + self.normals[b] * w1 + self.normals[c] * w2)
+                    .normalize_or(n);
+                // The outside is where the shading normals point, whatever the winding.
+                if ns.dot(n) < 0.0 {
+                    n = -n;
+                }
+                ns
+            }
+        };
+        let (uv, dpduv) = if self.uvs.is_empty() {
+            (None, None)
+        } else {
+            let (t0, t1, t2) = (self.uvs[a], self.uvs[b], self.uvs[c]);
+            let uv = t0 * w0 + t1 * w1 + t2 * w2;
+            (Some(uv), dp_duv(p0, p1, p2, t0, t1, t2))
+        };
+        LocalHit {
+            t: hit.t,
+            p: p.into(),
+            n: n.into(),
+            ns: ns.into(),
+            uv,
+            dpduv,
+            part: self.file_index[i],
+        }
+    }
+}
+
+/// dp/du and dp/dv of a triangle (pbrt's solve), or `None` where the (u, v) triangle has zero
+/// area: the texture's derivatives are then zero (the finest level), never NaN.
+fn dp_duv(p0: Vec3, p1: Vec3, p2: Vec3, t0: Vec2, t1: Vec2, t2: Vec2) -> Option<(Vec3A, Vec3A)> {
+    if is_zero_uv_area(t0, t1, t2) {
+        return None;
+    }
+    let (d02, d12) = (t0 - t2, t1 - t2);
+    let (dp02, dp12) = (p0 - p2, p1 - p2);
+    let det = d02.x * d12.y - d02.y * d12.x;
+    let inv = 1.0 / det;
+    let dpdu = (dp02 * d12.y - dp12 * d02.y) * inv;
+    let dpdv = (dp12 * d02.x - dp02 * d12.x) * inv;
+    (dpdu.is_finite() && dpdv.is_finite()).then(|| (dpdu.into(), dpdv.into()))
+}
+
+/// Area-weighted vertex normals: each triangle adds its unnormalised cross product (twice its
+/// area times its normal) to its corners.
+fn area_weighted_normals(positions: &[Vec3], triangles: &[[u32; 3]]) -> Vec<Vec3> {
+    let mut acc = vec![Vec3::ZERO; positions.len()];
+    for t in triangles {
+        let [a, b, c] = t.map(|k| k as usize);
+        let n = (positions[b] - positions[a]).cross(positions[c] - positions[a]);
+        if n.is_finite() {
+            acc[a] += n;
+            acc[b] += n;
+            acc[c] += n;
+        }
+    }
+    for n in &mut acc {
+        *n = n.normalize_or_zero();
+    }
+    acc
+}
+
+/// A ray prepared for the watertight test: the shear that maps the ray onto the +z axis of a
+/// permuted frame (largest direction component last, winding preserved).
+#[derive(Clone, Copy, Debug)]
+struct WoopRay {
+    origin: Vec3A,
+    shear: Mat3A,
+}
+
+impl WoopRay {
+    #[inline]
+    fn new(ray: &Ray) -> Option<Self> {
+        let d = ray.dir;
+        if !d.is_finite() || !ray.origin.is_finite() {
+            return None;
+        }
+        let a = d.abs();
+        let kz = if a.x >= a.y && a.x >= a.z {
+            0
+        } else if a.y >= a.z {
+            1
+        } else {
+            2
+        };
+        if d[kz] == 0.0 {
+            return None;
+        }
+        let mut kx = (kz + 1) % 3;
+        let mut ky = (kx + 1) % 3;
+        if d[kz] < 0.0 {
+            std::mem::swap(&mut kx, &mut ky);
+        }
+        let (sx, sy, sz) = (d[kx] / d[kz], d[ky] / d[kz], 1.0 / d[kz]);
+        let mut cols = [Vec3A::ZERO; 3];
+        cols[kx] = Vec3A::X;
+        cols[ky] = Vec3A::Y;
+        cols[kz] = Vec3A::new(-sx, -sy, sz);
+        Some(Self {
+            origin: ray.origin,
+            shear: Mat3A::from_cols(cols[0], cols[1], cols[2]),
+        })
+    }
+
+    /// The hit's t and barycentrics, or `None`. Each vertex is transformed alone, so a shared
+    /// edge's function has the same magnitude in both triangles; exact zeros are recomputed in
+    /// f64 (exact for products of f32), so the sign test never lets a ray through a crack.
+    #[inline(always)]
+    fn test(&self, p0: Vec3, p1: Vec3, p2: Vec3, t_max: f32) -> Option<(f32, Vec3)> {
+        let a = self.shear * (Vec3A::from(p0) - self.origin);
+        let b = self.shear * (Vec3A::from(p1) - self.origin);
+        let c = self.shear * (Vec3A::from(p2) - self.origin);
+        let mut u = c.x * b.y - c.y * b.x;
+        let mut v = a.x * c.y - a.y * c.x;
+        let mut w = b.x * a.y - b.y * a.x;
+        if u == 0.0 || v == 0.0 || w == 0.0 {
+            let f = f64::from;
+            u = (f(c.x) * f(b.y) - f(c.y) * f(b.x)) as f32;
+            v = (f(a.x) * f(c.y) - f(a.y) * f(c.x)) as f32;
+            w = (f(b.x) * f(a.y) - f(b.y) * f(a.x)) as f32;
+        }
+        if (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0) {
+            return None;
+        }
+        let det = u + v + w;
+        if det == 0.0 {
+            return None;
+        }
+        let t_scaled = u * a.z + v * b.z + w * c.z;
+        let inv = 1.0 / det;
+        let t = t_scaled * inv;
+        if !(t > 0.0 && t < t_max) {
+            return None;
+        }
+        Some((t, Vec3::new(u, v, w) * inv))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn quad() -> MeshData {
+        // The lecture's two triangles.
+        MeshData {
+            positions: vec![
+                Vec3::new(-1.0, 0.0, -1.0),
+                Vec3::new(-1.0, -1.0, 1.0),
+                Vec3::new(1.0, 0.0, 1.0),
+                Vec3::new(1.0, -1.0, -1.0),
+            ],
+            uvs: vec![
+                Vec2::new(0.0, 0.0),
+                Vec2::new(1.0, 0.0),
+                Vec2::new(1.0, 1.0),
+                Vec2::new(0.0, 1.0),
+            ],
+            triangles: vec![[0, 1, 2], [0, 2, 3]],
+            faces: 2,
+            ..MeshData::default()
+        }
+    }
+
+    fn down(x: f32, z: f32) -> Ray {
+        Ray::new(Vec3A::new(x, 5.0, z), Vec3A::new(0.0, -1.0, 0.0))
+    }
+
+    /// On the lecture's triangles (u, v) = ((z + 1) / 2, (x + 1) / 2) everywhere: the vertex
+    /// values interpolate to the rectangular map of the square they cover.
+    #[test]
+    fn lecture_triangles_interpolate_uv() {
+        let m = Mesh::new(quad(), Path::new("quad")).unwrap();
+        for (x, z) in [
+            (0.5, -0.5),
+            (-0.7, 0.6),
+            (0.9, 0.95),
+            (-0.2, -0.9),
+            (0.0, 0.0),
+        ] {
+            for shading in Shading::ALL {
+                let h = m.intersect(&down(x, z), f32::INFINITY, shading).unwrap();
+                let uv = h.uv.unwrap();
+                assert!((uv - Vec2::new((z + 1.0) / 2.0, (x + 1.0) / 2.0)).length() < 1e-6);
+                assert!((h.p.x - x).abs() < 1e-6 && (h.p.z - z).abs() < 1e-6);
+                assert!(h.n.y > 0.0 && h.ns.y > 0.0);
+            }
+        }
+        // Flat: the two faces' normals differ; smooth: they meet on the shared diagonal.
+        let f1 = m.intersect(&down(0.3, -0.6), 1e9, Shading::Flat).unwrap();
+        let f2 = m.intersect(&down(-0.3, 0.6), 1e9, Shading::Flat).unwrap();
+        assert!((f1.ns - f2.ns).length() > 0.5);
+        let s1 = m
+            .intersect(&down(0.3001, 0.3), 1e9, Shading::Smooth)
+            .unwrap();
+        let s2 = m
+            .intersect(&down(0.2999, 0.3), 1e9, Shading::Smooth)
+            .unwrap();
+        assert!((s1.ns - s2.ns).length() < 1e-3);
+        assert_ne!(s1.part, s2.part);
+        // dp/du points along +z (u grows with z), dp/dv along +x.
+        let (dpdu, dpdv) = f1.dpduv.unwrap();
+        assert!(dpdu.z > 1.9 && dpdv.x > 1.9, "{dpdu} {dpdv}");
+    }
+
+    /// Zero-area and zero-UV-area triangles neither crash nor give NaN.
+    #[test]
+    fn degenerate_triangles_are_harmless() {
+        let mut d = quad();
+        d.positions.push(Vec3::new(0.0, 0.0, 0.0));
+        d.positions.push(Vec3::new(0.0, 0.0, 0.0));
+        d.uvs.push(Vec2::ZERO);
+        d.uvs.push(Vec2::ZERO);
+        d.triangles.push([4, 5, 4]); // a point
+        d.triangles.push([0, 4, 2]); // a line through the quad
+        // Same (u, v) at every corner of a real triangle.
+        d.uvs[3] = Vec2::ZERO;
+        d.uvs[2] = Vec2::ZERO;
+        assert_eq!(
+            d.degenerate(),
+            Degenerate {
+                zero_area: 2,
+                zero_uv_area: 4
+            }
+        );
+        let m = Mesh::new(d, Path::new("degenerate")).unwrap();
+        for k in 0..400 {
+            let (x, z) = ((k % 20) as f32 / 10.0 - 0.95, (k / 20) as f32 / 10.0 - 0.95);
+            for shading in Shading::ALL {
+                if let Some(h) = m.intersect(&down(x, z), 1e9, shading) {
+                    assert!(h.p.is_finite() && h.n.is_finite() && h.ns.is_finite());
+                    assert!(h.uv.unwrap().is_finite());
+                    if let Some((a, b)) = h.dpduv {
+                        assert!(a.is_finite() && b.is_finite());
+                    }
+                }
+            }
+        }
+        // The ray along the zero-area line still hits a real triangle.
+        assert!(m.intersect(&down(0.0, 0.0), 1e9, Shading::Flat).is_some());
+    }
+
+    #[test]
+    fn out_of_range_indices_and_nan_are_refused() {
+        let mut d = quad();
+        d.triangles[1] = [0, 2, 4];
+        let e = Mesh::new(d, Path::new("x.ply")).unwrap_err().to_string();
+        assert!(
+            e.contains("x.ply") && e.contains("triangle 1") && e.contains("4"),
+            "{e}"
+        );
+        let mut d = quad();
+        d.positions[2].y = f32::NAN;
+        let e = Mesh::new(d, Path::new("x.ply")).unwrap_err().to_string();
+        assert!(e.contains("vertex 2"), "{e}");
+    }
+
+    #[test]
+    fn rays_miss_beside_and_stop_at_t_max() {
+        let m = Mesh::new(quad(), Path::new("quad")).unwrap();
+        assert!(m.intersect(&down(1.01, 0.0), 1e9, Shading::Flat).is_none());
+        assert!(m.intersect(&down(0.5, 0.5), 4.0, Shading::Flat).is_none());
+        assert!(m.occluded(&down(0.5, 0.5), 1e9));
+        assert!(!m.occluded(&down(0.5, 0.5), 4.0));
+        // A zero direction is refused, not a NaN.
+        assert!(
+            m.intersect(&Ray::new(Vec3A::Y, Vec3A::ZERO), 1e9, Shading::Flat)
+                .is_none()
+        );
+    }
+}

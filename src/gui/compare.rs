@@ -1,0 +1,401 @@
+//! Comparing antialiasing modes: the A/B split (two modes of the same scene side by side, each
+//! with its time and its error against a high-spp reference) and the speed/error plot.
+
+use super::live::LiveImage;
+use super::widgets::filter_tip;
+use crate::inspect::{AaMode, ModeResult, measure_modes, rmse};
+use crate::render::{Generation, RenderJob, RenderOptions};
+use crate::sampler::PixelSampler;
+use crate::scene::{AssetCache, Scene, SceneDesc, build_scene};
+use crate::texture::Filter;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::mpsc::{Receiver, channel};
+use std::time::Duration;
+
+/// Samples per pixel of the reference both sides are measured against.
+pub const REFERENCE_SPP: u32 = 256;
+
+/// The reference: many well-stratified samples with the preset's filters.
+const REFERENCE: AaMode = AaMode {
+    sampler: PixelSampler::MultiJittered,
+    spp: REFERENCE_SPP,
+    filter: None,
+};
+
+/// Two antialiasing modes of the same scene, rendered one after the other (so each time is
+/// measured on an idle machine), then the reference.
+pub struct AbSplit {
+    /// Whether the viewport shows the split.
+    pub enabled: bool,
+    /// Where the divider is, as a fraction of the image width.
+    pub split: f32,
+    /// The modes left (A) and right (B).
+    pub modes: [AaMode; 2],
+    jobs: [Option<RenderJob>; 3],
+    waiting: [Option<Arc<Scene>>; 3],
+    live: [LiveImage; 2],
+    errors: [Option<f32>; 2],
+    generation: Generation,
+    restart_wanted: bool,
+    message: Option<String>,
+}
+
+impl Default for AbSplit {
+    fn default() -> Self {
+        Self {
+            enabled: false,
+            split: 0.5,
+            modes: [
+                AaMode {
+                    sampler: PixelSampler::Regular,
+                    spp: 1,
+                    filter: Some(Filter::Nearest),
+                },
+                AaMode {
+                    sampler: PixelSampler::MultiJittered,
+                    spp: 16,
+                    filter: Some(Filter::Bilinear),
+                },
+            ],
+            jobs: [None, None, None],
+            waiting: [None, None, None],
+            live: [LiveImage::new("ab-a"), LiveImage::new("ab-b")],
+            errors: [None, None],
+            generation: Generation::new(),
+            restart_wanted: false,
+            message: None,
+        }
+    }
+}
+
+fn retire(job: Option<RenderJob>) {
+    if let Some(job) = job {
+        job.cancel();
+        let _ = std::thread::Builder::new()
+            .name("texplore-retire".into())
+            .spawn(move || drop(job));
+    }
+}
+
+impl AbSplit {
+    /// Builds both sides and the reference from `desc` and starts side A.
+    pub fn restart(
+        &mut self,
+        desc: &SceneDesc,
+        path: &Path,
+        cache: &mut AssetCache,
+        generation: &Generation,
+    ) {
+        self.stop();
+        self.generation = generation.clone();
+        let modes = [self.modes[0], self.modes[1], REFERENCE];
+        for (slot, mode) in modes.iter().enumerate() {
+            match build_scene(&mode.apply(desc), path, cache) {
+                Ok(scene) => self.waiting[slot] = Some(Arc::new(scene)),
+                Err(e) => {
+                    self.message = Some(e.to_string());
+                    self.waiting = [None, None, None];
+                    return;
+                }
+            }
+        }
+        self.message = None;
+        self.start(0);
+    }
+
+    fn start(&mut self, slot: usize) {
+        if let Some(scene) = self.waiting[slot].take() {
+            self.jobs[slot] = Some(RenderJob::start(
+                scene,
+                RenderOptions::default(),
+                &self.generation,
+            ));
+            if let Some(live) = self.live.get_mut(slot) {
+                live.reset();
+            }
+        }
+    }
+
+    /// Stops every job of the split.
+    pub fn stop(&mut self) {
+        for j in &mut self.jobs {
+            retire(j.take());
+        }
+        self.waiting = [None, None, None];
+        self.errors = [None, None];
+    }
+
+    /// Uploads new images, starts the next job when one finishes, and computes the errors once
+    /// the reference is done. Returns whether anything is still rendering.
+    pub fn poll(&mut self, ctx: &egui::Context) -> bool {
+        if !self.enabled {
+            return false;
+        }
+        for (job, live) in self.jobs.iter().zip(&mut self.live) {
+            if let Some(job) = job {
+                live.update(ctx, job);
+            }
+        }
+        let done = |j: &Option<RenderJob>| j.as_ref().is_some_and(|j| j.progress().finished);
+        if done(&self.jobs[0]) && self.jobs[1].is_none() {
+            self.start(1);
+        }
+        if done(&self.jobs[1]) && self.jobs[2].is_none() {
+            self.start(2);
+        }
+        if done(&self.jobs[2]) && self.errors[0].is_none() {
+            let reference = self.jobs[2].as_ref().and_then(RenderJob::film);
+            for side in 0..2 {
+                let film = self.jobs[side].as_ref().and_then(RenderJob::film);
+                if let (Some(f), Some(r)) = (film, &reference) {
+                    self.errors[side] = rmse(&f, r);
+                }
+            }
+        }
+        self.jobs.iter().any(|j| {
+            j.as_ref()
+                .is_some_and(|j| !j.progress().finished && !j.progress().cancelled)
+        }) || self.waiting.iter().any(Option::is_some)
+    }
+
+    /// Whether the controls changed a mode since the last call.
+    pub fn take_restart(&mut self) -> bool {
+        std::mem::take(&mut self.restart_wanted)
+    }
+
+    /// The texture of side 0 (A) or 1 (B).
+    #[must_use]
+    pub fn texture(&self, side: usize) -> Option<&egui::TextureHandle> {
+        self.live.get(side).and_then(LiveImage::texture)
+    }
+
+    /// Time spent tracing a side (full passes, no preview), once it is done.
+    fn time(&self, side: usize) -> Option<Duration> {
+        let p = self.jobs.get(side)?.as_ref()?.progress();
+        if !p.finished || p.rays_per_second <= 0.0 {
+            return None;
+        }
+        let rays = f64::from(p.spp_done) * self.pixels(side)?;
+        Some(Duration::from_secs_f64(rays / p.rays_per_second))
+    }
+
+    fn pixels(&self, side: usize) -> Option<f64> {
+        let film = self.jobs.get(side)?.as_ref()?.film()?;
+        Some(f64::from(film.width()) * f64::from(film.height()))
+    }
+
+    /// The caption drawn over a side: its mode, time and error.
+    #[must_use]
+    pub fn caption(&self, side: usize) -> String {
+        let name = ["A", "B"].get(side).copied().unwrap_or("?");
+        let mut s = format!("{name}: {}", self.modes[side].label());
+        match self.time(side) {
+            Some(t) => s.push_str(&format!(" · {:.0} ms", t.as_secs_f64() * 1e3)),
+            None => s.push_str(" · rendering"),
+        }
+        if let Some(e) = self.errors[side] {
+            s.push_str(&format!(" · RMSE {e:.4}"));
+        }
+        s
+    }
+
+    /// The status line while the split is shown.
+    #[must_use]
+    pub fn status(&self) -> String {
+        if let Some(m) = &self.message {
+            return m.clone();
+        }
+        let stage = if self.errors[0].is_some() {
+            "done".to_owned()
+        } else if self.jobs[2].is_some() {
+            format!("rendering the reference ({REFERENCE_SPP} spp, multi-jittered) for the error")
+        } else if self.jobs[1].is_some() {
+            "rendering B".to_owned()
+        } else {
+            "rendering A".to_owned()
+        };
+        format!(
+            "A/B split · {stage} · errors are RMSE against the reference, display values clamped to [0, 1]"
+        )
+    }
+
+    /// The two modes' controls (sampler, spp, filter).
+    pub fn controls(&mut self, ui: &mut egui::Ui) {
+        for side in 0..2 {
+            let name = ["A", "B"][side];
+            ui.horizontal(|ui| {
+                let m = &mut self.modes[side];
+                let mut changed = super::widgets::enum_combo(
+                    ui,
+                    &format!("{name} sampler"),
+                    &mut m.sampler,
+                    PixelSampler::description,
+                );
+                changed |= ui
+                    .horizontal(|ui| {
+                        let l = ui.label(format!("{name} spp"));
+                        ui.add(egui::DragValue::new(&mut m.spp).range(1..=1024))
+                            .labelled_by(l.id)
+                            .changed()
+                    })
+                    .inner;
+                let l = ui.label(format!("{name} filter"));
+                let text = m.filter.map_or("as in the scene", Filter::name);
+                egui::ComboBox::from_id_salt(format!("{name} filter"))
+                    .selected_text(text)
+                    .show_ui(ui, |ui| {
+                        changed |= ui
+                            .selectable_value(&mut m.filter, None, "as in the scene")
+                            .on_hover_text("Each texture keeps its own filter")
+                            .changed();
+                        for f in Filter::ALL {
+                            changed |= ui
+                                .selectable_value(&mut m.filter, Some(f), f.name())
+                                .on_hover_text(filter_tip(f.name()))
+                                .changed();
+                        }
+                    })
+                    .response
+                    .labelled_by(l.id);
+                self.restart_wanted |= changed;
+            });
+        }
+    }
+}
+
+type Measured = Result<Vec<ModeResult>, String>;
+
+/// The speed/error panel: time against error for every sampler at a few sample counts,
+/// measured on demand on a background thread at a small resolution.
+#[derive(Default)]
+pub struct SpeedPanel {
+    /// Whether the window is open.
+    pub open: bool,
+    results: Vec<ModeResult>,
+    running: Option<(Receiver<Measured>, Arc<AtomicBool>)>,
+    error: Option<String>,
+}
+
+/// Sample counts measured per sampler.
+const SPEED_SPP: [u32; 5] = [1, 2, 4, 8, 16];
+/// Resolution of the measurement renders.
+const SPEED_SIZE: (u32, u32) = (160, 120);
+
+impl SpeedPanel {
+    fn measure(&mut self, desc: &SceneDesc, path: &Path) {
+        let (tx, rx) = channel();
+        let stop = Arc::new(AtomicBool::new(false));
+        let (desc, path, stop2): (SceneDesc, PathBuf, _) =
+            (desc.clone(), path.to_path_buf(), stop.clone());
+        let spawned = std::thread::Builder::new()
+            .name("texplore-measure".into())
+            .spawn(move || {
+                let modes: Vec<AaMode> = PixelSampler::ALL
+                    .iter()
+                    .flat_map(|&sampler| {
+                        SPEED_SPP.iter().map(move |&spp| AaMode {
+                            sampler,
+                            spp,
+                            filter: None,
+                        })
+                    })
+                    .collect();
+                let r = measure_modes(
+                    &desc,
+                    &path,
+                    &mut AssetCache::new(),
+                    &modes,
+                    REFERENCE,
+                    SPEED_SIZE,
+                    &|| stop2.load(Ordering::Relaxed),
+                )
+                .map_err(|e| e.to_string());
+                let _ = tx.send(r);
+            });
+        match spawned {
+            Ok(_) => self.running = Some((rx, stop)),
+            Err(e) => self.error = Some(format!("cannot start the measurement: {e}")),
+        }
+    }
+
+    /// The window, when open.
+    pub fn window(&mut self, ctx: &egui::Context, desc: Option<&SceneDesc>, path: &Path) {
+        if let Some((rx, _)) = &self.running
+            && let Ok(r) = rx.try_recv()
+        {
+            match r {
+                Ok(v) => {
+                    self.results = v;
+                    self.error = None;
+                }
+                Err(e) => self.error = Some(e),
+            }
+            self.running = None;
+        }
+        if !self.open {
+            if let Some((_, stop)) = self.running.take() {
+                stop.store(true, Ordering::Relaxed);
+            }
+            return;
+        }
+        let mut open = self.open;
+        egui::Window::new("Speed and error")
+            .open(&mut open)
+            .default_size([520.0, 380.0])
+            .show(ctx, |ui| {
+                ui.horizontal(|ui| {
+                    let busy = self.running.is_some();
+                    if ui
+                        .add_enabled(!busy && desc.is_some(), egui::Button::new("Measure"))
+                        .on_hover_text("Render the scene with every sampler at 1 to 16 spp (160 x 120) and compare with a 256-spp reference")
+                        .clicked()
+                        && let Some(d) = desc
+                    {
+                        self.measure(d, path);
+                    }
+                    if busy {
+                        ui.spinner();
+                        ui.label("measuring…");
+                        ctx.request_repaint_after(Duration::from_millis(100));
+                    }
+                });
+                if let Some(e) = &self.error {
+                    ui.colored_label(egui::Color32::LIGHT_RED, e);
+                }
+                ui.label(format!(
+                    "x: render time (ms) at {}x{}; y: RMSE against {REFERENCE_SPP} spp multi-jittered. Points are 1, 2, 4, 8, 16 spp.",
+                    SPEED_SIZE.0, SPEED_SIZE.1
+                ));
+                egui_plot::Plot::new("speed-error")
+                    .legend(egui_plot::Legend::default())
+                    .x_axis_label("time (ms)")
+                    .y_axis_label("RMSE")
+                    .show(ui, |plot| {
+                        for sampler in PixelSampler::ALL {
+                            let pts: Vec<[f64; 2]> = self
+                                .results
+                                .iter()
+                                .filter(|r| r.mode.sampler == sampler)
+                                .map(|r| [r.time.as_secs_f64() * 1e3, f64::from(r.error)])
+                                .collect();
+                            if pts.is_empty() {
+                                continue;
+                            }
+                            plot.line(egui_plot::Line::new(sampler.name(), pts.clone()));
+                            plot.points(egui_plot::Points::new(sampler.name(), pts).radius(3.0));
+                        }
+                    });
+            });
+        self.open = open;
+    }
+}
+
+impl Drop for SpeedPanel {
+    fn drop(&mut self) {
+        if let Some((_, stop)) = &self.running {
+            stop.store(true, Ordering::Relaxed);
+        }
+    }
+}

@@ -1,0 +1,406 @@
+//! The inspector, the teaching core: hover or click a pixel to see the object hit, the local hit
+//! point, the mapping's formula with this pixel's numbers, (u, v), the texel both lookups pick,
+//! the footprint and mip level; the texture view marks the texel and draws the footprint.
+
+use crate::inspect::Inspection;
+use crate::math::{Rgb, Vec2, linear_to_srgb};
+use crate::scene::Scene;
+use crate::texture::ImageData;
+use std::sync::Arc;
+
+/// Largest side of the texture overview uploaded to the GPU (bigger images are subsampled).
+const OVERVIEW_MAX: u32 = 4096;
+/// Smallest and largest side of the zoomed texel view, in texels.
+const ZOOM_TEXELS: (u32, u32) = (8, 64);
+
+/// The inspector's state.
+pub struct Inspector {
+    /// Whether the panel is shown.
+    pub open: bool,
+    pinned: Option<Vec2>,
+    at: Option<Vec2>,
+    shown: Option<Inspection>,
+    overview: Option<(usize, egui::TextureHandle)>,
+    zoom: Option<(ZoomKey, egui::TextureHandle)>,
+}
+
+#[derive(Clone, Copy, PartialEq)]
+struct ZoomKey {
+    image: usize,
+    origin: (i64, i64),
+    n: u32,
+}
+
+impl Default for Inspector {
+    fn default() -> Self {
+        Self {
+            open: true,
+            pinned: None,
+            at: None,
+            shown: None,
+            overview: None,
+            zoom: None,
+        }
+    }
+}
+
+fn srgb(c: Rgb) -> egui::Color32 {
+    let [r, g, b] = c
+        .to_array()
+        .map(|v| (linear_to_srgb(v.clamp(0.0, 1.0)) * 255.0).round() as u8);
+    egui::Color32::from_rgb(r, g, b)
+}
+
+impl Inspector {
+    /// Forgets the pixel (a new scene was opened).
+    pub fn clear(&mut self) {
+        self.pinned = None;
+        self.at = None;
+        self.shown = None;
+    }
+
+    /// Inspects the same pixel again in a rebuilt scene.
+    pub fn refresh(&mut self, scene: Option<&Scene>) {
+        if let (Some(scene), Some(at)) = (scene, self.at) {
+            self.shown = scene.inspect(at);
+        }
+    }
+
+    /// Follows the pointer: a click pins a pixel (a second click on the image moves the pin);
+    /// hovering inspects while nothing is pinned.
+    pub fn pointer(&mut self, scene: &Scene, hover: Option<Vec2>, click: Option<Vec2>) {
+        if let Some(c) = click {
+            self.pinned = Some(c);
+        }
+        let at = self.pinned.or(hover);
+        if at.is_some() && at != self.at {
+            self.at = at;
+            self.shown = at.and_then(|p| scene.inspect(p));
+        }
+    }
+
+    /// The inspection shown, if any.
+    #[must_use]
+    pub fn shown(&self) -> Option<&Inspection> {
+        self.shown.as_ref()
+    }
+
+    /// The panel.
+    pub fn ui(&mut self, ui: &mut egui::Ui) {
+        ui.heading("Inspector");
+        if let Some(p) = self.pinned {
+            ui.horizontal(|ui| {
+                ui.label(format!(
+                    "pinned at ({:.0}, {:.0})",
+                    p.x.floor(),
+                    p.y.floor()
+                ));
+                if ui
+                    .button("Unpin")
+                    .on_hover_text("Follow the pointer again")
+                    .clicked()
+                {
+                    self.pinned = None;
+                }
+            });
+        }
+        let Some(i) = self.shown.clone() else {
+            ui.label("Hover the image to see what the renderer did at a pixel; click to pin it.");
+            if self.at.is_some() {
+                ui.label("(this pixel's ray hits nothing: it shows the background)");
+            }
+            return;
+        };
+        let v3 = |v: crate::math::Vec3A| format!("({:.4}, {:.4}, {:.4})", v.x, v.y, v.z);
+        egui::Grid::new("inspect-hit").num_columns(2).striped(true).show(ui, |ui| {
+            ui.label("pixel");
+            ui.label(format!("({:.0}, {:.0})", i.pixel.x.floor(), i.pixel.y.floor()));
+            ui.end_row();
+            ui.label("object");
+            ui.label(format!("{} ({})", i.object_name, i.shape));
+            ui.end_row();
+            ui.label("world hit point");
+            ui.label(v3(i.world_point));
+            ui.end_row();
+            ui.label("local hit point");
+            ui.label(v3(i.local_point)).on_hover_text("The lecture's local_hit_point: the hit in the generic object's own space, which the mapping reads");
+            ui.end_row();
+            ui.label("texture");
+            ui.label(i.texture_kind);
+            ui.end_row();
+            if let Some(m) = i.mapping {
+                ui.label("mapping");
+                ui.label(m.name()).on_hover_text(m.description());
+                ui.end_row();
+            }
+            ui.label("texture colour");
+            ui.horizontal(|ui| {
+                let (r, _) = ui.allocate_exact_size(egui::vec2(28.0, 14.0), egui::Sense::hover());
+                ui.painter().rect_filled(r, 2.0, srgb(i.texture_colour));
+                let c = i.texture_colour;
+                ui.label(format!("({:.3}, {:.3}, {:.3}) linear", c.0, c.1, c.2));
+            });
+            ui.end_row();
+            ui.label("pixel radiance");
+            let c = i.radiance;
+            ui.label(format!("({:.3}, {:.3}, {:.3})", c.0, c.1, c.2));
+            ui.end_row();
+        });
+        if !i.mapping_lines.is_empty() {
+            ui.separator();
+            ui.strong("Mapping, with this pixel's numbers");
+            for l in &i.mapping_lines {
+                ui.monospace(l);
+            }
+        }
+        if let Some(t) = i.tex {
+            ui.separator();
+            egui::Grid::new("inspect-uv").num_columns(2).show(ui, |ui| {
+                ui.label("(u, v)");
+                ui.monospace(format!("({:.5}, {:.5})", t.uv.x, t.uv.y));
+                ui.end_row();
+                if let Some(w) = i.wrapped_uv
+                    && w != t.uv
+                {
+                    ui.label("after wrap");
+                    ui.monospace(format!("({:.5}, {:.5})", w.x, w.y));
+                    ui.end_row();
+                }
+                ui.label("d(u,v)/dx");
+                ui.monospace(format!("({:+.2e}, {:+.2e})", t.duvdx.x, t.duvdx.y));
+                ui.end_row();
+                ui.label("d(u,v)/dy");
+                ui.monospace(format!("({:+.2e}, {:+.2e})", t.duvdy.x, t.duvdy.y));
+                ui.end_row();
+                if let Some(f) = i.footprint
+                    && let (Some((a, b)), Some(level)) = (f.axes_texels, f.mip_level)
+                {
+                    ui.label("footprint");
+                    ui.monospace(format!("{a:.2} x {b:.2} texels"))
+                        .on_hover_text("Lengths of the two axes of the pixel's footprint ellipse in the texture");
+                    ui.end_row();
+                    ui.label("mip level");
+                    ui.monospace(format!("{level:.2}"))
+                        .on_hover_text("log2 of the longest footprint axis in texels: the level a trilinear mip filter reads");
+                    ui.end_row();
+                }
+            });
+        }
+        if i.image.is_some() {
+            ui.separator();
+            self.texture_views(ui, &i);
+        }
+        if let Some(read) = &i.image {
+            ui.separator();
+            ui.strong(format!(
+                "Texel in {} ({} x {}, filter {})",
+                read.image.name,
+                read.image.width(),
+                read.image.height(),
+                read.filter.name()
+            ));
+            for pick in &i.texels {
+                let active = pick.lookup == read.lookup;
+                ui.label(format!(
+                    "{} lookup{}: column {}, row {} from the bottom (file row {})",
+                    pick.lookup.name(),
+                    if active { " (in use)" } else { "" },
+                    pick.column,
+                    pick.row_from_bottom,
+                    pick.file_row
+                ));
+                for l in &pick.lines {
+                    ui.monospace(format!("  {l}"));
+                }
+            }
+        }
+    }
+
+    /// The whole texture with a cross at (u, v), and a zoom on the texels around it with both
+    /// lookups' texels outlined and the footprint ellipse.
+    fn texture_views(&mut self, ui: &mut egui::Ui, i: &Inspection) {
+        let (Some(read), Some(uv)) = (&i.image, i.wrapped_uv) else {
+            return;
+        };
+        let img = &read.image;
+        let key = Arc::as_ptr(img) as usize;
+        let (w, h) = (img.width(), img.height());
+        if self.overview.as_ref().is_none_or(|(k, _)| *k != key) {
+            let tex = ui.ctx().load_texture(
+                "inspector-overview",
+                overview(img),
+                egui::TextureOptions::LINEAR,
+            );
+            self.overview = Some((key, tex));
+        }
+        let texel_xy = Vec2::new(uv.x * w as f32, (1.0 - uv.y) * h as f32); // file space, y down
+        let col = ((ui.available_width() - 8.0) * 0.5).max(120.0);
+        ui.horizontal_top(|ui| {
+        ui.vertical(|ui| {
+        ui.set_width(col);
+        if let Some((_, tex)) = &self.overview {
+            let width = col;
+            let size = egui::vec2(width, width * h as f32 / w as f32);
+            let (rect, _) = ui.allocate_exact_size(size, egui::Sense::hover());
+            let p = ui.painter_at(rect);
+            p.image(
+                tex.id(),
+                rect,
+                egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0)),
+                egui::Color32::WHITE,
+            );
+            let at = rect.min + egui::vec2(uv.x * rect.width(), (1.0 - uv.y) * rect.height());
+            let stroke = egui::Stroke::new(1.5, egui::Color32::YELLOW);
+            p.line_segment(
+                [
+                    egui::pos2(rect.left(), at.y),
+                    egui::pos2(rect.right(), at.y),
+                ],
+                egui::Stroke::new(1.0, egui::Color32::from_white_alpha(120)),
+            );
+            p.line_segment(
+                [
+                    egui::pos2(at.x, rect.top()),
+                    egui::pos2(at.x, rect.bottom()),
+                ],
+                egui::Stroke::new(1.0, egui::Color32::from_white_alpha(120)),
+            );
+            p.circle_stroke(at, 5.0, stroke);
+        }
+        ui.label(
+            "Right: the texels around the hit. Yellow: the centred lookup's texel; cyan: the lecture's; magenta: the pixel's footprint.",
+        );
+        });
+        // Zoom: a square of texels around the hit, big enough for the footprint.
+        let major = i
+            .footprint
+            .and_then(|f| f.axes_texels)
+            .map_or(1.0, |(a, _)| a);
+        let n = ((major * 2.5).ceil() as u32).clamp(ZOOM_TEXELS.0, ZOOM_TEXELS.1);
+        let origin = (
+            texel_xy.x.floor() as i64 - i64::from(n / 2),
+            texel_xy.y.floor() as i64 - i64::from(n / 2),
+        );
+        let zkey = ZoomKey {
+            image: key,
+            origin,
+            n,
+        };
+        if self.zoom.as_ref().is_none_or(|(k, _)| *k != zkey) {
+            let (wu, wv) = read.wraps;
+            let mut pixels = Vec::with_capacity((n * n) as usize);
+            for y in 0..n {
+                for x in 0..n {
+                    let col = wu.index(origin.0 + i64::from(x), w);
+                    // Wrap in v works on rows from the bottom.
+                    let from_bottom = i64::from(h) - 1 - (origin.1 + i64::from(y));
+                    let row = wv.index(from_bottom, h);
+                    pixels.push(match (col, row) {
+                        (Some(c), Some(r)) => srgb(img.texel(c, r)),
+                        _ => egui::Color32::BLACK,
+                    });
+                }
+            }
+            let image = egui::ColorImage::new([n as usize, n as usize], pixels);
+            let tex = ui
+                .ctx()
+                .load_texture("inspector-zoom", image, egui::TextureOptions::NEAREST);
+            self.zoom = Some((zkey, tex));
+        }
+        let Some((_, tex)) = &self.zoom else { return };
+        let side = col;
+        let (rect, _) = ui.allocate_exact_size(egui::vec2(side, side), egui::Sense::hover());
+        let p = ui.painter_at(rect);
+        p.image(
+            tex.id(),
+            rect,
+            egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0)),
+            egui::Color32::WHITE,
+        );
+        let scale = side / n as f32;
+        let to_screen = |x: f32, y: f32| {
+            rect.min + egui::vec2((x - origin.0 as f32) * scale, (y - origin.1 as f32) * scale)
+        };
+        if scale >= 6.0 {
+            let grid = egui::Stroke::new(0.5, egui::Color32::from_black_alpha(90));
+            for k in 0..=n {
+                let o = k as f32 * scale;
+                p.line_segment(
+                    [
+                        rect.min + egui::vec2(o, 0.0),
+                        rect.min + egui::vec2(o, side),
+                    ],
+                    grid,
+                );
+                p.line_segment(
+                    [
+                        rect.min + egui::vec2(0.0, o),
+                        rect.min + egui::vec2(side, o),
+                    ],
+                    grid,
+                );
+            }
+        }
+        // The texels the lookups pick, drawn where the hit is (the picks are in [0, w) already).
+        let near = |c: u32, fr: u32| {
+            // Choose the copy of the texel nearest the hit (wrap can put it one period away).
+            let unwrap = |t: f32, at: f32, period: f32| t + ((at - t) / period).round() * period;
+            (
+                unwrap(c as f32, texel_xy.x, w as f32),
+                unwrap(fr as f32, texel_xy.y, h as f32),
+            )
+        };
+        for pick in &i.texels {
+            let colour = match pick.lookup.name() {
+                "centred" => egui::Color32::YELLOW,
+                _ => egui::Color32::from_rgb(0, 220, 255),
+            };
+            let (x, y) = near(pick.column, pick.file_row);
+            let r = egui::Rect::from_min_max(to_screen(x, y), to_screen(x + 1.0, y + 1.0));
+            p.rect_stroke(
+                r.shrink(1.0),
+                0.0,
+                egui::Stroke::new(2.0, colour),
+                egui::StrokeKind::Inside,
+            );
+        }
+        // The footprint: the image of the unit circle under d(u,v)/dx, d(u,v)/dy, in texels (y down).
+        if let Some(f) = i.footprint {
+            let ax = Vec2::new(f.duvdx.x * w as f32, -f.duvdx.y * h as f32);
+            let ay = Vec2::new(f.duvdy.x * w as f32, -f.duvdy.y * h as f32);
+            let pts: Vec<egui::Pos2> = (0..=64)
+                .map(|k| {
+                    let t = k as f32 / 64.0 * std::f32::consts::TAU;
+                    let q = texel_xy + ax * (0.5 * t.cos()) + ay * (0.5 * t.sin());
+                    to_screen(q.x, q.y)
+                })
+                .collect();
+            p.add(egui::Shape::line(
+                pts,
+                egui::Stroke::new(2.0, egui::Color32::from_rgb(255, 60, 255)),
+            ));
+            p.circle_filled(
+                to_screen(texel_xy.x, texel_xy.y),
+                2.5,
+                egui::Color32::from_rgb(255, 60, 255),
+            );
+        }
+        });
+    }
+}
+
+/// The image as an sRGB texture, subsampled to at most [`OVERVIEW_MAX`] a side.
+fn overview(img: &ImageData) -> egui::ColorImage {
+    let (w, h) = (img.width(), img.height());
+    let step = w.max(h).div_ceil(OVERVIEW_MAX).max(1);
+    let (ow, oh) = (w.div_ceil(step), h.div_ceil(step));
+    let mut pixels = Vec::with_capacity((ow * oh) as usize);
+    for y in 0..oh {
+        for x in 0..ow {
+            pixels.push(srgb(
+                img.texel_top((x * step).min(w - 1), (y * step).min(h - 1)),
+            ));
+        }
+    }
+    egui::ColorImage::new([ow as usize, oh as usize], pixels)
+}

@@ -1,0 +1,204 @@
+//! The viewport: the progressive image, orbit (drag), pan (right or middle drag, or shift +
+//! drag), zoom (wheel), reset view; hovering and clicking report film positions to the
+//! inspector. In A/B mode, two images side by side with a draggable divider.
+
+use super::compare::AbSplit;
+use crate::math::Vec2;
+
+/// A camera edit asked for by the pointer.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ViewEdit {
+    /// Orbit by this drag (points).
+    Orbit(Vec2),
+    /// Pan by this drag, as a fraction of the image height.
+    Pan(Vec2),
+    /// Move toward the look-at point by this factor of the distance.
+    Zoom(f32),
+    /// Back to the camera the scene was opened with.
+    Reset,
+}
+
+/// What the pointer did in the viewport this frame.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct ViewOutput {
+    /// A camera edit.
+    pub edit: Option<ViewEdit>,
+    /// Film position under the pointer.
+    pub hover: Option<Vec2>,
+    /// Film position clicked.
+    pub click: Option<Vec2>,
+}
+
+/// Wheel points to a zoom factor: one notch (about 50 points) is 10 %.
+const ZOOM_PER_POINT: f32 = 0.002;
+
+fn toolbar(ui: &mut egui::Ui, out: &mut ViewOutput) {
+    ui.horizontal(|ui| {
+        if ui
+            .button("Reset view")
+            .on_hover_text("Back to the camera the scene was opened with")
+            .clicked()
+        {
+            out.edit = Some(ViewEdit::Reset);
+        }
+        // Truncated, so the hint never asks the panels around the viewport for width.
+        ui.add(
+            egui::Label::new(
+                egui::RichText::new(
+                    "drag: orbit · right-drag or shift-drag: pan · wheel: zoom · click: pin the inspector",
+                )
+                .weak(),
+            )
+            .truncate(),
+        );
+    });
+}
+
+/// The rectangle an image of `size` pixels takes, fitted and centred in `avail`.
+fn fit(avail: egui::Rect, size: Vec2) -> egui::Rect {
+    let scale = (avail.width() / size.x)
+        .min(avail.height() / size.y)
+        .max(1e-3);
+    egui::Rect::from_center_size(avail.center(), egui::vec2(size.x, size.y) * scale)
+}
+
+/// Pointer handling over the image rectangle.
+fn interact(
+    ui: &mut egui::Ui,
+    rect: egui::Rect,
+    size: Vec2,
+    out: &mut ViewOutput,
+) -> egui::Response {
+    let response = ui.allocate_rect(rect, egui::Sense::click_and_drag());
+    let to_film = |p: egui::Pos2| {
+        let f = (p - rect.min) / rect.size();
+        Vec2::new(f.x * size.x, f.y * size.y)
+    };
+    let shift = ui.input(|i| i.modifiers.shift);
+    if response.dragged() {
+        let d = response.drag_delta();
+        if d != egui::Vec2::ZERO {
+            let pan = shift
+                || response.dragged_by(egui::PointerButton::Secondary)
+                || response.dragged_by(egui::PointerButton::Middle);
+            out.edit = Some(if pan {
+                ViewEdit::Pan(Vec2::new(d.x, d.y) / rect.height())
+            } else {
+                ViewEdit::Orbit(Vec2::new(d.x, d.y))
+            });
+        }
+    }
+    if response.hovered() {
+        let scroll = ui.input(|i| i.smooth_scroll_delta.y);
+        if scroll != 0.0 {
+            out.edit = Some(ViewEdit::Zoom((-scroll * ZOOM_PER_POINT).exp()));
+        }
+        out.hover = response.hover_pos().map(to_film);
+    }
+    if response.clicked() {
+        out.click = response.interact_pointer_pos().map(to_film);
+    }
+    response
+}
+
+/// The single-image viewport.
+pub fn show(
+    ui: &mut egui::Ui,
+    texture: Option<&egui::TextureHandle>,
+    size: Option<Vec2>,
+) -> ViewOutput {
+    let mut out = ViewOutput::default();
+    toolbar(ui, &mut out);
+    let avail = ui.available_rect_before_wrap();
+    let (Some(t), Some(size)) = (texture, size) else {
+        ui.centered_and_justified(|ui| ui.spinner());
+        return out;
+    };
+    let rect = fit(avail, size);
+    interact(ui, rect, size, &mut out);
+    ui.painter().image(
+        t.id(),
+        rect,
+        egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0)),
+        egui::Color32::WHITE,
+    );
+    out
+}
+
+/// The A/B viewport: A left of the divider, B right of it; the divider drags.
+pub fn show_split(ui: &mut egui::Ui, ab: &mut AbSplit, size: Option<Vec2>) -> ViewOutput {
+    let mut out = ViewOutput::default();
+    toolbar(ui, &mut out);
+    ab.controls(ui);
+    let avail = ui.available_rect_before_wrap();
+    let Some(size) = size else {
+        return out;
+    };
+    let rect = fit(avail, size);
+    // The divider first, so it wins the drag over the orbit.
+    let x = rect.left() + rect.width() * ab.split;
+    let handle = egui::Rect::from_center_size(
+        egui::pos2(x, rect.center().y),
+        egui::vec2(12.0, rect.height()),
+    );
+    let divider = ui
+        .interact(
+            handle,
+            ui.scope_id().with("ab-divider"),
+            egui::Sense::drag(),
+        )
+        .on_hover_cursor(egui::CursorIcon::ResizeHorizontal);
+    if divider.dragged() {
+        ab.split = (ab.split + divider.drag_delta().x / rect.width()).clamp(0.0, 1.0);
+    }
+    let left = egui::Rect::from_min_max(rect.min, egui::pos2(x, rect.max.y));
+    let right = egui::Rect::from_min_max(egui::pos2(x, rect.min.y), rect.max);
+    let painter = ui.painter();
+    for (side, r, uv) in [
+        (
+            0,
+            left,
+            egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(ab.split, 1.0)),
+        ),
+        (
+            1,
+            right,
+            egui::Rect::from_min_max(egui::pos2(ab.split, 0.0), egui::pos2(1.0, 1.0)),
+        ),
+    ] {
+        if let Some(t) = ab.texture(side) {
+            painter.image(t.id(), r, uv, egui::Color32::WHITE);
+        }
+    }
+    painter.line_segment(
+        [egui::pos2(x, rect.top()), egui::pos2(x, rect.bottom())],
+        egui::Stroke::new(2.0, egui::Color32::WHITE),
+    );
+    let font = egui::FontId::proportional(14.0);
+    for (side, anchor, align) in [
+        (
+            0,
+            rect.left_top() + egui::vec2(6.0, 6.0),
+            egui::Align2::LEFT_TOP,
+        ),
+        (
+            1,
+            // B at the bottom, so long captions never overlap.
+            rect.right_bottom() + egui::vec2(-6.0, -6.0),
+            egui::Align2::RIGHT_BOTTOM,
+        ),
+    ] {
+        let text = ab.caption(side);
+        let galley_rect = painter.text(anchor, align, &text, font.clone(), egui::Color32::WHITE);
+        painter.rect_filled(
+            galley_rect.expand(3.0),
+            3.0,
+            egui::Color32::from_black_alpha(160),
+        );
+        painter.text(anchor, align, text, font.clone(), egui::Color32::WHITE);
+    }
+    if !divider.dragged() && !divider.hovered() {
+        interact(ui, rect, size, &mut out);
+    }
+    out
+}

@@ -1,0 +1,703 @@
+//! A streaming PLY reader (ascii, binary little- and big-endian) and writer.
+//!
+//! Reads vertex `x y z`, texture coordinates under any of the names in use (`u v`, `s t`,
+//! `texture_u texture_v`, `texture_s texture_t`), optional `nx ny nz`, and faces as
+//! `list <int type> <int type> vertex_indices` (or `vertex_index`); polygons are triangulated as
+//! fans, not truncated. Comments, `obj_info`, other elements and other properties are skipped.
+//! The file is read once, element by element: memory is what the mesh needs, and a count in the
+//! header is never trusted for an allocation. Errors name the file, the line (ascii) or byte
+//! (binary) and the element where reading stopped.
+
+use super::{MAX_POLYGON_CORNERS, MAX_TRIANGLES, MAX_VERTICES};
+use crate::error::{Error, Result};
+use crate::geometry::MeshData;
+use crate::math::{Vec2, Vec3};
+use std::io::{BufRead, Read, Write};
+use std::path::Path;
+
+/// Largest header accepted, in bytes.
+pub const MAX_HEADER_BYTES: usize = 1 << 16;
+/// The (u, v) property names accepted, in order of preference.
+pub const UV_NAMES: [(&str, &str); 4] = [
+    ("u", "v"),
+    ("s", "t"),
+    ("texture_u", "texture_v"),
+    ("texture_s", "texture_t"),
+];
+
+/// PLY encodings.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PlyFormat {
+    /// Text.
+    Ascii,
+    /// Binary, little-endian.
+    BinaryLittleEndian,
+    /// Binary, big-endian.
+    BinaryBigEndian,
+}
+
+impl PlyFormat {
+    /// Every encoding.
+    pub const ALL: [Self; 3] = [Self::Ascii, Self::BinaryLittleEndian, Self::BinaryBigEndian];
+
+    /// The name in the `format` header line.
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::Ascii => "ascii",
+            Self::BinaryLittleEndian => "binary_little_endian",
+            Self::BinaryBigEndian => "binary_big_endian",
+        }
+    }
+}
+
+crate::named_enum!(PlyFormat, "PLY format");
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Scalar {
+    I8,
+    U8,
+    I16,
+    U16,
+    I32,
+    U32,
+    F32,
+    F64,
+}
+
+impl Scalar {
+    fn parse(s: &str) -> Option<Self> {
+        Some(match s {
+            "char" | "int8" => Self::I8,
+            "uchar" | "uint8" => Self::U8,
+            "short" | "int16" => Self::I16,
+            "ushort" | "uint16" => Self::U16,
+            "int" | "int32" => Self::I32,
+            "uint" | "uint32" => Self::U32,
+            "float" | "float32" => Self::F32,
+            "double" | "float64" => Self::F64,
+            _ => return None,
+        })
+    }
+
+    const fn size(self) -> usize {
+        match self {
+            Self::I8 | Self::U8 => 1,
+            Self::I16 | Self::U16 => 2,
+            Self::I32 | Self::U32 | Self::F32 => 4,
+            Self::F64 => 8,
+        }
+    }
+
+    const fn is_int(self) -> bool {
+        !matches!(self, Self::F32 | Self::F64)
+    }
+}
+
+#[derive(Clone, Debug)]
+enum Property {
+    Scalar {
+        name: String,
+        ty: Scalar,
+    },
+    List {
+        name: String,
+        count: Scalar,
+        item: Scalar,
+    },
+}
+
+impl Property {
+    fn name(&self) -> &str {
+        match self {
+            Self::Scalar { name, .. } | Self::List { name, .. } => name,
+        }
+    }
+}
+
+#[derive(Clone, Debug)]
+struct Element {
+    name: String,
+    count: u64,
+    props: Vec<Property>,
+    line: usize,
+}
+
+/// Where each vertex property goes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Slot {
+    Pos(usize),
+    Uv(usize),
+    Normal(usize),
+    Skip,
+}
+
+struct Header {
+    format: PlyFormat,
+    elements: Vec<Element>,
+    /// Header lines (ascii line numbers continue from here).
+    lines: usize,
+    /// Header bytes (binary offsets count from the file's start).
+    bytes: u64,
+}
+
+/// Reads a PLY file.
+///
+/// # Errors
+/// The file cannot be read, or is not a PLY this reader understands; the message names the
+/// file, the line or byte, and the element.
+pub fn read_ply(path: &Path) -> Result<MeshData> {
+    let file = std::fs::File::open(path).map_err(|e| Error::io(path, e))?;
+    let mut r = std::io::BufReader::with_capacity(1 << 16, file);
+    read_ply_from(&mut r, path)
+}
+
+/// Reads a PLY from `r`; `path` names it in errors.
+///
+/// # Errors
+/// See [`read_ply`].
+pub fn read_ply_from(r: &mut impl BufRead, path: &Path) -> Result<MeshData> {
+    let header = read_header(r, path)?;
+    let fail = |at: String, message: String| Error::Mesh {
+        path: path.to_path_buf(),
+        at,
+        message,
+    };
+
+    // The vertex element and where its properties go.
+    let vertex = header
+        .elements
+        .iter()
+        .find(|e| e.name == "vertex")
+        .ok_or_else(|| fail("header".into(), "no 'vertex' element".into()))?;
+    let find = |name: &str| {
+        vertex
+            .props
+            .iter()
+            .position(|p| matches!(p, Property::Scalar { name: n, .. } if n == name))
+    };
+    let mut slots = vec![Slot::Skip; vertex.props.len()];
+    for (k, axis) in ["x", "y", "z"].iter().enumerate() {
+        let i = find(axis).ok_or_else(|| {
+            fail(
+                format!("header line {}", vertex.line),
+                format!("the vertex element has no '{axis}' property"),
+            )
+        })?;
+        slots[i] = Slot::Pos(k);
+    }
+    let uv_names = UV_NAMES
+        .iter()
+        .find_map(|(u, v)| Some(((find(u)?, find(v)?), (*u, *v))));
+    if let Some(((iu, iv), _)) = uv_names {
+        slots[iu] = Slot::Uv(0);
+        slots[iv] = Slot::Uv(1);
+    }
+    let normal_idx = [find("nx"), find("ny"), find("nz")];
+    let has_normals = normal_idx.iter().all(Option::is_some);
+    if has_normals {
+        for (k, i) in normal_idx.iter().flatten().enumerate() {
+            slots[*i] = Slot::Normal(k);
+        }
+    }
+    let n_vertices = vertex.count;
+    if n_vertices > MAX_VERTICES as u64 {
+        return Err(fail(
+            format!("header line {}", vertex.line),
+            format!("{n_vertices} vertices is more than texplore reads ({MAX_VERTICES})"),
+        ));
+    }
+    let face = header
+        .elements
+        .iter()
+        .find(|e| e.name == "face")
+        .ok_or_else(|| fail("header".into(), "no 'face' element (a point cloud?)".into()))?;
+    let face_list = face
+        .props
+        .iter()
+        .position(|p| {
+            matches!(p, Property::List { name, .. } if name == "vertex_indices" || name == "vertex_index")
+        })
+        .ok_or_else(|| {
+            fail(
+                format!("header line {}", face.line),
+                "the face element has no 'vertex_indices' (or 'vertex_index') list".into(),
+            )
+        })?;
+    if let Property::List { item, .. } = &face.props[face_list] {
+        if !item.is_int() {
+            return Err(fail(
+                format!("header line {}", face.line),
+                "vertex indices must be an integer type".into(),
+            ));
+        }
+    }
+    if face.count > MAX_TRIANGLES as u64 {
+        return Err(fail(
+            format!("header line {}", face.line),
+            format!(
+                "{} faces is more than texplore reads ({MAX_TRIANGLES})",
+                face.count
+            ),
+        ));
+    }
+
+    let mut data = MeshData {
+        format: format!("ply {}", header.format.name()),
+        uv_names: uv_names.map(|(_, (u, v))| (u.to_string(), v.to_string())),
+        ..MeshData::default()
+    };
+    // Never reserve from the header's word alone: a lying count must not allocate.
+    let reserve = |n: u64| (n as usize).min(1 << 20);
+    data.positions.reserve(reserve(n_vertices));
+    if uv_names.is_some() {
+        data.uvs.reserve(reserve(n_vertices));
+    }
+    if has_normals {
+        data.normals.reserve(reserve(n_vertices));
+    }
+    data.triangles.reserve(reserve(face.count));
+
+    let mut input = match header.format {
+        PlyFormat::Ascii => Input::Ascii(Ascii {
+            line: String::new(),
+            pos: 0,
+            line_no: header.lines,
+        }),
+        PlyFormat::BinaryLittleEndian | PlyFormat::BinaryBigEndian => Input::Binary {
+            offset: header.bytes,
+            big: header.format == PlyFormat::BinaryBigEndian,
+        },
+    };
+    let mut corners: Vec<u32> = Vec::with_capacity(16);
+    for el in &header.elements {
+        let is_vertex = std::ptr::eq(el, vertex);
+        let is_face = std::ptr::eq(el, face);
+        for i in 0..el.count {
+            let at = |input: &Input| format!("{} ({} {i})", input.at(), el.name);
+            let mut pos = [0.0f64; 3];
+            let mut uv = [0.0f64; 2];
+            let mut nrm = [0.0f64; 3];
+            for (k, prop) in el.props.iter().enumerate() {
+                let before = input.at();
+                match prop {
+                    Property::Scalar { ty, .. } => {
+                        let x = input.read(r, *ty).map_err(|m| fail(at(&input), m))?;
+                        if is_vertex {
+                            match slots[k] {
+                                Slot::Pos(a) => pos[a] = x,
+                                Slot::Uv(a) => uv[a] = x,
+                                Slot::Normal(a) => nrm[a] = x,
+                                Slot::Skip => {}
+                            }
+                        }
+                    }
+                    Property::List { count, item, .. } => {
+                        let n = input.read(r, *count).map_err(|m| fail(at(&input), m))?;
+                        if !(0.0..=MAX_POLYGON_CORNERS as f64).contains(&n) {
+                            return Err(fail(
+                                format!("{before} ({} {i})", el.name),
+                                format!(
+                                    "a list of {n} items (at most {MAX_POLYGON_CORNERS} are read)"
+                                ),
+                            ));
+                        }
+                        let take = is_face && k == face_list;
+                        corners.clear();
+                        for _ in 0..n as usize {
+                            let x = input.read(r, *item).map_err(|m| fail(at(&input), m))?;
+                            if take {
+                                if x < 0.0 {
+                                    return Err(fail(
+                                        at(&input),
+                                        format!("vertex index {x} is negative"),
+                                    ));
+                                }
+                                if x >= n_vertices as f64 {
+                                    return Err(fail(
+                                        at(&input),
+                                        format!(
+                                            "vertex index {x} is out of range ({n_vertices} vertices)"
+                                        ),
+                                    ));
+                                }
+                                corners.push(x as u32);
+                            }
+                        }
+                        if take {
+                            if corners.len() < 3 {
+                                return Err(fail(
+                                    at(&input),
+                                    format!(
+                                        "a face needs at least 3 vertices, this one has {}",
+                                        corners.len()
+                                    ),
+                                ));
+                            }
+                            for k in 1..corners.len() - 1 {
+                                data.triangles
+                                    .push([corners[0], corners[k], corners[k + 1]]);
+                            }
+                            if data.triangles.len() > MAX_TRIANGLES {
+                                return Err(fail(
+                                    at(&input),
+                                    format!(
+                                        "more than {MAX_TRIANGLES} triangles after triangulation"
+                                    ),
+                                ));
+                            }
+                        }
+                    }
+                }
+            }
+            if is_vertex {
+                let p = Vec3::new(pos[0] as f32, pos[1] as f32, pos[2] as f32);
+                if !p.is_finite() {
+                    return Err(fail(at(&input), format!("position {p} is not finite")));
+                }
+                data.positions.push(p);
+                if uv_names.is_some() {
+                    let t = Vec2::new(uv[0] as f32, uv[1] as f32);
+                    if !t.is_finite() {
+                        return Err(fail(at(&input), format!("(u, v) {t} is not finite")));
+                    }
+                    data.uvs.push(t);
+                }
+                if has_normals {
+                    let n = Vec3::new(nrm[0] as f32, nrm[1] as f32, nrm[2] as f32);
+                    if !n.is_finite() {
+                        return Err(fail(at(&input), format!("normal {n} is not finite")));
+                    }
+                    data.normals.push(n);
+                }
+            }
+            if is_face {
+                data.faces += 1;
+            }
+        }
+    }
+    Ok(data)
+}
+
+fn read_header(r: &mut impl BufRead, path: &Path) -> Result<Header> {
+    let mut line = Vec::new();
+    let mut total = 0usize;
+    let mut line_no = 0usize;
+    let mut format = None;
+    let mut elements: Vec<Element> = Vec::new();
+    let fail = |line_no: usize, message: String| Error::Mesh {
+        path: path.to_path_buf(),
+        at: format!("header line {line_no}"),
+        message,
+    };
+    loop {
+        line.clear();
+        let n = r
+            .by_ref()
+            .take((MAX_HEADER_BYTES - total) as u64 + 1)
+            .read_until(b'\n', &mut line)
+            .map_err(|e| Error::io(path, e))?;
+        line_no += 1;
+        total += n;
+        if n == 0 {
+            return Err(fail(
+                line_no,
+                "the file ends inside the header (no 'end_header')".into(),
+            ));
+        }
+        if total > MAX_HEADER_BYTES {
+            return Err(fail(
+                line_no,
+                format!("the header is longer than {MAX_HEADER_BYTES} bytes"),
+            ));
+        }
+        let text = std::str::from_utf8(&line)
+            .map_err(|_| fail(line_no, "the header is not text".into()))?
+            .trim_end_matches(['\n', '\r']);
+        let words: Vec<&str> = text.split_ascii_whitespace().collect();
+        if line_no == 1 {
+            if words != ["ply"] {
+                return Err(fail(
+                    1,
+                    format!(
+                        "not a PLY file (it starts with '{}')",
+                        text.chars().take(20).collect::<String>()
+                    ),
+                ));
+            }
+            continue;
+        }
+        match words.as_slice() {
+            [] => {}
+            ["comment" | "obj_info", ..] => {}
+            ["format", f, _version] => {
+                format = Some(match *f {
+                    "ascii" => PlyFormat::Ascii,
+                    "binary_little_endian" => PlyFormat::BinaryLittleEndian,
+                    "binary_big_endian" => PlyFormat::BinaryBigEndian,
+                    other => return Err(fail(line_no, format!("unknown format '{other}'"))),
+                });
+            }
+            ["element", name, count] => {
+                let count = count.parse::<u64>().map_err(|_| {
+                    fail(line_no, format!("element count '{count}' is not a number"))
+                })?;
+                if elements.len() >= 256 {
+                    return Err(fail(line_no, "more than 256 elements".into()));
+                }
+                elements.push(Element {
+                    name: (*name).to_string(),
+                    count,
+                    props: Vec::new(),
+                    line: line_no,
+                });
+            }
+            ["property", "list", count, item, name] => {
+                let el = elements
+                    .last_mut()
+                    .ok_or_else(|| fail(line_no, "a property before any element".into()))?;
+                let (Some(count), Some(item)) = (Scalar::parse(count), Scalar::parse(item)) else {
+                    return Err(fail(line_no, format!("unknown type in '{text}'")));
+                };
+                if !count.is_int() {
+                    return Err(fail(line_no, "a list count must be an integer type".into()));
+                }
+                el.props.push(Property::List {
+                    name: (*name).to_string(),
+                    count,
+                    item,
+                });
+            }
+            ["property", ty, name] => {
+                let el = elements
+                    .last_mut()
+                    .ok_or_else(|| fail(line_no, "a property before any element".into()))?;
+                let ty = Scalar::parse(ty)
+                    .ok_or_else(|| fail(line_no, format!("unknown property type '{ty}'")))?;
+                if el.props.len() >= 256 {
+                    return Err(fail(line_no, "more than 256 properties".into()));
+                }
+                if el.props.iter().any(|p| p.name() == *name) {
+                    return Err(fail(line_no, format!("property '{name}' appears twice")));
+                }
+                el.props.push(Property::Scalar {
+                    name: (*name).to_string(),
+                    ty,
+                });
+            }
+            ["end_header"] => {
+                let format = format
+                    .ok_or_else(|| fail(line_no, "no 'format' line before end_header".into()))?;
+                return Ok(Header {
+                    format,
+                    elements,
+                    lines: line_no,
+                    bytes: total as u64,
+                });
+            }
+            _ => {
+                return Err(fail(
+                    line_no,
+                    format!(
+                        "cannot read '{}'",
+                        text.chars().take(60).collect::<String>()
+                    ),
+                ));
+            }
+        }
+    }
+}
+
+enum Input {
+    Ascii(Ascii),
+    Binary { offset: u64, big: bool },
+}
+
+struct Ascii {
+    line: String,
+    pos: usize,
+    line_no: usize,
+}
+
+const TRUNCATED: &str = "the file ends early (truncated?)";
+
+impl Input {
+    fn at(&self) -> String {
+        match self {
+            Self::Ascii(a) => format!("line {}", a.line_no),
+            Self::Binary { offset, .. } => format!("byte {offset}"),
+        }
+    }
+
+    /// One value of type `ty` (integers are exact in f64).
+    #[inline]
+    fn read(&mut self, r: &mut impl BufRead, ty: Scalar) -> std::result::Result<f64, String> {
+        match self {
+            Self::Ascii(a) => {
+                let (s, e) = a.token(r)?;
+                let tok = &a.line[s..e];
+                if ty.is_int() {
+                    tok.parse::<i64>()
+                        .map(|v| v as f64)
+                        .map_err(|_| format!("expected an integer, found '{tok}'"))
+                } else {
+                    tok.parse::<f64>()
+                        .map_err(|_| format!("expected a number, found '{tok}'"))
+                }
+            }
+            Self::Binary { offset, big } => {
+                let mut b = [0u8; 8];
+                let n = ty.size();
+                r.read_exact(&mut b[..n]).map_err(|e| {
+                    if e.kind() == std::io::ErrorKind::UnexpectedEof {
+                        TRUNCATED.to_string()
+                    } else {
+                        e.to_string()
+                    }
+                })?;
+                *offset += n as u64;
+                let big = *big;
+                let b2 = [b[0], b[1]];
+                let b4 = [b[0], b[1], b[2], b[3]];
+                let e2 = |le: fn([u8; 2]) -> f64, be: fn([u8; 2]) -> f64| {
+                    if big { be(b2) } else { le(b2) }
+                };
+                let e4 = |le: fn([u8; 4]) -> f64, be: fn([u8; 4]) -> f64| {
+                    if big { be(b4) } else { le(b4) }
+                };
+                Ok(match ty {
+                    Scalar::I8 => f64::from(b[0] as i8),
+                    Scalar::U8 => f64::from(b[0]),
+                    Scalar::I16 => e2(
+                        |a| f64::from(i16::from_le_bytes(a)),
+                        |a| f64::from(i16::from_be_bytes(a)),
+                    ),
+                    Scalar::U16 => e2(
+                        |a| f64::from(u16::from_le_bytes(a)),
+                        |a| f64::from(u16::from_be_bytes(a)),
+                    ),
+                    Scalar::I32 => e4(
+                        |a| f64::from(i32::from_le_bytes(a)),
+                        |a| f64::from(i32::from_be_bytes(a)),
+                    ),
+                    Scalar::U32 => e4(
+                        |a| f64::from(u32::from_le_bytes(a)),
+                        |a| f64::from(u32::from_be_bytes(a)),
+                    ),
+                    Scalar::F32 => e4(
+                        |a| f64::from(f32::from_le_bytes(a)),
+                        |a| f64::from(f32::from_be_bytes(a)),
+                    ),
+                    Scalar::F64 => {
+                        if big {
+                            f64::from_be_bytes(b)
+                        } else {
+                            f64::from_le_bytes(b)
+                        }
+                    }
+                })
+            }
+        }
+    }
+}
+
+impl Ascii {
+    /// The next whitespace-separated token, as a range of `self.line`.
+    fn token(&mut self, r: &mut impl BufRead) -> std::result::Result<(usize, usize), String> {
+        loop {
+            let bytes = self.line.as_bytes();
+            let mut s = self.pos;
+            while s < bytes.len() && bytes[s].is_ascii_whitespace() {
+                s += 1;
+            }
+            if s < bytes.len() {
+                let mut e = s;
+                while e < bytes.len() && !bytes[e].is_ascii_whitespace() {
+                    e += 1;
+                }
+                self.pos = e;
+                return Ok((s, e));
+            }
+            self.line.clear();
+            self.pos = 0;
+            let n = r.read_line(&mut self.line).map_err(|e| {
+                if e.kind() == std::io::ErrorKind::InvalidData {
+                    "the line is not text".to_string()
+                } else {
+                    e.to_string()
+                }
+            })?;
+            if n == 0 {
+                return Err(TRUNCATED.into());
+            }
+            self.line_no += 1;
+        }
+    }
+}
+
+/// Writes `data` as PLY: `float x y z`, then `float nx ny nz` and `float u v` when present, and
+/// faces as `list uchar int vertex_indices`.
+///
+/// # Errors
+/// Writing fails.
+pub fn write_ply(w: &mut impl Write, data: &MeshData, format: PlyFormat) -> std::io::Result<()> {
+    let has_n = !data.normals.is_empty();
+    let has_uv = !data.uvs.is_empty();
+    writeln!(w, "ply\nformat {} 1.0", format.name())?;
+    writeln!(w, "comment written by texplore")?;
+    writeln!(w, "element vertex {}", data.positions.len())?;
+    writeln!(w, "property float x\nproperty float y\nproperty float z")?;
+    if has_n {
+        writeln!(w, "property float nx\nproperty float ny\nproperty float nz")?;
+    }
+    if has_uv {
+        writeln!(w, "property float u\nproperty float v")?;
+    }
+    writeln!(w, "element face {}", data.triangles.len())?;
+    writeln!(w, "property list uchar int vertex_indices\nend_header")?;
+    let mut floats = Vec::with_capacity(8);
+    for (i, p) in data.positions.iter().enumerate() {
+        floats.clear();
+        floats.extend_from_slice(&p.to_array());
+        if has_n {
+            floats.extend_from_slice(&data.normals[i].to_array());
+        }
+        if has_uv {
+            floats.extend_from_slice(&data.uvs[i].to_array());
+        }
+        match format {
+            PlyFormat::Ascii => {
+                let words: Vec<String> = floats.iter().map(f32::to_string).collect();
+                writeln!(w, "{}", words.join(" "))?;
+            }
+            PlyFormat::BinaryLittleEndian => {
+                for f in &floats {
+                    w.write_all(&f.to_le_bytes())?;
+                }
+            }
+            PlyFormat::BinaryBigEndian => {
+                for f in &floats {
+                    w.write_all(&f.to_be_bytes())?;
+                }
+            }
+        }
+    }
+    for t in &data.triangles {
+        match format {
+            PlyFormat::Ascii => writeln!(w, "3 {} {} {}", t[0], t[1], t[2])?,
+            PlyFormat::BinaryLittleEndian => {
+                w.write_all(&[3])?;
+                for i in t {
+                    w.write_all(&(*i as i32).to_le_bytes())?;
+                }
+            }
+            PlyFormat::BinaryBigEndian => {
+                w.write_all(&[3])?;
+                for i in t {
+                    w.write_all(&(*i as i32).to_be_bytes())?;
+                }
+            }
+        }
+    }
+    Ok(())
+}

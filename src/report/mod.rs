@@ -1,0 +1,570 @@
+//! Speed against error: render a scene in several antialiasing modes (texture filter x pixel
+//! sampler x samples per pixel), time each render, and measure its error against a
+//! high-spp reference.
+//!
+//! [`run_scene`] is the library entry point (the GUI plots its rows live; `texplore report`
+//! writes them as CSV, Markdown tables and plots through [`write_outputs`]).
+
+pub mod metrics;
+pub mod output;
+pub mod plot;
+pub mod reference;
+pub mod table;
+
+pub use metrics::{EncodedImage, METRIC_DEFINITIONS, Metrics, compare};
+pub use output::write_outputs;
+pub use reference::{CacheKey, CachedReference, REFERENCE_VERSION, cache_key, default_cache_dir};
+pub use table::{RMSE_TARGETS, pareto_front, time_to_reach};
+
+use crate::render::{Film, render_pass};
+use crate::sampler::PixelSampler;
+use crate::scene::{AssetCache, Overrides, SceneDesc, apply_overrides, build_scene};
+use crate::texture::Filter;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
+
+/// Why a report stopped.
+#[derive(Debug, thiserror::Error)]
+pub enum ReportError {
+    /// The scene could not be built (bad preset, missing asset).
+    #[error(transparent)]
+    Scene(#[from] crate::Error),
+    /// A cache or output file could not be read or written.
+    #[error("{}: {io}", path.display())]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// What the OS said.
+        io: std::io::Error,
+    },
+    /// A `--modes` list or a setting could not be used.
+    #[error("{0}")]
+    Invalid(String),
+    /// The cancel flag was raised.
+    #[error("cancelled")]
+    Cancelled,
+}
+
+impl ReportError {
+    /// An [`ReportError::Io`] for `path`.
+    #[must_use]
+    pub fn io(path: &Path, io: std::io::Error) -> Self {
+        Self::Io {
+            path: path.to_path_buf(),
+            io,
+        }
+    }
+}
+
+/// One antialiasing mode: how texels are filtered and where samples go in a pixel.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Mode {
+    /// Texture filter of every image texture.
+    pub filter: Filter,
+    /// Pixel sampler.
+    pub sampler: PixelSampler,
+}
+
+impl Mode {
+    /// `filter/sampler`, as `--modes` takes it.
+    #[must_use]
+    pub fn name(self) -> String {
+        format!("{}/{}", self.filter.name(), self.sampler.name())
+    }
+
+    /// Every filter with every sampler.
+    #[must_use]
+    pub fn all() -> Vec<Self> {
+        Filter::ALL
+            .iter()
+            .flat_map(|&filter| {
+                PixelSampler::ALL
+                    .iter()
+                    .map(move |&sampler| Self { filter, sampler })
+            })
+            .collect()
+    }
+
+    /// Every filter with the jittered sampler, then the bilinear filter with every other
+    /// sampler: each option once, at a cost linear in the number of options.
+    #[must_use]
+    pub fn default_set() -> Vec<Self> {
+        let mut v: Vec<Self> = Filter::ALL
+            .iter()
+            .map(|&filter| Self {
+                filter,
+                sampler: PixelSampler::Jittered,
+            })
+            .collect();
+        for &sampler in &PixelSampler::ALL {
+            let m = Self {
+                filter: Filter::Bilinear,
+                sampler,
+            };
+            if !v.contains(&m) {
+                v.push(m);
+            }
+        }
+        v
+    }
+
+    /// Parses `all`, `default`, or a comma-separated list of `filter/sampler` (either part may
+    /// be `*` for every value).
+    ///
+    /// # Errors
+    /// An unknown filter or sampler (the message lists the valid names) or an empty list.
+    pub fn parse_list(s: &str) -> Result<Vec<Self>, ReportError> {
+        let s = s.trim();
+        match s {
+            "all" => return Ok(Self::all()),
+            "default" => return Ok(Self::default_set()),
+            _ => {}
+        }
+        let mut out: Vec<Self> = Vec::new();
+        for item in s.split(',').map(str::trim).filter(|i| !i.is_empty()) {
+            let (f, smp) = item.split_once('/').ok_or_else(|| {
+                ReportError::Invalid(format!(
+                    "mode '{item}' is not filter/sampler (for example bilinear/jittered)"
+                ))
+            })?;
+            let filters: Vec<Filter> = if f == "*" {
+                Filter::ALL.to_vec()
+            } else {
+                vec![f.parse().map_err(ReportError::Invalid)?]
+            };
+            let samplers: Vec<PixelSampler> = if smp == "*" {
+                PixelSampler::ALL.to_vec()
+            } else {
+                vec![smp.parse().map_err(ReportError::Invalid)?]
+            };
+            for &filter in &filters {
+                for &sampler in &samplers {
+                    let m = Self { filter, sampler };
+                    if !out.contains(&m) {
+                        out.push(m);
+                    }
+                }
+            }
+        }
+        if out.is_empty() {
+            return Err(ReportError::Invalid("no modes given".into()));
+        }
+        Ok(out)
+    }
+}
+
+/// How the reference is rendered.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ReferenceSettings {
+    /// Samples per pixel.
+    pub spp: u32,
+    /// Texture filter.
+    pub filter: Filter,
+    /// Pixel sampler.
+    pub sampler: PixelSampler,
+    /// Where references are cached (`None`: not cached).
+    pub cache_dir: Option<PathBuf>,
+}
+
+/// The reference's seed is the scene's plus this, so its samples are independent of the
+/// renders it judges.
+pub const REFERENCE_SEED_OFFSET: u32 = 0x9e37_79b9;
+
+impl Default for ReferenceSettings {
+    fn default() -> Self {
+        Self {
+            spp: 4096,
+            filter: Filter::Bilinear,
+            sampler: PixelSampler::Jittered,
+            cache_dir: None,
+        }
+    }
+}
+
+impl ReferenceSettings {
+    /// One line for reports.
+    #[must_use]
+    pub fn describe(&self) -> String {
+        format!(
+            "{} spp, {} texture filter, {} sampler, box pixel filter (equal-weight mean of the samples), seed = scene seed + {REFERENCE_SEED_OFFSET:#x}",
+            self.spp,
+            self.filter.name(),
+            self.sampler.name()
+        )
+    }
+}
+
+/// What to measure.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ReportConfig {
+    /// The modes to compare.
+    pub modes: Vec<Mode>,
+    /// Samples per pixel of each render.
+    pub spp: Vec<u32>,
+    /// Timed runs per render after one warm-up run (the median is reported).
+    pub repeat: usize,
+    /// Fewer timed runs once a render's warm-up takes longer than this over `repeat`: at least
+    /// one, as many as fit (long renders vary little). The count is recorded in each row.
+    pub time_budget: Duration,
+    /// Width override.
+    pub width: Option<u32>,
+    /// Height override.
+    pub height: Option<u32>,
+    /// The reference.
+    pub reference: ReferenceSettings,
+    /// Keep FLIP error maps for heat maps at this spp (`None`: keep none).
+    pub heatmap_spp: Option<u32>,
+}
+
+impl Default for ReportConfig {
+    fn default() -> Self {
+        Self {
+            modes: Mode::default_set(),
+            spp: (0..=8).map(|i| 1 << i).collect(),
+            repeat: 5,
+            time_budget: Duration::from_secs(2),
+            width: None,
+            height: None,
+            reference: ReferenceSettings::default(),
+            heatmap_spp: None,
+        }
+    }
+}
+
+/// One measured render.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Row {
+    /// The scene's name.
+    pub scene: String,
+    /// The mode.
+    pub mode: Mode,
+    /// Samples per pixel.
+    pub spp: u32,
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// Rayon worker threads the render ran on.
+    pub threads: usize,
+    /// Timed runs (after the warm-up).
+    pub runs: usize,
+    /// Median time of the timed runs.
+    pub time: Duration,
+    /// Fastest timed run.
+    pub time_min: Duration,
+    /// Errors against the reference.
+    pub metrics: Metrics,
+}
+
+impl Row {
+    /// Camera samples per second at the median time.
+    #[must_use]
+    pub fn samples_per_second(&self) -> f64 {
+        f64::from(self.width) * f64::from(self.height) * f64::from(self.spp)
+            / self.time.as_secs_f64().max(1e-12)
+    }
+}
+
+/// A FLIP error map of one render, for a heat map.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ErrorMap {
+    /// The mode.
+    pub mode: Mode,
+    /// Samples per pixel.
+    pub spp: u32,
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// Per-pixel FLIP error in [0, 1], row-major from the top-left.
+    pub error: Vec<f32>,
+}
+
+/// Everything measured for one scene.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SceneReport {
+    /// The scene's name.
+    pub scene: String,
+    /// One row per (mode, spp), in the order rendered.
+    pub rows: Vec<Row>,
+    /// The reference's settings.
+    pub reference: ReferenceSettings,
+    /// Whether the reference came from the cache (false: rendered now).
+    pub reference_cached: bool,
+    /// The reference's EXR, when cached on disk.
+    pub reference_file: Option<PathBuf>,
+    /// Time spent rendering the reference (zero when it came from the cache).
+    pub reference_time: Duration,
+    /// Error maps kept for heat maps.
+    pub error_maps: Vec<ErrorMap>,
+}
+
+/// What [`run_scene`] is doing, told to its progress callback.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Stage {
+    /// Rendering the reference (not cached yet).
+    Reference,
+    /// Rendering and timing a mode.
+    Mode(Mode, u32),
+}
+
+/// Progress of [`run_scene`]: work is counted in camera samples (pixels x spp), rendered or
+/// skipped.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ProgressUpdate<'a> {
+    /// Samples done.
+    pub done: u64,
+    /// Samples planned in total, fixed for a run (timed runs skipped by the time budget are
+    /// counted as done, so `done` ends equal to `total`).
+    pub total: u64,
+    /// What is being rendered.
+    pub stage: Stage,
+    /// The row just finished, if any (the GUI appends it to its live plot).
+    pub row: Option<&'a Row>,
+}
+
+/// Renders `scene` (a preset read from `preset_path`, whose directory resolves asset paths) in
+/// every mode at every spp of `config` on the current rayon pool, and measures each against
+/// the reference (loaded from the cache or rendered and stored). `progress` is called after
+/// every reference pass and every complete render; raising `cancel` stops within one tile.
+///
+/// # Errors
+/// The scene cannot be built, the cache cannot be written, or `cancel` was raised.
+pub fn run_scene(
+    name: &str,
+    scene: &SceneDesc,
+    preset_path: &Path,
+    config: &ReportConfig,
+    progress: &mut dyn FnMut(&ProgressUpdate<'_>),
+    cancel: &AtomicBool,
+) -> Result<SceneReport, ReportError> {
+    if config.spp.is_empty() || config.spp.contains(&0) {
+        return Err(ReportError::Invalid(
+            "the spp list must be non-empty and every value at least 1".into(),
+        ));
+    }
+    if config.modes.is_empty() {
+        return Err(ReportError::Invalid("no modes given".into()));
+    }
+    let mut assets = AssetCache::new();
+    let sized = |filter, sampler, spp, seed| {
+        let mut d = scene.clone();
+        apply_overrides(
+            &mut d,
+            Overrides {
+                width: config.width,
+                height: config.height,
+                spp: Some(spp),
+                seed,
+                filter: Some(filter),
+                sampler: Some(sampler),
+                ..Overrides::default()
+            },
+        );
+        d
+    };
+    let r = &config.reference;
+    let ref_desc = sized(
+        r.filter,
+        r.sampler,
+        r.spp,
+        Some(scene.render.seed.wrapping_add(REFERENCE_SEED_OFFSET)),
+    );
+    let (width, height) = (ref_desc.render.width, ref_desc.render.height);
+    let pixels = u64::from(width) * u64::from(height);
+    let repeat = config.repeat.max(1) as u64;
+    let spp_sum: u64 = config.spp.iter().map(|s| u64::from(*s)).sum();
+    let mut total = pixels * spp_sum * (1 + repeat) * config.modes.len() as u64;
+
+    // The reference: from the cache, or rendered now (and stored).
+    let key = cache_key(&ref_desc, preset_path);
+    let cached = r
+        .cache_dir
+        .as_ref()
+        .map(|dir| CachedReference::new(dir, &key));
+    let mut done = 0u64;
+    let t0 = Instant::now();
+    let (reference_linear, reference_cached) =
+        match cached.as_ref().and_then(|c| c.load(&key, width, height)) {
+            Some(img) => (img, true),
+            None => {
+                total += pixels * u64::from(r.spp);
+                let ref_scene = build_scene(&ref_desc, preset_path, &mut assets)?;
+                let mut film = Film::new(width, height);
+                for sample in 0..r.spp {
+                    pass(&ref_scene, &mut film, sample, cancel)?;
+                    done += pixels;
+                    progress(&ProgressUpdate {
+                        done,
+                        total,
+                        stage: Stage::Reference,
+                        row: None,
+                    });
+                }
+                let img = film.to_linear();
+                if let Some(c) = &cached {
+                    c.store(&key, width, height, &img)?;
+                }
+                (img, false)
+            }
+        };
+    let reference_time = if reference_cached {
+        Duration::ZERO
+    } else {
+        t0.elapsed()
+    };
+    let exposure = scene.render.exposure.exp2();
+    let reference = EncodedImage::from_linear(width, height, &reference_linear, exposure);
+
+    let threads = rayon::current_num_threads();
+    let mut rows = Vec::new();
+    let mut error_maps = Vec::new();
+    for &mode in &config.modes {
+        for &spp in &config.spp {
+            let desc = sized(mode.filter, mode.sampler, spp, None);
+            let built = build_scene(&desc, preset_path, &mut assets)?;
+            let stage = Stage::Mode(mode, spp);
+            let cell = pixels * u64::from(spp);
+            let mut report = |done: u64| {
+                progress(&ProgressUpdate {
+                    done,
+                    total,
+                    stage: stage.clone(),
+                    row: None,
+                });
+            };
+            // Warm-up run: its image is the one measured (renders are deterministic).
+            let (film, warm) = render_timed(&built, spp, cancel)?;
+            done += cell;
+            report(done);
+            let runs = timed_runs(warm, config.repeat.max(1), config.time_budget);
+            let mut times = Vec::with_capacity(runs);
+            for _ in 0..runs {
+                times.push(render_timed(&built, spp, cancel)?.1);
+                done += cell;
+                report(done);
+            }
+            // Skipped runs count as done, so the ETA stays honest.
+            done += cell * (repeat - runs as u64);
+            times.sort();
+            let test = EncodedImage::from_linear(width, height, &film.to_linear(), exposure);
+            let (metrics, flip_map) = compare(&reference, &test);
+            if config.heatmap_spp == Some(spp) {
+                error_maps.push(ErrorMap {
+                    mode,
+                    spp,
+                    width,
+                    height,
+                    error: flip_map,
+                });
+            }
+            rows.push(Row {
+                scene: name.to_string(),
+                mode,
+                spp,
+                width,
+                height,
+                threads,
+                runs,
+                time: times[times.len() / 2],
+                time_min: times[0],
+                metrics,
+            });
+            progress(&ProgressUpdate {
+                done,
+                total,
+                stage: Stage::Mode(mode, spp),
+                row: rows.last(),
+            });
+        }
+    }
+    Ok(SceneReport {
+        scene: name.to_string(),
+        rows,
+        reference: r.clone(),
+        reference_cached,
+        reference_file: cached.map(|c| c.exr),
+        reference_time,
+        error_maps,
+    })
+}
+
+/// How many timed runs fit: `repeat`, or fewer when the warm-up shows they would take longer
+/// than `budget` (at least one).
+fn timed_runs(warm: Duration, repeat: usize, budget: Duration) -> usize {
+    if warm.is_zero() {
+        return repeat;
+    }
+    let fit = (budget.as_secs_f64() / warm.as_secs_f64()).floor() as usize;
+    fit.clamp(1, repeat)
+}
+
+fn pass(
+    scene: &crate::scene::Scene,
+    film: &mut Film,
+    sample: u32,
+    cancel: &AtomicBool,
+) -> Result<(), ReportError> {
+    let cancelled = || cancel.load(Ordering::Relaxed);
+    render_pass(scene, film, sample, &cancelled).map_err(|_| ReportError::Cancelled)
+}
+
+/// One complete render (every pass) and its wall time.
+fn render_timed(
+    scene: &crate::scene::Scene,
+    spp: u32,
+    cancel: &AtomicBool,
+) -> Result<(Film, Duration), ReportError> {
+    let t0 = Instant::now();
+    let mut film = Film::new(scene.settings.width, scene.settings.height);
+    for sample in 0..spp {
+        pass(scene, &mut film, sample, cancel)?;
+    }
+    Ok((film, t0.elapsed()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn modes_parse_from_lists_and_wildcards() {
+        let m = Mode::parse_list("nearest/jittered, bilinear/regular").unwrap();
+        assert_eq!(
+            m,
+            vec![
+                Mode {
+                    filter: Filter::Nearest,
+                    sampler: PixelSampler::Jittered
+                },
+                Mode {
+                    filter: Filter::Bilinear,
+                    sampler: PixelSampler::Regular
+                }
+            ]
+        );
+        assert_eq!(
+            Mode::parse_list("all").unwrap().len(),
+            Filter::ALL.len() * PixelSampler::ALL.len()
+        );
+        assert_eq!(
+            Mode::parse_list("*/jittered").unwrap().len(),
+            Filter::ALL.len()
+        );
+        let d = Mode::default_set();
+        assert_eq!(d.len(), Filter::ALL.len() + PixelSampler::ALL.len() - 1);
+        let e = Mode::parse_list("bilinear/zigzag").unwrap_err().to_string();
+        assert!(e.contains("zigzag") && e.contains("jittered"), "{e}");
+        assert!(Mode::parse_list("bilinear").is_err());
+        assert!(Mode::parse_list(" , ").is_err());
+    }
+
+    #[test]
+    fn timed_runs_fit_the_budget() {
+        let b = Duration::from_secs(2);
+        assert_eq!(timed_runs(Duration::from_millis(10), 5, b), 5);
+        assert_eq!(timed_runs(Duration::from_millis(700), 5, b), 2);
+        assert_eq!(timed_runs(Duration::from_secs(5), 5, b), 1);
+    }
+}

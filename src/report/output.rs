@@ -1,0 +1,106 @@
+//! Writing a report's files: `report.csv`, `report.md`, and per scene the error-against-time
+//! plot (SVG and PNG) and the heat maps.
+
+use super::{ReportError, SceneReport, plot, table};
+use std::path::{Path, PathBuf};
+
+/// A name safe as a file name: letters, digits, `-`, `_` and `.` kept, anything else `_`.
+#[must_use]
+pub fn file_safe(name: &str) -> String {
+    let s: String = name
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || matches!(c, '-' | '_' | '.') {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    if s.is_empty() || s.starts_with('.') {
+        format!("_{s}")
+    } else {
+        s
+    }
+}
+
+fn write(path: &Path, bytes: &[u8]) -> Result<(), ReportError> {
+    std::fs::write(path, bytes).map_err(|e| ReportError::io(path, e))
+}
+
+fn png(path: &Path, width: u32, height: u32, rgb: &[u8]) -> Result<(), ReportError> {
+    crate::texture::save_png(path, width, height, rgb, &[]).map_err(ReportError::Scene)
+}
+
+/// Writes every file of `reports` into `dir` (created if missing) and returns their paths.
+/// `header` opens `report.md` (the command line, the machine, the load).
+///
+/// # Errors
+/// A file cannot be written.
+pub fn write_outputs(
+    dir: &Path,
+    reports: &[SceneReport],
+    header: &str,
+) -> Result<Vec<PathBuf>, ReportError> {
+    std::fs::create_dir_all(dir).map_err(|e| ReportError::io(dir, e))?;
+    let mut written = Vec::new();
+    let csv = dir.join("report.csv");
+    write(&csv, table::csv(reports).as_bytes())?;
+    written.push(csv);
+    let mut md = format!("# Speed against error\n\n{header}\n");
+    for rep in reports {
+        let name = file_safe(&rep.scene);
+        let sub = dir.join(&name);
+        std::fs::create_dir_all(&sub).map_err(|e| ReportError::io(&sub, e))?;
+        let chart = plot::error_vs_time(rep);
+        let svg = sub.join("error_vs_time.svg");
+        write(&svg, chart.to_svg().as_bytes())?;
+        let png_path = sub.join("error_vs_time.png");
+        png(
+            &png_path,
+            plot::CHART_WIDTH,
+            plot::CHART_HEIGHT,
+            &chart.to_rgb(),
+        )?;
+        let mut files = table::SceneFiles {
+            plot_svg: Some(format!("{name}/error_vs_time.svg")),
+            plot_png: Some(format!("{name}/error_vs_time.png")),
+            heat_maps: Vec::new(),
+        };
+        written.extend([svg, png_path]);
+        for map in &rep.error_maps {
+            let file = format!(
+                "heat_{}_{}_{}spp.png",
+                map.mode.filter.name(),
+                map.mode.sampler.name(),
+                map.spp
+            );
+            let path = sub.join(&file);
+            let (w, h, rgb) = plot::heat_map(map);
+            png(&path, w, h, &rgb)?;
+            files
+                .heat_maps
+                .push((map.mode, map.spp, format!("{name}/{file}")));
+            written.push(path);
+        }
+        md.push_str(&table::markdown_scene(rep, &files));
+    }
+    md.push_str(&table::metrics_section());
+    let md_path = dir.join("report.md");
+    write(&md_path, md.as_bytes())?;
+    written.push(md_path);
+    Ok(written)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::file_safe;
+
+    #[test]
+    fn names_become_safe_file_names() {
+        assert_eq!(file_safe("earth"), "earth");
+        assert_eq!(file_safe("a b/../c"), "a_b_.._c");
+        assert_eq!(file_safe(".."), "_..");
+        assert_eq!(file_safe(""), "_");
+    }
+}

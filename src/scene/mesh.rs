@@ -1,0 +1,71 @@
+//! Meshes in presets: loading through the [`AssetCache`](super::AssetCache), the material a
+//! mesh file names, and the check that `Uv` is only asked of meshes that carry (u, v).
+
+use super::desc::{MaterialDesc, TextureDesc};
+use crate::geometry::Mesh;
+use crate::mapping::Mapping;
+use std::borrow::Cow;
+
+/// The material with a [`TextureDesc::MeshMaterial`] replaced by what the mesh file names: its
+/// `map_Kd` image, else its `Kd` colour.
+///
+/// # Errors
+/// A message (the caller names the object) when the mesh names no material.
+pub(super) fn resolve_mesh_material<'a>(
+    m: &'a MaterialDesc,
+    mesh: Option<&Mesh>,
+) -> Result<Cow<'a, MaterialDesc>, String> {
+    let TextureDesc::MeshMaterial {
+        mapping,
+        filter,
+        lookup,
+        wrap,
+        max_anisotropy,
+    } = m.texture()
+    else {
+        return Ok(Cow::Borrowed(m));
+    };
+    let Some(mesh) = mesh else {
+        return Err("MeshMaterial: only a Mesh shape names a material".into());
+    };
+    let file = mesh.path().display();
+    let material = mesh
+        .material()
+        .ok_or_else(|| match mesh.material_problem() {
+            Some(p) => format!("MeshMaterial: {file}: {p}"),
+            None => format!("MeshMaterial: {file} names no material (no .mtl with Kd or map_Kd)"),
+        })?;
+    let texture = match (&material.diffuse_texture, material.diffuse) {
+        (Some(image), _) => TextureDesc::Image {
+            path: image.to_string_lossy().into_owned(),
+            mapping: *mapping,
+            filter: *filter,
+            lookup: *lookup,
+            wrap: *wrap,
+            scale: 1.0,
+            srgb: true,
+            max_anisotropy: *max_anisotropy,
+        },
+        (None, Some(kd)) => TextureDesc::Constant(crate::math::Rgb::from_array(kd)),
+        (None, None) => {
+            return Err(format!(
+                "MeshMaterial: material '{}' of {file} has neither map_Kd nor Kd",
+                material.name
+            ));
+        }
+    };
+    let mut m = m.clone();
+    *m.texture_mut() = texture;
+    Ok(Cow::Owned(m))
+}
+
+/// Refuses the `Uv` mapping on a mesh without texture coordinates, saying what to do instead.
+pub(super) fn check_uv_mapping(m: &MaterialDesc, mesh: &Mesh) -> Result<(), String> {
+    if m.texture().mapping() == Some(Mapping::Uv) && !mesh.has_uv() {
+        return Err(format!(
+            "{} has no texture coordinates; choose a generated mapping (spherical, cylindrical, rectangular)",
+            mesh.path().display()
+        ));
+    }
+    Ok(())
+}

@@ -1,0 +1,269 @@
+//! The window, headless: egui_kittest drives the real app and renders it with wgpu (Mesa's
+//! lavapipe on a machine without a GPU). Small renders keep these quick.
+
+use egui::accesskit::Role;
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable as _;
+use std::path::{Path, PathBuf};
+use texplore::gui::{AppOptions, ExplorerApp};
+use texplore::mapping::Mapping;
+use texplore::scene::{TextureDesc, load_preset, save_preset};
+
+const WINDOW: [f32; 2] = [1280.0, 800.0];
+
+/// The Earth preset at 160 x 120 and 4 spp, written to `dir` with a copy of its texture (so
+/// the paths the window shows are the same on every machine).
+fn small_earth(dir: &Path) -> PathBuf {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut desc = load_preset(&root.join("presets/earth.ron")).expect("earth preset");
+    desc.render.width = 160;
+    desc.render.height = 120;
+    desc.render.spp = 4;
+    let texture = "earth_2048x1024.jpg";
+    std::fs::copy(root.join("assets").join(texture), dir.join(texture)).expect("copy texture");
+    if let TextureDesc::Image { path, .. } = desc.objects[0].material.texture_mut() {
+        *path = texture.to_owned();
+    }
+    let path = dir.join("earth-small.ron");
+    save_preset(&desc, &path).expect("write preset");
+    path
+}
+
+fn harness(path: PathBuf) -> Harness<'static, ExplorerApp> {
+    let mut h = Harness::builder()
+        .with_size(WINDOW)
+        .build_eframe(move |_cc| ExplorerApp::with_options(path, AppOptions::default()));
+    settle(&mut h);
+    h
+}
+
+/// Lets the render finish and the UI catch up with its last image.
+fn settle(h: &mut Harness<'_, ExplorerApp>) {
+    for _ in 0..3 {
+        h.step();
+        h.state().wait_for_render();
+    }
+    h.step();
+    h.step();
+}
+
+fn texture_mapping(app: &ExplorerApp) -> Option<Mapping> {
+    app.desc()?.objects[0].material.texture().mapping()
+}
+
+fn image_bytes(app: &ExplorerApp) -> Vec<u8> {
+    app.image().expect("an image").rgba.clone()
+}
+
+#[test]
+fn main_window_snapshot() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut h = harness(small_earth(dir.path()));
+    assert!(h.state().error().is_none(), "{:?}", h.state().error());
+    // The status line holds timings, which differ from run to run.
+    let status = h.get_by_label_contains("ms/pass").rect();
+    h.mask(egui::Rect::from_min_max(
+        egui::pos2(0.0, status.top() - 2.0),
+        egui::pos2(WINDOW[0], WINDOW[1]),
+    ));
+    h.snapshot("main_window");
+}
+
+#[test]
+fn choosing_another_mapping_rerenders_and_changes_the_image() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut h = harness(small_earth(dir.path()));
+    assert_eq!(texture_mapping(h.state()), Some(Mapping::Spherical));
+    let before = image_bytes(h.state());
+    h.get_by_role_and_label(Role::ComboBox, "Mapping").click();
+    h.run_steps(3);
+    h.get_by_label("cylindrical").click();
+    settle(&mut h);
+    assert_eq!(texture_mapping(h.state()), Some(Mapping::Cylindrical));
+    let after = image_bytes(h.state());
+    assert_eq!(before.len(), after.len());
+    let differing = before
+        .chunks(4)
+        .zip(after.chunks(4))
+        .filter(|(a, b)| a != b)
+        .count();
+    // The Earth covers about a third of the frame; the cylindrical map moves most of it.
+    assert!(
+        differing > 160 * 120 / 10,
+        "only {differing} pixels changed"
+    );
+    assert!(h.state().is_dirty());
+}
+
+#[test]
+fn opening_a_corrupt_image_shows_an_error_and_keeps_the_scene() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let corrupt = dir.path().join("corrupt.jpg");
+    std::fs::write(&corrupt, b"\xFF\xD8\xFF\xE0 this is not a JPEG").expect("write");
+    let mut h = harness(small_earth(dir.path()));
+    let desc_before = h.state().desc().cloned();
+    let image_before = image_bytes(h.state());
+
+    let field = h.get_by_role_and_label(Role::TextInput, "image");
+    field.focus();
+    h.step();
+    h.get_by_role_and_label(Role::TextInput, "image")
+        .set_text_value_accesskit("corrupt.jpg");
+    h.step();
+    h.get_by_label("Load").click();
+    settle(&mut h);
+
+    let err = h.state().error().expect("an error is shown").to_owned();
+    assert!(err.contains("corrupt.jpg"), "{err}");
+    // The message is in the window, not only in the state.
+    assert!(
+        h.query_all_by_label_contains("corrupt.jpg")
+            .next()
+            .is_some()
+    );
+    assert_eq!(h.state().desc().cloned(), desc_before, "the scene stays");
+    assert_eq!(image_bytes(h.state()), image_before, "the render stays");
+}
+
+#[test]
+fn saving_then_reopening_a_screenshot_restores_the_preset() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut h = harness(small_earth(dir.path()));
+    // An edit, so the screenshot holds something the preset file does not.
+    h.get_by_role_and_label(Role::ComboBox, "Mapping").click();
+    h.run_steps(3);
+    h.get_by_label("cylindrical").click();
+    settle(&mut h);
+    let shown = image_bytes(h.state());
+    let desc = h.state().desc().cloned().expect("scene");
+
+    // File > Save screenshot..., type the path, Save.
+    let png = dir.path().join("shot.png");
+    h.get_by_label("File").click();
+    h.run_steps(3);
+    h.get_by_label("Save screenshot…").click();
+    h.run_steps(3);
+    h.get_by_role_and_label(Role::TextInput, "Path")
+        .set_text_value_accesskit(&png.display().to_string());
+    h.step();
+    h.get_by_label("Save").click();
+    settle(&mut h);
+    assert!(h.state().error().is_none(), "{:?}", h.state().error());
+    assert!(png.exists());
+
+    // A fresh window on the PNG: the same scene, the same image.
+    let mut again = harness(png.clone());
+    assert!(
+        again.state().error().is_none(),
+        "{:?}",
+        again.state().error()
+    );
+    let restored = again.state().desc().cloned().expect("scene restored");
+    assert_eq!(
+        restored.objects[0].material.texture().mapping(),
+        Some(Mapping::Cylindrical)
+    );
+    assert_eq!(restored.camera, desc.camera);
+    assert_eq!(restored.render, desc.render);
+    assert_eq!(image_bytes(again.state()), shown);
+    settle(&mut again);
+}
+
+#[test]
+fn hovering_the_earth_explains_the_pixel() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut h = harness(small_earth(dir.path()));
+    // The viewport's centre is the image's centre: the Earth.
+    let centre = h.get_by_label("Reset view").rect();
+    let viewport_centre = egui::pos2(
+        (centre.left() + WINDOW[0] - 360.0) / 2.0,
+        (centre.bottom() + WINDOW[1] - 30.0) / 2.0,
+    );
+    h.hover_at(viewport_centre);
+    h.step();
+    h.step();
+    let i = h.state().inspection().expect("an inspection");
+    assert_eq!(i.mapping, Some(Mapping::Spherical));
+    assert_eq!(i.texels.len(), 2);
+    assert!(
+        h.query_all_by_label_contains("theta = acos(y)")
+            .next()
+            .is_some()
+    );
+    assert!(
+        h.query_all_by_label_contains("centred lookup")
+            .next()
+            .is_some()
+    );
+}
+
+#[test]
+fn unsaved_changes_are_asked_about_before_another_preset_opens() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut h = harness(small_earth(dir.path()));
+    h.get_by_role_and_label(Role::ComboBox, "Mapping").click();
+    h.run_steps(3);
+    h.get_by_label("cylindrical").click();
+    settle(&mut h);
+    let here = h.state().path().to_path_buf();
+    let open_checker = |h: &mut Harness<'_, ExplorerApp>| {
+        h.get_by_label("Presets").click();
+        h.run_steps(3);
+        h.get_by_label("checker").click();
+        h.run_steps(3);
+    };
+
+    open_checker(&mut h);
+    assert!(
+        h.query_all_by_label_contains("not saved").next().is_some(),
+        "the prompt shows"
+    );
+    assert_eq!(h.state().path(), here, "nothing opens before the answer");
+    h.get_by_label("Cancel").click();
+    settle(&mut h);
+    assert_eq!(h.state().path(), here);
+    assert_eq!(
+        texture_mapping(h.state()),
+        Some(Mapping::Cylindrical),
+        "the edit stays"
+    );
+
+    open_checker(&mut h);
+    h.get_by_label("Discard changes").click();
+    settle(&mut h);
+    assert!(
+        h.state().path().ends_with("presets/checker.ron"),
+        "{:?}",
+        h.state().path()
+    );
+    assert!(!h.state().is_dirty());
+}
+
+#[test]
+fn opening_a_preset_with_a_missing_image_keeps_the_scene() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let here = small_earth(dir.path());
+    let text = std::fs::read_to_string(&here).expect("read");
+    let broken = dir.path().join("broken.ron");
+    std::fs::write(&broken, text.replace("earth_2048x1024.jpg", "missing.jpg")).expect("write");
+    let mut h = harness(here.clone());
+    let desc_before = h.state().desc().cloned();
+    let image_before = image_bytes(h.state());
+
+    // File > Open..., type the path, Open.
+    h.get_by_label("File").click();
+    h.run_steps(3);
+    h.get_by_label("Open…").click();
+    h.run_steps(3);
+    h.get_by_role_and_label(Role::TextInput, "Path")
+        .set_text_value_accesskit(&broken.display().to_string());
+    h.step();
+    h.get_by_label("Open").click();
+    settle(&mut h);
+
+    let err = h.state().error().expect("an error is shown").to_owned();
+    assert!(err.contains("missing.jpg"), "{err}");
+    assert_eq!(h.state().path(), here);
+    assert_eq!(h.state().desc().cloned(), desc_before);
+    assert_eq!(image_bytes(h.state()), image_before);
+}

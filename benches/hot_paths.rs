@@ -12,7 +12,9 @@ use texplore::mapping::{Mapping, TexCoord};
 use texplore::math::{Ray, SampleRng, Vec2, Vec3A};
 use texplore::render::{Film, render_pass};
 use texplore::scene::{AssetCache, Overrides, apply_overrides, build_scene, load_preset};
-use texplore::texture::{Filter, ImageData, ImageTexture, Lookup, Wrap, load_image};
+use texplore::texture::{
+    DEFAULT_MAX_ANISOTROPY, Filter, ImageData, ImageTexture, Lookup, MipPyramid, Wrap, load_image,
+};
 
 /// Rays from a camera-like origin toward random points near the unit shapes, so hits and
 /// misses mix as in a render.
@@ -100,6 +102,7 @@ fn filters(c: &mut Criterion) {
         })
         .collect();
     let mut g = c.benchmark_group("filter");
+    let mip = Arc::new(MipPyramid::build(image.clone()));
     for filter in Filter::ALL {
         let tex = ImageTexture {
             image: image.clone(),
@@ -108,6 +111,8 @@ fn filters(c: &mut Criterion) {
             lookup: Lookup::Centred,
             wrap: Wrap::Repeat,
             scale: 1.0,
+            mip: filter.needs_mip().then(|| mip.clone()),
+            max_anisotropy: DEFAULT_MAX_ANISOTROPY,
         };
         let mut i = 0;
         g.bench_function(filter.name(), |b| {

@@ -3,9 +3,11 @@
 //! The decision reads only the film (deterministic sums), so it is the same for any thread
 //! count. Errors are measured on the display-encoded luminance (what a viewer sees): a pixel
 //! keeps sampling while
-//! - it has one sample and differs from a 4-neighbour by more than
-//!   [`CONTRAST_FACTOR`] x threshold (object and shadow edges, high local contrast: one sample
-//!   has no variance to estimate yet), or
+//! - it has one sample and either its first hit differs from a 4-neighbour's in object or in
+//!   which lights it sees (an object or shadow edge: the film's edge keys), or it differs from
+//!   a 4-neighbour by more than [`CONTRAST_FACTOR`] x threshold where the texture was not
+//!   filtered over the pixel's footprint (high local contrast that only more samples
+//!   antialias; a footprint filter has already averaged it), or
 //! - it has two or more and the standard error of its mean exceeds the threshold, or a
 //!   4-neighbour's does (the mask is dilated by one pixel so an edge pixel whose first samples
 //!   happened to agree is not left behind);
@@ -16,10 +18,14 @@
 use super::Film;
 use crate::math::{Rgb, linear_to_srgb};
 use crate::scene::AdaptiveDesc;
+use rayon::prelude::*;
 
 /// After one sample, a pixel is refined when it differs from a neighbour by this many
 /// thresholds: neighbours of a smooth, filtered texture differ a little; edges differ a lot.
 pub const CONTRAST_FACTOR: f32 = 8.0;
+
+/// The edge-key bit saying the texture was filtered over the pixel's footprint.
+const PREFILTERED: u32 = 1 << 31;
 
 /// A sample's luminance as a display value in [0, 1] (exposure applied, sRGB-encoded).
 #[must_use]
@@ -35,16 +41,17 @@ pub fn adaptive_mask(film: &Film, a: &AdaptiveDesc) -> Vec<bool> {
     let (w, h) = (film.width() as usize, film.height() as usize);
     let pixels = film.pixels();
     let stats = film.stats();
+    let keys = film.keys();
     let threshold = a.threshold;
     let max_spp = a.max_spp as f32;
     // Mean display luminance and, where it has 2+ samples, whether the pixel is noisy.
     let mean: Vec<f32> = stats
-        .iter()
+        .par_iter()
         .zip(pixels)
         .map(|(s, p)| if p[3] > 0.0 { s[0] / p[3] } else { 0.0 })
         .collect();
     let noisy: Vec<bool> = stats
-        .iter()
+        .par_iter()
         .zip(pixels)
         .map(|(s, p)| {
             let n = p[3];
@@ -56,8 +63,8 @@ pub fn adaptive_mask(film: &Film, a: &AdaptiveDesc) -> Vec<bool> {
         })
         .collect();
     let mut mask = vec![false; w * h];
-    for y in 0..h {
-        for x in 0..w {
+    mask.par_chunks_mut(w).enumerate().for_each(|(y, row)| {
+        for (x, m) in row.iter_mut().enumerate() {
             let i = y * w + x;
             let n = pixels[i][3];
             if n >= max_spp {
@@ -69,16 +76,17 @@ pub fn adaptive_mask(film: &Film, a: &AdaptiveDesc) -> Vec<bool> {
                 (y > 0).then(|| i - w),
                 (y + 1 < h).then(|| i + w),
             ];
-            mask[i] = if n < 2.0 {
-                neighbours
-                    .iter()
-                    .flatten()
-                    .any(|&j| (mean[j] - mean[i]).abs() > CONTRAST_FACTOR * threshold)
+            *m = if n < 2.0 {
+                let prefiltered = keys[i] & PREFILTERED != 0;
+                neighbours.iter().flatten().any(|&j| {
+                    (keys[j] & !PREFILTERED) != (keys[i] & !PREFILTERED)
+                        || (!prefiltered && (mean[j] - mean[i]).abs() > CONTRAST_FACTOR * threshold)
+                })
             } else {
                 noisy[i] || neighbours.iter().flatten().any(|&j| noisy[j])
             };
         }
-    }
+    });
     mask
 }
 
@@ -89,7 +97,7 @@ mod tests {
     fn film_with(values: &[&[f32]]) -> Film {
         // One column of pixels per entry, each with the given samples (grey radiance).
         let mut f = Film::new(values.len() as u32, 1);
-        let (sums, stats) = f.sums_mut();
+        let (sums, stats, _) = f.buffers_mut();
         for (i, samples) in values.iter().enumerate() {
             for &v in *samples {
                 let e = display_luminance(Rgb::grey(v), 1.0);
@@ -112,6 +120,31 @@ mod tests {
         };
         let f = film_with(&[&[0.2], &[0.2], &[0.2], &[0.9], &[0.9]]);
         assert_eq!(adaptive_mask(&f, &a), [false, false, true, true, false]);
+    }
+
+    #[test]
+    fn object_and_shadow_edges_refine_and_prefiltered_contrast_does_not() {
+        let a = AdaptiveDesc {
+            max_spp: 16,
+            threshold: 0.01,
+        };
+        // Five prefiltered pixels of a high-contrast texture on object 1; the last sees a
+        // different object.
+        let mut f = film_with(&[&[0.1], &[0.9], &[0.1], &[0.9], &[0.9]]);
+        let (_, _, keys) = f.buffers_mut();
+        keys.copy_from_slice(&[
+            1 | PREFILTERED,
+            1 | PREFILTERED,
+            1 | PREFILTERED,
+            1 | PREFILTERED,
+            2,
+        ]);
+        assert_eq!(adaptive_mask(&f, &a), [false, false, false, true, true]);
+        // A shadow edge: same object, one light blocked.
+        let mut f = film_with(&[&[0.5], &[0.5], &[0.5]]);
+        let (_, _, keys) = f.buffers_mut();
+        keys.copy_from_slice(&[1, 1, 1 | 1 << 16]);
+        assert_eq!(adaptive_mask(&f, &a), [false, true, true]);
     }
 
     #[test]

@@ -12,6 +12,7 @@ pub struct Film {
     height: u32,
     pixels: Vec<[f32; 4]>,
     stats: Vec<[f32; 2]>,
+    keys: Vec<u32>,
 }
 
 impl Film {
@@ -24,6 +25,7 @@ impl Film {
             height,
             pixels: vec![[0.0; 4]; n],
             stats: vec![[0.0; 2]; n],
+            keys: vec![0; n],
         }
     }
 
@@ -34,9 +36,16 @@ impl Film {
         &self.stats
     }
 
-    /// The sums and the luminance statistics, mutably (for render passes).
-    pub fn sums_mut(&mut self) -> (&mut [[f32; 4]], &mut [[f32; 2]]) {
-        (&mut self.pixels, &mut self.stats)
+    /// Per pixel, the edge key of its first sample (see `Scene::trace_keyed`; filled by
+    /// adaptive renders only).
+    #[must_use]
+    pub fn keys(&self) -> &[u32] {
+        &self.keys
+    }
+
+    /// The sums, the luminance statistics and the edge keys, mutably (for render passes).
+    pub fn buffers_mut(&mut self) -> (&mut [[f32; 4]], &mut [[f32; 2]], &mut [u32]) {
+        (&mut self.pixels, &mut self.stats, &mut self.keys)
     }
 
     /// Total samples taken (the sum of every pixel's weight).

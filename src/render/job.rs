@@ -140,6 +140,15 @@ impl RenderJob {
         }
     }
 
+    /// Waits for the job to finish or stop and returns the final film (`None` if cancelled).
+    #[must_use]
+    pub fn film_when_done(mut self) -> Option<Arc<Film>> {
+        if let Some(h) = self.handle.take() {
+            let _ = h.join();
+        }
+        self.film()
+    }
+
     /// Waits for the job to finish or stop.
     pub fn wait(mut self) -> Progress {
         if let Some(h) = self.handle.take() {

@@ -85,37 +85,45 @@ pub fn render_pass_masked(
 ) -> Result<(), Cancelled> {
     let s = &scene.settings;
     let width = film.width() as usize;
-    let spacing = 1.0 / (s.spp as f32).sqrt();
+    // Adaptive samples past `spp` are finer: their footprints shrink with `max_spp`.
+    let spacing = if sample < s.spp {
+        1.0 / (s.spp as f32).sqrt()
+    } else {
+        1.0 / (s.max_spp() as f32).sqrt()
+    };
     let stats_on = s.adaptive.is_some();
-    let (sums, stats) = film.sums_mut();
+    let rows = width * TILE_ROWS;
+    let (sums, stats, keys) = film.buffers_mut();
     let result: Result<(), Cancelled> = sums
-        .par_chunks_mut(width * TILE_ROWS)
-        .zip(stats.par_chunks_mut(width * TILE_ROWS))
+        .par_chunks_mut(rows)
+        .zip(stats.par_chunks_mut(rows))
+        .zip(keys.par_chunks_mut(rows))
         .enumerate()
-        .try_for_each(|(tile, (chunk, stat))| {
+        .try_for_each(|(tile, ((chunk, stat), key))| {
             if cancelled() {
                 return Err(Cancelled);
             }
             let y0 = tile * TILE_ROWS;
-            for (i, (px, st)) in chunk.iter_mut().zip(stat.iter_mut()).enumerate() {
+            for (i, ((px, st), k)) in chunk.iter_mut().zip(stat).zip(key).enumerate() {
                 let (x, y) = (i % width, y0 + i / width);
-                if let Some(m) = mask {
-                    if !m[y * width + x] {
-                        continue;
-                    }
+                if mask.is_some_and(|m| !m[y * width + x]) {
+                    continue;
                 }
                 let pos = sample_position(s, x as u32, y as u32, sample);
-                let l = radiance(scene, pos, spacing);
+                let (l, edge_key) = radiance_keyed(scene, pos, spacing);
                 debug_assert!(l.is_finite(), "non-finite radiance at pixel ({x}, {y})");
-                px[0] += l.0;
-                px[1] += l.1;
-                px[2] += l.2;
-                px[3] += 1.0;
                 if stats_on {
+                    if px[3] == 0.0 {
+                        *k = edge_key;
+                    }
                     let e = display_luminance(l, s.exposure_scale);
                     st[0] += e;
                     st[1] += e * e;
                 }
+                px[0] += l.0;
+                px[1] += l.1;
+                px[2] += l.2;
+                px[3] += 1.0;
             }
             Ok(())
         });
@@ -160,19 +168,26 @@ pub fn render_scheduled_pass(
 #[must_use]
 #[inline]
 pub fn radiance(scene: &Scene, pos: Vec2, spacing: f32) -> Rgb {
+    radiance_keyed(scene, pos, spacing).0
+}
+
+/// [`radiance`] with the hit's edge key (see [`Scene::trace_keyed`]).
+#[must_use]
+#[inline]
+pub fn radiance_keyed(scene: &Scene, pos: Vec2, spacing: f32) -> (Rgb, u32) {
     // Without a footprint filter only the main ray is needed (saves two camera directions).
     if !scene.needs_differentials {
         return scene
             .camera
             .primary_ray(pos)
-            .map_or(Rgb::BLACK, |ray| scene.trace(&ray, None));
+            .map_or((Rgb::BLACK, 0), |ray| scene.trace_keyed(&ray, None));
     }
     match scene.camera.ray(pos, spacing) {
         Some((ray, diff)) => {
             let diff = diff.scaled_about(&ray, spacing.max(MIN_FOOTPRINT_SCALE));
-            scene.trace(&ray, Some(&diff))
+            scene.trace_keyed(&ray, Some(&diff))
         }
-        None => Rgb::BLACK,
+        None => (Rgb::BLACK, 0),
     }
 }
 
@@ -232,4 +247,73 @@ pub fn render_blocking(scene: &Scene, mut on_pass: impl FnMut(u32)) -> Film {
         }
     }
     film
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sampler::PixelSampler;
+    use crate::scene::{AdaptiveDesc, AssetCache, build_scene, parse_preset};
+    use std::path::Path;
+
+    fn scene(adaptive: bool) -> Scene {
+        let text = r#"(
+            version: 1,
+            camera: (eye: (0, 0, 4)),
+            render: (width: 24, height: 16, spp: 1, background: (0.2, 0.3, 0.4)),
+            lights: [Directional(direction: (1, 1, 1))],
+            objects: [(shape: Sphere, material: Matte(cd: Checker(mapping: Spherical, filter: Ewa)))],
+        )"#;
+        let mut desc = parse_preset(text, Path::new("test.ron")).unwrap();
+        if adaptive {
+            desc.render.adaptive = Some(AdaptiveDesc {
+                max_spp: 9,
+                threshold: 0.01,
+            });
+        }
+        build_scene(&desc, Path::new("test.ron"), &mut AssetCache::new()).unwrap()
+    }
+
+    #[test]
+    fn adaptive_samples_past_spp_form_a_whole_stratified_set() {
+        // spp 1, max 17: the 16 extra samples of a pixel are the jittered set of 16 in a
+        // shuffled order, one per cell of a 4 x 4 grid.
+        let mut s = scene(false).settings;
+        s.sampler = PixelSampler::Jittered;
+        s.adaptive = Some(AdaptiveDesc {
+            max_spp: 17,
+            threshold: 0.01,
+        });
+        let mut seen = [false; 16];
+        for k in 1..17 {
+            let p = sample_position(&s, 5, 7, k) - Vec2::new(5.0, 7.0);
+            let cell = (p.y * 4.0) as usize * 4 + (p.x * 4.0) as usize;
+            assert!(!seen[cell], "sample {k} lands in a taken cell");
+            seen[cell] = true;
+        }
+        // The order is shuffled per pixel, not the same for every pixel.
+        assert_ne!(
+            sample_position(&s, 5, 7, 1) - Vec2::new(5.0, 7.0),
+            sample_position(&s, 6, 7, 1) - Vec2::new(6.0, 7.0)
+        );
+    }
+
+    #[test]
+    fn progressive_job_and_blocking_render_give_the_same_adaptive_film() {
+        let sc = scene(true);
+        let blocking = render_blocking(&sc, |_| {});
+        // Some pixels were refined, others were not.
+        let counts: Vec<f32> = blocking.pixels().iter().map(|p| p[3]).collect();
+        assert!(counts.contains(&1.0) && counts.iter().any(|&c| c > 1.0));
+        let job = RenderJob::start(
+            std::sync::Arc::new(sc),
+            RenderOptions {
+                threads: 2,
+                preview: true,
+            },
+            &Generation::new(),
+        );
+        let film = job.film_when_done();
+        assert!(film.as_deref() == Some(&blocking));
+    }
 }

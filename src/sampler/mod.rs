@@ -274,6 +274,76 @@ mod tests {
     }
 
     #[test]
+    fn jittered_and_multi_jittered_fill_their_grid_for_any_count() {
+        // Non-square counts: jittered uses a cols x rows grid with at least `count` cells, one
+        // point in each of `count` distinct cells; multi-jittered an m x n grid (m = floor(sqrt)),
+        // one point per coarse cell, and at most one per fine column (m n of them) and per fine
+        // row.
+        for n in [2, 3, 5, 7, 12, 17, 30] {
+            for pixel in 0..10 {
+                let (cols, rows) = grid(n);
+                let mut seen = vec![false; (cols * rows) as usize];
+                for p in points(PixelSampler::Jittered, n, pixel) {
+                    let cell = (p.y * rows as f32) as u32 * cols + (p.x * cols as f32) as u32;
+                    assert!(
+                        !seen[cell as usize],
+                        "jittered {n}: two points in cell {cell}"
+                    );
+                    seen[cell as usize] = true;
+                }
+                let m = (n as f32).sqrt().floor() as u32;
+                let k = n.div_ceil(m);
+                let fine = (m * k) as usize;
+                let (mut coarse, mut fx, mut fy) = (vec![0; fine], vec![0; fine], vec![0; fine]);
+                for p in points(PixelSampler::MultiJittered, n, pixel) {
+                    coarse[(p.y * k as f32) as usize * m as usize + (p.x * m as f32) as usize] += 1;
+                    fx[(p.x * fine as f32) as usize] += 1;
+                    fy[(p.y * fine as f32) as usize] += 1;
+                }
+                assert!(
+                    coarse.iter().all(|&c| c <= 1),
+                    "multi-jittered {n}: {coarse:?}"
+                );
+                assert!(fx.iter().chain(&fy).all(|&c| c <= 1), "multi-jittered {n}");
+            }
+        }
+    }
+
+    #[test]
+    fn regular_is_the_grid_of_cell_centres_and_hammersley_is_stratified_in_x() {
+        let pts = points(PixelSampler::Regular, 4, 9);
+        assert_eq!(
+            pts,
+            [
+                Vec2::new(0.25, 0.25),
+                Vec2::new(0.75, 0.25),
+                Vec2::new(0.25, 0.75),
+                Vec2::new(0.75, 0.75)
+            ]
+        );
+        for n in [3, 10, 33] {
+            let mut cols = vec![0; n as usize];
+            for p in points(PixelSampler::Hammersley, n, 4) {
+                cols[(p.x * n as f32) as usize] += 1;
+            }
+            assert!(cols.iter().all(|&c| c == 1), "hammersley {n}: {cols:?}");
+        }
+    }
+
+    #[test]
+    fn patterns_differ_between_pixels() {
+        for s in [
+            PixelSampler::Random,
+            PixelSampler::Jittered,
+            PixelSampler::NRooks,
+            PixelSampler::MultiJittered,
+            PixelSampler::Hammersley,
+        ] {
+            assert_ne!(points(s, 16, 1), points(s, 16, 2), "{s:?}");
+        }
+    }
+
+    #[test]
     fn permute_is_a_permutation() {
         for l in [1, 2, 7, 64, 1000] {
             let mut seen = vec![false; l as usize];

@@ -495,6 +495,18 @@ impl TextureDesc {
         }
     }
 
+    /// Sets the filter of a texture that has one (images, mesh materials, the UV grid, the
+    /// checker).
+    pub fn set_filter(&mut self, f: Filter) {
+        match self {
+            Self::Constant(_) => {}
+            Self::Image { filter, .. }
+            | Self::Checker { filter, .. }
+            | Self::MeshMaterial { filter, .. }
+            | Self::UvGrid { filter, .. } => *filter = f,
+        }
+    }
+
     /// Sets the mapping of a texture that has one.
     pub fn set_mapping(&mut self, m: Mapping) {
         match self {

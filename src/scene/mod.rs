@@ -212,27 +212,47 @@ impl Scene {
     #[must_use]
     #[inline]
     pub fn trace(&self, ray: &Ray, diff: Option<&RayDifferential>) -> Rgb {
+        self.trace_keyed(ray, diff).0
+    }
+
+    /// Like [`Scene::trace`], with an edge key for adaptive sampling: neighbouring pixels
+    /// whose keys differ straddle an object or shadow edge. The key holds the object hit
+    /// (0 for the background) in the low 16 bits, one bit per light whose shadow ray was
+    /// blocked above them, and in bit 31 whether the texture there was filtered over the pixel's
+    /// footprint (so its contrast is already antialiased).
+    #[must_use]
+    #[inline]
+    pub fn trace_keyed(&self, ray: &Ray, diff: Option<&RayDifferential>) -> (Rgb, u32) {
         let Some(hit) = self.hit(ray) else {
-            return self.settings.background;
+            return (self.settings.background, 0);
         };
-        let l = self.shade(&hit, diff);
-        if l.is_finite() { l } else { Rgb::BLACK }
+        let (l, key) = self.shade_keyed(&hit, diff);
+        (if l.is_finite() { l } else { Rgb::BLACK }, key)
     }
 
     /// Shades a resolved hit.
     #[must_use]
     #[inline]
     pub fn shade(&self, hit: &SurfaceHit, diff: Option<&RayDifferential>) -> Rgb {
+        self.shade_keyed(hit, diff).0
+    }
+
+    /// Shades a resolved hit and returns its edge key (see [`Scene::trace_keyed`]).
+    #[must_use]
+    #[inline]
+    pub fn shade_keyed(&self, hit: &SurfaceHit, diff: Option<&RayDifferential>) -> (Rgb, u32) {
         let obj = &self.objects[hit.object];
         let material = &self.materials[obj.material];
         let ctx = self.texture_context(hit, diff);
         let view = self.settings.view;
+        let filtered = diff.is_some() && material.texture().needs_differentials();
+        let mut key = (hit.object as u32 + 1) & 0xffff | u32::from(filtered) << 31;
         if matches!(view, View::Uv | View::MipLevel) {
-            return material.texture().debug_color(&ctx, view, Rgb::BLACK);
+            return (material.texture().debug_color(&ctx, view, Rgb::BLACK), key);
         }
         let sp = material.shade_point(&ctx, self.ambient);
         if !material.is_lit() {
-            return material.texture().debug_color(&ctx, view, sp.base);
+            return (material.texture().debug_color(&ctx, view, sp.base), key);
         }
         let mut l = sp.base;
         let offset = SHADOW_OFFSET_RELATIVE
@@ -252,7 +272,7 @@ impl Scene {
             Shape::Cylinder { capped: false } | Shape::Mesh(_) => true,
         };
         let skip = if self_shadows { usize::MAX } else { hit.object };
-        for light in &self.lights {
+        for (i, light) in self.lights.iter().enumerate() {
             let (wi, dist, li, shadows) = light.incident(hit.p);
             if hit.ns.dot(wi) <= 0.0 || hit.ng.dot(wi) <= 0.0 {
                 continue;
@@ -265,15 +285,17 @@ impl Scene {
                     f32::INFINITY
                 };
                 if self.occluded_except(&Ray::new(origin, wi), t_max, skip) {
+                    key |= (1 << (16 + i.min(14))) as u32;
                     continue;
                 }
             }
             l += sp.direct(hit.ns, hit.wo, wi, li);
         }
-        match view {
+        let l = match view {
             View::Shaded => l,
             _ => material.texture().debug_color(&ctx, view, l),
-        }
+        };
+        (l, key)
     }
 }
 

@@ -75,7 +75,9 @@ impl PixelSampler {
     pub fn sample(self, seed: u32, pixel: u32, index: u32, count: u32) -> Vec2 {
         let count = count.max(1);
         let index = index % count;
-        let pattern = hash3(seed, pixel, 0x5a3d_c0de);
+        // The per-pixel pattern (a permutation or shift shared by the pixel's samples) is hashed
+        // only by the samplers that use it: three hash rounds saved per jittered sample.
+        let pattern = || hash3(seed, pixel, 0x5a3d_c0de);
         let mut rng = SampleRng::new(seed, pixel, index);
         let p = match self {
             Self::Regular | Self::Jittered => {
@@ -91,15 +93,16 @@ impl PixelSampler {
             Self::Random => Vec2::new(rng.next_f32(), rng.next_f32()),
             Self::NRooks => {
                 let n = count as f32;
-                let row = permute(index, count, pattern);
+                let row = permute(index, count, pattern());
                 Vec2::new(
                     (index as f32 + rng.next_f32()) / n,
                     (row as f32 + rng.next_f32()) / n,
                 )
             }
-            Self::MultiJittered => cmj(index, count, pattern),
+            Self::MultiJittered => cmj(index, count, pattern()),
             Self::Hammersley => {
                 let n = count as f32;
+                let pattern = pattern();
                 let shift = (pattern >> 8) as f32 * (1.0 / 16_777_216.0);
                 let x = (index as f32 + 0.5) / n + shift;
                 let y = radical_inverse_2(index) ^ hash3(pattern, 1, 2);

@@ -153,12 +153,42 @@ fn a_tiny_report_writes_every_file_and_reuses_its_reference() {
     }
 }
 
+/// An adaptive mode spends more samples than spp on some pixels, and says so in its name and in
+/// its samples per second.
+#[test]
+fn adaptive_modes_parse_and_take_extra_samples() {
+    let modes = Mode::parse_list("ewa/regular+adaptive, bilinear/regular").unwrap();
+    assert_eq!(modes.len(), 2);
+    assert!(modes[0].adaptive && !modes[1].adaptive);
+    assert_eq!(modes[0].name(), "ewa/regular+adaptive");
+    let tmp = tempfile::tempdir().unwrap();
+    let mut config = tiny_config(Some(tmp.path().to_path_buf()));
+    config.modes = modes;
+    config.spp = vec![1];
+    let desc = load_preset(&root().join("presets/earth.ron")).unwrap();
+    let never = std::sync::atomic::AtomicBool::new(false);
+    let rep = texplore::report::run_scene(
+        "earth",
+        &desc,
+        &root().join("presets/earth.ron"),
+        &config,
+        &mut |_| {},
+        &never,
+    )
+    .unwrap();
+    let (a, b) = (&rep.rows[0], &rep.rows[1]);
+    let pixels = f64::from(a.width * a.height);
+    assert!(
+        a.samples > pixels * 1.05,
+        "adaptive took {} samples for {pixels} pixels",
+        a.samples
+    );
+    assert!((b.samples - pixels).abs() < 0.5, "{}", b.samples);
+}
+
 fn tiny_config(cache: Option<PathBuf>) -> ReportConfig {
     ReportConfig {
-        modes: vec![Mode {
-            filter: Filter::Bilinear,
-            sampler: PixelSampler::Jittered,
-        }],
+        modes: vec![Mode::new(Filter::Bilinear, PixelSampler::Jittered)],
         spp: vec![1, 2],
         repeat: 1,
         width: Some(24),

@@ -16,7 +16,7 @@ pub use output::write_outputs;
 pub use reference::{CacheKey, CachedReference, REFERENCE_VERSION, cache_key, default_cache_dir};
 pub use table::{RMSE_TARGETS, pareto_front, time_to_reach};
 
-use crate::render::{Film, render_pass};
+use crate::render::{Film, render_pass, render_scheduled_pass};
 use crate::sampler::PixelSampler;
 use crate::scene::{AssetCache, Overrides, SceneDesc, apply_overrides, build_scene};
 use crate::texture::Filter;
@@ -64,13 +64,32 @@ pub struct Mode {
     pub filter: Filter,
     /// Pixel sampler.
     pub sampler: PixelSampler,
+    /// Adaptive sampling after the first `spp` samples (up to [`ADAPTIVE_FACTOR`] x `spp`, at
+    /// least [`ADAPTIVE_MIN_MAX_SPP`], at the default threshold); written `+adaptive`.
+    pub adaptive: bool,
 }
+
+/// An adaptive mode may spend up to this many times its `spp` on the pixels that need it.
+pub const ADAPTIVE_FACTOR: u32 = 4;
+/// ... and at least this many samples per pixel.
+pub const ADAPTIVE_MIN_MAX_SPP: u32 = 16;
 
 impl Mode {
     /// `filter/sampler`, as `--modes` takes it.
     #[must_use]
     pub fn name(self) -> String {
-        format!("{}/{}", self.filter.name(), self.sampler.name())
+        let adaptive = if self.adaptive { "+adaptive" } else { "" };
+        format!("{}/{}{adaptive}", self.filter.name(), self.sampler.name())
+    }
+
+    /// A non-adaptive mode.
+    #[must_use]
+    pub const fn new(filter: Filter, sampler: PixelSampler) -> Self {
+        Self {
+            filter,
+            sampler,
+            adaptive: false,
+        }
     }
 
     /// Every filter with every sampler.
@@ -81,7 +100,7 @@ impl Mode {
             .flat_map(|&filter| {
                 PixelSampler::ALL
                     .iter()
-                    .map(move |&sampler| Self { filter, sampler })
+                    .map(move |&sampler| Self::new(filter, sampler))
             })
             .collect()
     }
@@ -92,25 +111,26 @@ impl Mode {
     pub fn default_set() -> Vec<Self> {
         let mut v: Vec<Self> = Filter::ALL
             .iter()
-            .map(|&filter| Self {
-                filter,
-                sampler: PixelSampler::Jittered,
-            })
+            .map(|&filter| Self::new(filter, PixelSampler::Jittered))
             .collect();
         for &sampler in &PixelSampler::ALL {
-            let m = Self {
-                filter: Filter::Bilinear,
-                sampler,
-            };
+            let m = Self::new(Filter::Bilinear, sampler);
             if !v.contains(&m) {
                 v.push(m);
             }
+        }
+        // Adaptive sampling with the filter that needs the fewest samples inside textures.
+        for filter in [Filter::Ewa, Filter::Bilinear] {
+            v.push(Self {
+                adaptive: true,
+                ..Self::new(filter, PixelSampler::Regular)
+            });
         }
         v
     }
 
     /// Parses `all`, `default`, or a comma-separated list of `filter/sampler` (either part may
-    /// be `*` for every value).
+    /// be `*` for every value), each optionally followed by `+adaptive`.
     ///
     /// # Errors
     /// An unknown filter or sampler (the message lists the valid names) or an empty list.
@@ -123,6 +143,10 @@ impl Mode {
         }
         let mut out: Vec<Self> = Vec::new();
         for item in s.split(',').map(str::trim).filter(|i| !i.is_empty()) {
+            let (item, adaptive) = match item.strip_suffix("+adaptive") {
+                Some(rest) => (rest, true),
+                None => (item, false),
+            };
             let (f, smp) = item.split_once('/').ok_or_else(|| {
                 ReportError::Invalid(format!(
                     "mode '{item}' is not filter/sampler (for example bilinear/jittered)"
@@ -140,7 +164,11 @@ impl Mode {
             };
             for &filter in &filters {
                 for &sampler in &samplers {
-                    let m = Self { filter, sampler };
+                    let m = Self {
+                        filter,
+                        sampler,
+                        adaptive,
+                    };
                     if !out.contains(&m) {
                         out.push(m);
                     }
@@ -249,6 +277,8 @@ pub struct Row {
     pub threads: usize,
     /// Timed runs (after the warm-up).
     pub runs: usize,
+    /// Camera samples the render took (more than width x height x spp with adaptive sampling).
+    pub samples: f64,
     /// Median time of the timed runs.
     pub time: Duration,
     /// Fastest timed run.
@@ -261,8 +291,7 @@ impl Row {
     /// Camera samples per second at the median time.
     #[must_use]
     pub fn samples_per_second(&self) -> f64 {
-        f64::from(self.width) * f64::from(self.height) * f64::from(self.spp)
-            / self.time.as_secs_f64().max(1e-12)
+        self.samples / self.time.as_secs_f64().max(1e-12)
     }
 }
 
@@ -348,7 +377,7 @@ pub fn run_scene(
         return Err(ReportError::Invalid("no modes given".into()));
     }
     let mut assets = AssetCache::new();
-    let sized = |filter, sampler, spp, seed| {
+    let sized = |mode: Mode, spp: u32, seed| {
         let mut d = scene.clone();
         apply_overrides(
             &mut d,
@@ -357,8 +386,14 @@ pub fn run_scene(
                 height: config.height,
                 spp: Some(spp),
                 seed,
-                filter: Some(filter),
-                sampler: Some(sampler),
+                filter: Some(mode.filter),
+                sampler: Some(mode.sampler),
+                // Only adaptive modes sample adaptively, whatever the preset says.
+                adaptive: mode.adaptive.then(|| crate::scene::AdaptiveDesc {
+                    max_spp: (spp * ADAPTIVE_FACTOR).max(ADAPTIVE_MIN_MAX_SPP),
+                    threshold: crate::scene::DEFAULT_ADAPTIVE_THRESHOLD,
+                }),
+                no_adaptive: !mode.adaptive,
                 ..Overrides::default()
             },
         );
@@ -366,8 +401,7 @@ pub fn run_scene(
     };
     let r = &config.reference;
     let ref_desc = sized(
-        r.filter,
-        r.sampler,
+        Mode::new(r.filter, r.sampler),
         r.spp,
         Some(scene.render.seed.wrapping_add(REFERENCE_SEED_OFFSET)),
     );
@@ -422,7 +456,7 @@ pub fn run_scene(
     let mut error_maps = Vec::new();
     for &mode in &config.modes {
         for &spp in &config.spp {
-            let desc = sized(mode.filter, mode.sampler, spp, None);
+            let desc = sized(mode, spp, None);
             let built = build_scene(&desc, preset_path, &mut assets)?;
             let stage = Stage::Mode(mode, spp);
             let cell = pixels * u64::from(spp);
@@ -462,6 +496,7 @@ pub fn run_scene(
             rows.push(Row {
                 scene: name.to_string(),
                 mode,
+                samples: film.total_samples(),
                 spp,
                 width,
                 height,
@@ -510,7 +545,7 @@ fn pass(
     render_pass(scene, film, sample, &cancelled).map_err(|_| ReportError::Cancelled)
 }
 
-/// One complete render (every pass) and its wall time.
+/// One complete render (every pass, adaptive ones included) and its wall time.
 fn render_timed(
     scene: &crate::scene::Scene,
     spp: u32,
@@ -518,8 +553,19 @@ fn render_timed(
 ) -> Result<(Film, Duration), ReportError> {
     let t0 = Instant::now();
     let mut film = Film::new(scene.settings.width, scene.settings.height);
-    for sample in 0..spp {
-        pass(scene, &mut film, sample, cancel)?;
+    if scene.settings.adaptive.is_none() {
+        for sample in 0..spp {
+            pass(scene, &mut film, sample, cancel)?;
+        }
+    } else {
+        let cancelled = || cancel.load(Ordering::Relaxed);
+        for p in 0..scene.settings.max_spp() {
+            match render_scheduled_pass(scene, &mut film, p, &cancelled) {
+                Ok(0) => break,
+                Ok(_) => {}
+                Err(_) => return Err(ReportError::Cancelled),
+            }
+        }
     }
     Ok((film, t0.elapsed()))
 }
@@ -534,14 +580,8 @@ mod tests {
         assert_eq!(
             m,
             vec![
-                Mode {
-                    filter: Filter::Nearest,
-                    sampler: PixelSampler::Jittered
-                },
-                Mode {
-                    filter: Filter::Bilinear,
-                    sampler: PixelSampler::Regular
-                }
+                Mode::new(Filter::Nearest, PixelSampler::Jittered),
+                Mode::new(Filter::Bilinear, PixelSampler::Regular)
             ]
         );
         assert_eq!(

@@ -334,10 +334,8 @@ mod tests {
     fn row(ms_: u64, rmse: f64, spp: u32) -> Row {
         Row {
             scene: "s".into(),
-            mode: Mode {
-                filter: Filter::Bilinear,
-                sampler: PixelSampler::Jittered,
-            },
+            mode: Mode::new(Filter::Bilinear, PixelSampler::Jittered),
+            samples: f64::from(100 * spp),
             spp,
             width: 10,
             height: 10,

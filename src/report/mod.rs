@@ -593,7 +593,9 @@ mod tests {
             Filter::ALL.len()
         );
         let d = Mode::default_set();
-        assert_eq!(d.len(), Filter::ALL.len() + PixelSampler::ALL.len() - 1);
+        // Every filter with jittered, bilinear with the other samplers, two adaptive modes.
+        assert_eq!(d.len(), Filter::ALL.len() + PixelSampler::ALL.len() - 1 + 2);
+        assert_eq!(d.iter().filter(|m| m.adaptive).count(), 2);
         let e = Mode::parse_list("bilinear/zigzag").unwrap_err().to_string();
         assert!(e.contains("zigzag") && e.contains("jittered"), "{e}");
         assert!(Mode::parse_list("bilinear").is_err());

@@ -69,8 +69,9 @@ pub fn write_outputs(
         };
         written.extend([svg, png_path]);
         for map in &rep.error_maps {
+            let adaptive = if map.mode.adaptive { "_adaptive" } else { "" };
             let file = format!(
-                "heat_{}_{}_{}spp.png",
+                "heat_{}_{}{adaptive}_{}spp.png",
                 map.mode.filter.name(),
                 map.mode.sampler.name(),
                 map.spp

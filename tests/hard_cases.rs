@@ -507,6 +507,21 @@ fn obj_face_indices_out_of_range_name_the_line() {
     assert_eq!(m.triangles.len(), 2);
 }
 
+/// What `texplore mesh-info --json FILE` prints (the command must succeed).
+fn mesh_info_json(file: &Path) -> serde_json::Value {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_texplore"))
+        .args(["mesh-info", "--json"])
+        .arg(file)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).unwrap()
+}
+
 /// Degenerate triangles: collinear corners, a repeated corner, corners at one point, and
 /// zero (u, v) area. They load, `mesh-info` counts them, and a render of them under every
 /// filter (the footprint of a zero-UV-area triangle has no derivatives) stays finite.
@@ -523,17 +538,7 @@ fn degenerate_triangles_load_count_and_render_finite() {
     .unwrap();
     // Faces: a good one; collinear (0, 3, 4); a repeated corner; all corners at one point
     // (5, 6 duplicate vertices); and (1, 2, 5), of positive area and positive (u, v) area.
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_texplore"))
-        .args(["mesh-info", "--json"])
-        .arg(&ply)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let v = mesh_info_json(&ply);
     assert_eq!(v["triangles"], 5);
     assert_eq!(v["degenerate"], 3, "{v}");
     // A triangle whose (u, v) are collinear: add one by giving three corners the same (u, v).
@@ -543,12 +548,7 @@ fn degenerate_triangles_load_count_and_render_finite() {
         "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nproperty float u\nproperty float v\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n-1 0 -1 0.5 0.5\n1 0 -1 0.5 0.5\n0 0 1 0.5 0.5\n3 0 1 2\n",
     )
     .unwrap();
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_texplore"))
-        .args(["mesh-info", "--json"])
-        .arg(&flat_uv)
-        .output()
-        .unwrap();
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let v = mesh_info_json(&flat_uv);
     assert_eq!(
         (v["degenerate"].as_u64(), v["degenerate_uv"].as_u64()),
         (Some(0), Some(1)),

@@ -104,26 +104,34 @@ pub fn render_pass_masked(
                 return Err(Cancelled);
             }
             let y0 = tile * TILE_ROWS;
-            for (i, ((px, st), k)) in chunk.iter_mut().zip(stat).zip(key).enumerate() {
-                let (x, y) = (i % width, y0 + i / width);
-                if mask.is_some_and(|m| !m[y * width + x]) {
-                    continue;
-                }
-                let pos = sample_position(s, x as u32, y as u32, sample);
-                let (l, edge_key) = radiance_keyed(scene, pos, spacing);
-                debug_assert!(l.is_finite(), "non-finite radiance at pixel ({x}, {y})");
-                if stats_on {
-                    if px[3] == 0.0 {
-                        *k = edge_key;
+            // Row by row: no integer division per pixel to find its coordinates.
+            let rows_here = chunk
+                .chunks_mut(width)
+                .zip(stat.chunks_mut(width))
+                .zip(key.chunks_mut(width));
+            for (r, ((row_px, row_st), row_k)) in rows_here.enumerate() {
+                let y = y0 + r;
+                let row_mask = mask.map(|m| &m[y * width..(y + 1) * width]);
+                for (x, ((px, st), k)) in row_px.iter_mut().zip(row_st).zip(row_k).enumerate() {
+                    if row_mask.is_some_and(|m| !m[x]) {
+                        continue;
                     }
-                    let e = display_luminance(l, s.exposure_scale);
-                    st[0] += e;
-                    st[1] += e * e;
+                    let pos = sample_position(s, x as u32, y as u32, sample);
+                    let (l, edge_key) = radiance_keyed(scene, pos, spacing);
+                    debug_assert!(l.is_finite(), "non-finite radiance at pixel ({x}, {y})");
+                    if stats_on {
+                        if px[3] == 0.0 {
+                            *k = edge_key;
+                        }
+                        let e = display_luminance(l, s.exposure_scale);
+                        st[0] += e;
+                        st[1] += e * e;
+                    }
+                    px[0] += l.0;
+                    px[1] += l.1;
+                    px[2] += l.2;
+                    px[3] += 1.0;
                 }
-                px[0] += l.0;
-                px[1] += l.1;
-                px[2] += l.2;
-                px[3] += 1.0;
             }
             Ok(())
         });

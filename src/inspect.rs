@@ -274,28 +274,17 @@ impl AaMode {
     }
 }
 
-/// Root-mean-square difference of two films' mean radiance over every channel, after the same
-/// tone mapping as display (values clamped to [0, 1], so a bright HDR texel does not dominate).
-/// `None` if the sizes differ.
+/// RMSE between two films as the report measures it ([`crate::report::metrics`]): on the
+/// display-encoded values (exposure applied, clipped, sRGB curve). `None` if the sizes differ.
 #[must_use]
-pub fn rmse(a: &Film, b: &Film) -> Option<f32> {
+pub fn rmse(a: &Film, b: &Film, exposure_scale: f32) -> Option<f32> {
+    use crate::report::metrics::{EncodedImage, mse};
     if a.width() != b.width() || a.height() != b.height() {
         return None;
     }
-    let (la, lb) = (a.to_linear(), b.to_linear());
-    let n = la.len().max(1) as f64 * 3.0;
-    let sum: f64 = la
-        .iter()
-        .zip(&lb)
-        .flat_map(|(x, y)| {
-            let (x, y) = (x.to_array(), y.to_array());
-            (0..3).map(move |c| {
-                let d = f64::from(x[c].clamp(0.0, 1.0) - y[c].clamp(0.0, 1.0));
-                d * d
-            })
-        })
-        .sum();
-    Some((sum / n).sqrt() as f32)
+    let encode =
+        |f: &Film| EncodedImage::from_linear(f.width(), f.height(), &f.to_linear(), exposure_scale);
+    Some(mse(&encode(b).srgb, &encode(a).srgb).sqrt() as f32)
 }
 
 #[cfg(test)]
@@ -366,10 +355,10 @@ mod tests {
             render_blocking(&scene, |_| {})
         };
         let (one, sixteen, reference) = (render(1), render(16), render(64));
-        let e1 = rmse(&one, &reference).expect("same size");
-        let e16 = rmse(&sixteen, &reference).expect("same size");
+        let e1 = rmse(&one, &reference, 1.0).expect("same size");
+        let e16 = rmse(&sixteen, &reference, 1.0).expect("same size");
         assert!(e1 > e16 && e16 > 0.0, "{e1} {e16}");
-        assert_eq!(rmse(&reference, &reference), Some(0.0));
-        assert_eq!(rmse(&one, &Film::new(3, 3)), None);
+        assert_eq!(rmse(&reference, &reference, 1.0), Some(0.0));
+        assert_eq!(rmse(&one, &Film::new(3, 3), 1.0), None);
     }
 }

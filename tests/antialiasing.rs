@@ -52,14 +52,9 @@ fn display(film: &Film) -> Vec<f32> {
         .collect()
 }
 
+/// RMSE on display values, as the report and the window's A/B split measure it.
 fn rmse(a: &Film, b: &Film) -> f64 {
-    let (a, b) = (display(a), display(b));
-    let s: f64 = a
-        .iter()
-        .zip(&b)
-        .map(|(x, y)| f64::from(x - y).powi(2))
-        .sum();
-    (s / a.len() as f64).sqrt()
+    f64::from(texplore::inspect::rmse(a, b, 1.0).expect("same size"))
 }
 
 /// RMSE of 1-spp nearest and 1-spp EWA renders against a 256-spp bilinear reference.

@@ -37,6 +37,8 @@ pub struct AbSplit {
     waiting: [Option<Arc<Scene>>; 3],
     live: [LiveImage; 2],
     errors: [Option<f32>; 2],
+    /// The display exposure of the reference, so errors are measured on what is displayed.
+    exposure_scale: f32,
     generation: Generation,
     restart_wanted: bool,
     message: Option<String>,
@@ -63,6 +65,7 @@ impl Default for AbSplit {
             waiting: [None, None, None],
             live: [LiveImage::new("ab-a"), LiveImage::new("ab-b")],
             errors: [None, None],
+            exposure_scale: 1.0,
             generation: Generation::new(),
             restart_wanted: false,
             message: None,
@@ -107,6 +110,7 @@ impl AbSplit {
 
     fn start(&mut self, slot: usize) {
         if let Some(scene) = self.waiting[slot].take() {
+            self.exposure_scale = scene.settings.exposure_scale;
             self.jobs[slot] = Some(RenderJob::start(
                 scene,
                 RenderOptions::default(),
@@ -150,7 +154,7 @@ impl AbSplit {
             for side in 0..2 {
                 let film = self.jobs[side].as_ref().and_then(RenderJob::film);
                 if let (Some(f), Some(r)) = (film, &reference) {
-                    self.errors[side] = rmse(&f, r);
+                    self.errors[side] = rmse(&f, r, self.exposure_scale);
                 }
             }
         }

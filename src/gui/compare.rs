@@ -221,7 +221,7 @@ impl AbSplit {
             "rendering A".to_owned()
         };
         format!(
-            "A/B split · {stage} · errors are RMSE against the reference, display values clamped to [0, 1]"
+            "A/B split · {stage} · errors are RMSE against the reference on display (sRGB) values, as texplore report measures"
         )
     }
 

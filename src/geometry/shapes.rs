@@ -85,17 +85,19 @@ fn hit(t: f32, p: Vec3A, n: Vec3A, part: u32) -> LocalHit {
     }
 }
 
-/// Roots of a t^2 - 2 b' t + c = 0 form used by sphere and cylinder: `a = d.d`,
-/// `half_b = o.d`, `c = o.o - 1`, and `perp2`, the squared distance from the axis/centre to the
-/// ray's closest point, which is exact where `b'^2 - a c` cancels catastrophically (Ray Tracing
-/// Gems ch. 7). Returns the two roots in increasing order.
+/// Roots of a t^2 + 2 b' t + c = 0, the form sphere and cylinder share: `a = d.d`,
+/// `half_b = o.d`, `c = o.o - 1`, and `perp2a = |o x d|^2`, which is `a` times the squared
+/// distance from the centre (axis) to the ray's closest point. The discriminant is then
+/// `a - perp2a`, exact where `b'^2 - a c` cancels catastrophically far from the surface (Ray
+/// Tracing Gems ch. 7, with Lagrange's identity in place of a division). Returns the two roots
+/// in increasing order.
 #[inline]
-fn stable_roots(a: f32, half_b: f32, c: f32, perp2: f32) -> Option<(f32, f32)> {
-    let disc = 1.0 - perp2; // (discriminant / a), computed from the closest point
+fn stable_roots(a: f32, half_b: f32, c: f32, perp2a: f32) -> Option<(f32, f32)> {
+    let disc = a - perp2a; // the discriminant / 4: half_b^2 - a c
     if disc < 0.0 || a <= 0.0 {
         return None;
     }
-    let root = (a * disc).sqrt();
+    let root = disc.sqrt();
     // q has the sign of -half_b so the sum never cancels.
     let q = if half_b > 0.0 {
         -half_b - root
@@ -112,11 +114,15 @@ fn stable_roots(a: f32, half_b: f32, c: f32, perp2: f32) -> Option<(f32, f32)> {
 
 fn sphere(ray: &Ray, t_max: f32) -> Option<LocalHit> {
     let (o, d) = (ray.origin, ray.dir);
-    let a = d.length_squared();
-    let half_b = o.dot(d);
-    let closest = o - (half_b / a) * d;
     let c = o.length_squared() - 1.0;
-    let (t0, t1) = stable_roots(a, half_b, c, closest.length_squared())?;
+    let half_b = o.dot(d);
+    // Outside and heading away: both roots are behind the origin (shadow rays leaving the
+    // sphere, rays past it).
+    if c > 0.0 && half_b >= 0.0 {
+        return None;
+    }
+    let a = d.length_squared();
+    let (t0, t1) = stable_roots(a, half_b, c, o.cross(d).length_squared())?;
     let t = if t0 > 0.0 { t0 } else { t1 };
     if !(t > 0.0 && t < t_max) {
         return None;
@@ -134,9 +140,9 @@ fn cylinder(ray: &Ray, t_max: f32, capped: bool) -> Option<LocalHit> {
     let a = dxz.length_squared();
     if a > 0.0 {
         let half_b = oxz.dot(dxz);
-        let closest = oxz - (half_b / a) * dxz;
         let c = oxz.length_squared() - 1.0;
-        if let Some((t0, t1)) = stable_roots(a, half_b, c, closest.length_squared()) {
+        let cross = o.z * d.x - o.x * d.z;
+        if let Some((t0, t1)) = stable_roots(a, half_b, c, cross * cross) {
             for t in [t0, t1] {
                 if t > 0.0 && t < t_best {
                     let p = ray.at(t);

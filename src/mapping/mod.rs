@@ -10,7 +10,7 @@ mod explain;
 
 pub use explain::{explain_lookup, explain_mapping};
 
-use crate::math::{PI, TAU, Vec2, Vec3A};
+use crate::math::{PI, TAU, Vec2, Vec3A, atan2};
 use serde::{Deserialize, Serialize};
 
 /// How a hit point becomes texture coordinates.
@@ -266,7 +266,7 @@ fn rectangular(p: Vec3A) -> MappedPoint {
 /// The azimuth u = atan2(x, z) / 2 pi in [0, 1], and its gradient; bounded on the axis.
 #[inline]
 fn azimuth<const GRAD: bool>(x: f32, z: f32) -> (f32, Vec3A) {
-    let mut phi = x.atan2(z);
+    let mut phi = atan2(x, z);
     if phi < 0.0 {
         phi += TAU;
     }
@@ -315,7 +315,7 @@ fn spherical<const GRAD: bool>(p: Vec3A) -> MappedPoint {
     let rho2 = q.x * q.x + q.z * q.z;
     let rho = rho2.sqrt();
     let r2 = rho2 + q.y * q.y;
-    let theta = rho.atan2(q.y);
+    let theta = atan2(rho, q.y);
     let v = (1.0 - theta / PI).clamp(0.0, 1.0);
     let grad_v = if !GRAD {
         Vec3A::ZERO
@@ -367,7 +367,7 @@ fn probe(p: Vec3A, flip_z: bool, curve: ProbeCurve) -> MappedPoint {
     let (x, y) = (n.x, n.y);
     let z = if flip_z { -n.z } else { n.z };
     let d = (x * x + y * y).sqrt();
-    let alpha = d.atan2(z);
+    let alpha = atan2(d, z);
     // g = r / d and its derivatives with respect to (x, y, z) of the unit vector.
     let (g, dg_dd_over_d, dg_dz) = match curve {
         ProbeCurve::Angular => {

@@ -1,9 +1,11 @@
 //! Small math types shared by every stage: glam re-exports, rays with differentials, colour,
 //! frames and a seeded, stateless random number source.
 
+mod atan;
 mod color;
 mod rng;
 
+pub use atan::atan2;
 pub use color::{Rgb, linear_to_srgb, srgb_to_linear, srgb8_table, srgb8_to_linear};
 pub use glam::{Affine3A, Mat3, Mat3A, Quat, Vec2, Vec3, Vec3A};
 pub use rng::{SampleRng, hash3};

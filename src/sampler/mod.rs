@@ -74,12 +74,16 @@ impl PixelSampler {
     #[inline]
     pub fn sample(self, seed: u32, pixel: u32, index: u32, count: u32) -> Vec2 {
         let count = count.max(1);
-        let index = index % count;
+        // Indices are below `count` but for callers that wrap around; skip the division then.
+        let index = if index < count { index } else { index % count };
         // The per-pixel pattern (a permutation or shift shared by the pixel's samples) is hashed
         // only by the samplers that use it: three hash rounds saved per jittered sample.
         let pattern = || hash3(seed, pixel, 0x5a3d_c0de);
         let mut rng = SampleRng::new(seed, pixel, index);
         let p = match self {
+            // One sample per pixel (every interactive pass): the cell is the pixel, no divisions.
+            Self::Regular if count == 1 => Vec2::splat(0.5),
+            Self::Jittered if count == 1 => Vec2::new(rng.next_f32(), rng.next_f32()),
             Self::Regular | Self::Jittered => {
                 let (cols, rows) = grid(count);
                 let (i, j) = (index % cols, index / cols);

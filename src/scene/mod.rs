@@ -99,6 +99,9 @@ pub struct SurfaceHit {
     pub ns: Vec3A,
     /// Unit vector toward the viewer.
     pub wo: Vec3A,
+    /// Whether the ray met the outside of the surface (its outward normal faced the ray); a
+    /// sphere or capped cylinder hit from inside has this false.
+    pub front_face: bool,
 }
 
 impl Scene {
@@ -152,7 +155,8 @@ impl Scene {
         };
         let wo = (-ray.dir).normalize_or(Vec3A::Z);
         // Two-sided surfaces: shade the side the ray came from.
-        if ng.dot(wo) < 0.0 {
+        let back_face = ng.dot(wo) < 0.0;
+        if back_face {
             ng = -ng;
             ns = -ns;
         }
@@ -163,6 +167,7 @@ impl Scene {
             ng,
             ns,
             wo,
+            front_face: !back_face,
         })
     }
 
@@ -263,11 +268,8 @@ impl Scene {
         // sphere seen from inside, can still shadow itself.
         let self_shadows = match obj.shape {
             Shape::Plane | Shape::Rectangle | Shape::Disk => false,
-            Shape::Sphere | Shape::Cylinder { capped: true } => {
-                // Hit from inside when the facing normal is the inward one (only the sign
-                // matters, so the normal is not renormalised).
-                (obj.normal_to_world * hit.local.n).dot(hit.ng) < 0.0
-            }
+            // Hit from inside when the facing normal is the inward one.
+            Shape::Sphere | Shape::Cylinder { capped: true } => !hit.front_face,
             // An open cylinder and a mesh (concave in general) can shadow themselves.
             Shape::Cylinder { capped: false } | Shape::Mesh(_) => true,
         };

@@ -21,8 +21,12 @@ const ONE_AXIS_ABOVE: usize = 1024;
 const PARALLEL_THRESHOLD: usize = 8192;
 /// Beyond this depth splits are by count (object median), which bounds the depth for any input.
 const SAH_DEPTH_LIMIT: u32 = 40;
-/// Deepest tree the traversal stack holds: the SAH limit plus the median splits of 2^32 items.
-pub const MAX_DEPTH: usize = SAH_DEPTH_LIMIT as usize + 33;
+/// Most primitives a hierarchy holds (meshes stop at [`crate::meshio::MAX_TRIANGLES`]): node
+/// references then fit in 28 bits, with a leaf's count in the 4 above.
+pub const MAX_PRIMITIVES: usize = 1 << 28;
+/// Deepest tree the traversal stack holds: the SAH limit plus the median splits of
+/// [`MAX_PRIMITIVES`] items.
+pub const MAX_DEPTH: usize = SAH_DEPTH_LIMIT as usize + 28;
 /// 1 + 2 gamma(3) in f32: widening the far distance by this keeps the slab test conservative
 /// (a box a ray grazes is never culled by rounding).
 const ROBUST_FAR: f32 = 1.0 + 2.0 * (3.0 * f32::EPSILON * 0.5) / (1.0 - 3.0 * f32::EPSILON * 0.5);
@@ -79,9 +83,11 @@ impl Aabb {
     }
 }
 
-/// A flattened node: 32 bytes. Interior nodes have `count == 0`; their first child follows them
-/// and `index` is the second child. Leaves hold primitives `index .. index + count` (in the
-/// order [`Bvh::build`] returned).
+/// A node as the build writes it, and a child entry in a [`Pair`]: 32 bytes, its box, and
+/// `count` primitives `index .. index + count` (in the order [`Bvh::build`] returned) for a
+/// leaf. For an interior node `count == 0`: in the build's depth-first list its first child
+/// follows it and `index` is the second; in a [`Pair`] `index` is the pair holding its
+/// children.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[repr(C)]
 pub struct Node {
@@ -92,10 +98,28 @@ pub struct Node {
     axis: u16,
 }
 
-/// The hierarchy.
-#[derive(Clone, Debug, Default)]
+/// The two children of an interior node side by side in one 64-byte cache line: a traversal
+/// step tests both boxes with one memory access (the boxes of a node's children, not its own,
+/// are what the step needs).
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[repr(C, align(64))]
+pub struct Pair([Node; 2]);
+
+/// The hierarchy: the root's box, and a [`Pair`] per interior node in depth-first order (the
+/// first child's pair right after its parent's).
+#[derive(Clone, Debug)]
 pub struct Bvh {
-    nodes: Vec<Node>,
+    root: Node,
+    pairs: Vec<Pair>,
+}
+
+impl Default for Bvh {
+    fn default() -> Self {
+        Self {
+            root: leaf(Aabb::EMPTY, 0, 0),
+            pairs: Vec::new(),
+        }
+    }
 }
 
 #[derive(Clone, Copy)]
@@ -110,7 +134,6 @@ struct Prim {
 pub struct BoxRay {
     origin: Vec3A,
     inv_dir: Vec3A,
-    negative: [bool; 3],
     /// Axes the ray runs parallel to (direction component exactly zero).
     parallel: [bool; 3],
     any_parallel: bool,
@@ -133,14 +156,14 @@ impl BoxRay {
                 Vec3A::ZERO,
                 inv_dir,
             ),
-            negative: [dir.x < 0.0, dir.y < 0.0, dir.z < 0.0],
             parallel,
             any_parallel: parallel.iter().any(|p| *p),
         }
     }
 
+    /// Where the ray enters `n`'s box, if it meets it within (0, `t_max`) (conservatively).
     #[inline(always)]
-    fn hits(&self, n: &Node, t_max: f32) -> bool {
+    fn entry(&self, n: &Node, t_max: f32) -> Option<f32> {
         let (bmin, bmax) = (Vec3A::from_array(n.min), Vec3A::from_array(n.max));
         let lo = (bmin - self.origin) * self.inv_dir;
         let hi = (bmax - self.origin) * self.inv_dir;
@@ -152,7 +175,7 @@ impl BoxRay {
                 if self.parallel[axis] {
                     let o = self.origin[axis];
                     if o < bmin[axis] || o > bmax[axis] {
-                        return false;
+                        return None;
                     }
                     near_v[axis] = f32::NEG_INFINITY;
                     far_v[axis] = f32::INFINITY;
@@ -162,7 +185,7 @@ impl BoxRay {
         // No NaN can occur (finite inverses), so plain comparisons (maxss, minss) do.
         let near = fmax(fmax(near_v.x, near_v.y), fmax(near_v.z, 0.0));
         let far = fmin(fmin(far_v.x, far_v.y), fmin(far_v.z, t_max)) * ROBUST_FAR;
-        near <= far
+        (near <= far).then_some(near)
     }
 }
 
@@ -201,34 +224,78 @@ impl Bvh {
                 index: i as u32,
             })
             .collect();
+        assert!(
+            bounds.len() < MAX_PRIMITIVES,
+            "a BVH holds fewer than 2^28 primitives"
+        );
         let mut nodes = Vec::with_capacity(2 * bounds.len() / 3 + 1);
-        if !prims.is_empty() {
-            build_node(&mut prims, 0, 0, &mut nodes);
+        if prims.is_empty() {
+            return (Self::default(), Vec::new());
         }
-        nodes.shrink_to_fit();
+        build_node(&mut prims, 0, 0, &mut nodes);
         let order = prims.iter().map(|p| p.index).collect();
-        (Self { nodes }, order)
+        (Self::from_depth_first(&nodes), order)
     }
 
-    /// Number of nodes.
+    /// Pairs up the children of the build's depth-first node list.
+    fn from_depth_first(nodes: &[Node]) -> Self {
+        // The pair of interior node i is its rank among the interior nodes.
+        let mut pair_of = vec![0u32; nodes.len()];
+        let mut interior = 0u32;
+        for (i, n) in nodes.iter().enumerate() {
+            if n.count == 0 {
+                pair_of[i] = interior;
+                interior += 1;
+            }
+        }
+        let entry = |i: usize| {
+            let n = nodes[i];
+            if n.count == 0 {
+                Node {
+                    index: pair_of[i],
+                    ..n
+                }
+            } else {
+                n
+            }
+        };
+        let mut pairs = Vec::with_capacity(interior as usize);
+        pairs.extend(
+            nodes
+                .iter()
+                .enumerate()
+                .filter(|(_, n)| n.count == 0)
+                .map(|(i, n)| Pair([entry(i + 1), entry(n.index as usize)])),
+        );
+        Self {
+            root: entry(0),
+            pairs,
+        }
+    }
+
+    /// Number of nodes (the root and every child).
     #[must_use]
     pub fn node_count(&self) -> usize {
-        self.nodes.len()
+        if self.root.count == 0 && self.pairs.is_empty() {
+            0
+        } else {
+            1 + 2 * self.pairs.len()
+        }
     }
 
     /// Heap bytes held.
     #[must_use]
     pub fn heap_bytes(&self) -> usize {
-        self.nodes.capacity() * std::mem::size_of::<Node>()
+        self.pairs.capacity() * std::mem::size_of::<Pair>()
     }
 
     /// The box around everything (empty for an empty hierarchy).
     #[must_use]
     pub fn bounds(&self) -> Aabb {
-        self.nodes.first().map_or(Aabb::EMPTY, |n| Aabb {
-            min: Vec3::from_array(n.min),
-            max: Vec3::from_array(n.max),
-        })
+        Aabb {
+            min: Vec3::from_array(self.root.min),
+            max: Vec3::from_array(self.root.max),
+        }
     }
 
     /// Visits the leaves `ray` may hit within (0, `t_max`), nearer children first. `leaf` gets
@@ -243,19 +310,24 @@ impl Bvh {
         mut leaf: impl FnMut(u32, u32, f32) -> Option<f32>,
     ) -> bool {
         let mut found = false;
-        let Some(root) = self.nodes.first() else {
-            return false;
-        };
-        if !ray.hits(root, t_max) {
+        if self.root.count == 0 && self.pairs.is_empty() {
             return false;
         }
-        let mut stack = [0u32; MAX_DEPTH + 1];
+        if ray.entry(&self.root, t_max).is_none() {
+            return false;
+        }
+        // Subtrees still to visit, each packed in 8 bytes (the stack is cleared per ray): the
+        // node's index and count (`index | count << 28`) above the bits of the distance where
+        // the ray enters it.
+        let mut stack = [0u64; MAX_DEPTH + 1];
+        let push = |index: u32, count: u16, t: f32| {
+            u64::from(index | u32::from(count) << 28) << 32 | u64::from(t.to_bits())
+        };
         let mut top = 0usize;
-        let mut current = 0u32;
+        let (mut index, mut count) = (self.root.index, u32::from(self.root.count));
         loop {
-            let n = &self.nodes[current as usize];
-            if n.count > 0 {
-                if let Some(t) = leaf(n.index, u32::from(n.count), t_max) {
+            if count > 0 {
+                if let Some(t) = leaf(index, count, t_max) {
                     t_max = t;
                     found = true;
                     if any {
@@ -263,41 +335,38 @@ impl Bvh {
                     }
                 }
             } else {
-                let (first, second) = (current + 1, n.index);
-                let (near, far) = if ray.negative[usize::from(n.axis)] {
-                    (second, first)
-                } else {
-                    (first, second)
-                };
-                let hit_near = ray.hits(&self.nodes[near as usize], t_max);
-                let hit_far = ray.hits(&self.nodes[far as usize], t_max);
-                match (hit_near, hit_far) {
-                    (true, true) => {
-                        stack[top] = far;
+                let [a, b] = &self.pairs[index as usize].0;
+                match (ray.entry(a, t_max), ray.entry(b, t_max)) {
+                    (Some(ta), Some(tb)) => {
+                        // The nearer first; the other waits with its entry distance.
+                        let (near, far, t_far) = if tb < ta { (b, a, ta) } else { (a, b, tb) };
+                        stack[top] = push(far.index, far.count, t_far);
                         top += 1;
-                        current = near;
+                        (index, count) = (near.index, u32::from(near.count));
                         continue;
                     }
-                    (true, false) => {
-                        current = near;
+                    (Some(_), None) => {
+                        (index, count) = (a.index, u32::from(a.count));
                         continue;
                     }
-                    (false, true) => {
-                        current = far;
+                    (None, Some(_)) => {
+                        (index, count) = (b.index, u32::from(b.count));
                         continue;
                     }
-                    (false, false) => {}
+                    (None, None) => {}
                 }
             }
-            // Pop the next subtree whose box is still in reach.
+            // Pop the next subtree the ray still enters before the nearest hit so far (the
+            // same widening as the box test: a box the ray grazes is never culled).
             loop {
                 if top == 0 {
                     return found;
                 }
                 top -= 1;
-                let next = stack[top];
-                if ray.hits(&self.nodes[next as usize], t_max) {
-                    current = next;
+                let entry = stack[top];
+                if f32::from_bits(entry as u32) <= t_max * ROBUST_FAR {
+                    let node = (entry >> 32) as u32;
+                    (index, count) = (node & ((1 << 28) - 1), node >> 28);
                     break;
                 }
             }
@@ -545,23 +614,36 @@ mod tests {
             let mut seen = order.clone();
             seen.sort_unstable();
             assert_eq!(seen, (0..n as u32).collect::<Vec<_>>());
+            // Walk the pairs from the root: every child box inside its parent's, every leaf
+            // range in bounds and holding its primitives' boxes.
             let mut covered = 0usize;
-            for (i, node) in bvh.nodes.iter().enumerate() {
-                let inside = |b: &Aabb| {
-                    Vec3::from_array(node.min).cmple(b.min).all()
-                        && Vec3::from_array(node.max).cmpge(b.max).all()
+            let mut todo = vec![(bvh.root, None::<Node>)];
+            while let Some((node, parent)) = todo.pop() {
+                let inside = |outer: &Node, b: &Aabb| {
+                    Vec3::from_array(outer.min).cmple(b.min).all()
+                        && Vec3::from_array(outer.max).cmpge(b.max).all()
                 };
+                if let Some(parent) = parent {
+                    let b = Aabb {
+                        min: Vec3::from_array(node.min),
+                        max: Vec3::from_array(node.max),
+                    };
+                    assert!(inside(&parent, &b));
+                }
                 if node.count > 0 {
                     assert!(node.count as usize <= MAX_LEAF.max(2));
                     for k in node.index..node.index + u32::from(node.count) {
-                        assert!(inside(&boxes[order[k as usize] as usize]));
+                        assert!(inside(&node, &boxes[order[k as usize] as usize]));
                     }
                     covered += node.count as usize;
                 } else {
-                    assert!(node.index as usize > i + 1 && (node.index as usize) < bvh.nodes.len());
+                    let [a, b] = bvh.pairs[node.index as usize].0;
+                    todo.push((a, Some(node)));
+                    todo.push((b, Some(node)));
                 }
             }
             assert_eq!(covered, n);
+            assert_eq!(bvh.node_count(), 1 + 2 * bvh.pairs.len());
         }
     }
 
@@ -574,7 +656,9 @@ mod tests {
         };
         let (bvh, order) = Bvh::build(&vec![b; 1000]);
         assert_eq!(order.len(), 1000);
-        assert!(bvh.nodes.iter().all(|n| n.count as usize <= MAX_LEAF));
+        let leaves = bvh.pairs.iter().flat_map(|p| p.0).filter(|n| n.count > 0);
+        assert!(leaves.clone().all(|n| n.count as usize <= MAX_LEAF));
+        assert_eq!(leaves.map(|n| n.count as usize).sum::<usize>(), 1000);
     }
 
     /// A ray along a box's face (zero thickness box, axis-parallel ray) is not culled.

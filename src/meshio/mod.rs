@@ -20,6 +20,7 @@ use std::path::Path;
 pub const MAX_VERTICES: usize = 1 << 25;
 /// Most triangles read from a file (after triangulation).
 pub const MAX_TRIANGLES: usize = 1 << 25;
+const _: () = assert!(MAX_TRIANGLES < crate::geometry::bvh::MAX_PRIMITIVES);
 /// Most corners of one polygon (and items of any PLY list).
 pub const MAX_POLYGON_CORNERS: usize = 1 << 12;
 /// Largest OBJ file read (`tobj` reads the whole file into memory).

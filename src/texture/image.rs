@@ -198,6 +198,14 @@ impl ImageData {
         let (x0, y0) = (x.floor(), y.floor());
         let (fx, fy) = (x - x0, y - y0);
         let (x0, y0) = (x0 as i64, y0 as i64);
+        let (w, h) = (i64::from(self.width), i64::from(self.height));
+        if x0 >= 0 && y0 >= 0 && x0 + 1 < w && y0 + 1 < h {
+            // All four texels inside the image (nearly every lookup): no wrapping.
+            let (c, r) = (x0 as u32, y0 as u32);
+            let top = self.texel(c, r + 1) * (1.0 - fx) + self.texel(c + 1, r + 1) * fx;
+            let bottom = self.texel(c, r) * (1.0 - fx) + self.texel(c + 1, r) * fx;
+            return bottom * (1.0 - fy) + top * fy;
+        }
         let fetch = |i: i64, j: i64| match (wu.index(i, self.width), wv.index(j, self.height)) {
             (Some(c), Some(r)) => self.texel(c, r),
             _ => Rgb::BLACK,

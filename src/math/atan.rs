@@ -31,8 +31,9 @@ pub fn atan2(y: f32, x: f32) -> f32 {
     let swap = ay > ax;
     let (num, den) = if swap { (ax, ay) } else { (ay, ax) };
     let t = num / den;
-    // 0 / 0 (both zero), inf / inf and NaN: the rare cases libm defines with care.
-    if !(t <= 1.0) {
+    // 0 / 0 (both zero), inf / inf and NaN (t is NaN exactly then): the rare cases libm
+    // defines with care.
+    if t.is_nan() {
         return y.atan2(x);
     }
     let s = t * t;

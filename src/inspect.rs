@@ -108,9 +108,7 @@ impl Scene {
             diff.transformed(&obj.object_from_world)
         };
         let (dpdx, dpdy) = d.footprint_on_plane(hit.local.p, hit.local.n);
-        let mut ctx = self.texture_context(&hit, None);
-        ctx.dpdx = dpdx;
-        ctx.dpdy = dpdy;
+        let ctx = self.texture_context_at(&hit, dpdx, dpdy);
         let material = &self.materials[obj.material];
         let texture = match material {
             Material::Matte { cd, .. } | Material::Phong { cd, .. } => cd,

@@ -494,3 +494,67 @@ fn obj_with_material_and_errors() {
     .to_string();
     assert!(e.contains("nope.obj"), "{e}");
 }
+
+/// A mesh hit in a render carries no dp/du, dp/dv (they cost 4% of a pass); a footprint filter
+/// gets them when it builds its texture context, equal to the eager ones, and the (u, v)
+/// derivatives they give match the (u, v) of the neighbouring pixels' hits.
+#[test]
+fn mesh_uv_derivatives_come_when_a_footprint_filter_asks_and_match_neighbouring_hits() {
+    use texplore::mapping::Mapping;
+    let preset = root().join("presets/derivatives.ron");
+    let text = r#"(
+        version: 1,
+        camera: (eye: (-3.2, 5.2, 0), look_at: (0, -0.5, 0), projection: Pinhole(fov: 33)),
+        render: (width: 400, height: 300, spp: 1),
+        objects: [(
+            shape: Mesh(path: "../assets/two-triangles.ply", shading: Flat),
+            material: Matte(cd: Image(path: "../assets/chelsea_451x300.png", mapping: Uv, filter: Ewa)),
+        )],
+    )"#;
+    let scene = scene(text, &preset).unwrap();
+    assert!(scene.needs_differentials);
+    let mut checked = 0;
+    for (x, y) in [
+        (200.0, 150.0),
+        (170.0, 120.0),
+        (240.0, 180.0),
+        (150.0, 170.0),
+    ] {
+        let pos = Vec2::new(x + 0.5, y + 0.5);
+        let (ray, diff) = scene.camera.ray(pos, 1.0).unwrap();
+        let hit = scene
+            .hit(&ray)
+            .expect("the centre of the view is on the mesh");
+        assert!(hit.local.dpduv.is_none(), "the render path left them out");
+        let Shape::Mesh(m) = &scene.objects[hit.object].shape else {
+            panic!("not the mesh")
+        };
+        // The object has no transform: the world ray is the object ray.
+        let eager = m.mesh.intersect(&ray, f32::INFINITY, m.shading).unwrap();
+        assert!(eager.dpduv.is_some());
+        assert_eq!(m.mesh.uv_derivatives(hit.local.prim), eager.dpduv);
+        let tc = scene
+            .texture_context(&hit, Some(&diff))
+            .tex_coord(Mapping::Uv);
+        let uv_at = |p: Vec2| {
+            let h = scene.hit(&scene.camera.primary_ray(p).unwrap())?;
+            (h.local.prim == hit.local.prim).then_some(h.local.uv.unwrap())
+        };
+        let uv = hit.local.uv.unwrap();
+        for (step, d) in [(Vec2::X, tc.duvdx), (Vec2::Y, tc.duvdy)] {
+            // Centred differences on the same triangle: (u, v) is linear there, so only the
+            // perspective's curvature separates them from the derivative.
+            let (Some(a), Some(b)) = (uv_at(pos + step), uv_at(pos - step)) else {
+                continue;
+            };
+            let exact = (a - b) * 0.5;
+            assert!(exact.length() > 1e-4, "the footprint is not empty");
+            assert!(
+                (d - exact).length() < 0.02 * exact.length(),
+                "pixel ({x}, {y}): d(u, v) {d} against neighbours {exact} (uv {uv})"
+            );
+            checked += 1;
+        }
+    }
+    assert!(checked >= 6, "only {checked} derivatives compared");
+}

@@ -27,10 +27,16 @@ pub struct LocalHit {
     pub ns: Vec3A,
     /// Texture coordinates carried by the shape itself (mesh vertices), if any.
     pub uv: Option<Vec2>,
-    /// For meshes: dp/du and dp/dv of the triangle, for UV derivatives.
+    /// For meshes: dp/du and dp/dv of the triangle, for UV derivatives. [`Mesh::intersect`]
+    /// fills it; the renderer's [`intersect_shape`] leaves it `None` and
+    /// `Scene::texture_context` computes it ([`Mesh::uv_derivatives`]) only when a footprint
+    /// filter needs it.
     pub dpduv: Option<(Vec3A, Vec3A)>,
-    /// Which part was hit (triangle index, cylinder wall or cap), for the inspector.
+    /// Which part was hit (triangle index in the file, cylinder wall or cap), for the inspector.
     pub part: u32,
+    /// The primitive hit in the shape's own order (for meshes the triangle's index in BVH
+    /// order, which [`Mesh::uv_derivatives`] takes; 0 for the analytic shapes).
+    pub prim: u32,
 }
 
 /// A placed shape: transform, material index, and whether it blocks shadow rays.

@@ -58,7 +58,7 @@ pub fn intersect_shape(shape: &Shape, ray: &Ray, t_max: f32) -> Option<LocalHit>
         Shape::Plane => plane(ray, t_max, |_, _| true),
         Shape::Rectangle => plane(ray, t_max, |x, z| x.abs() <= 1.0 && z.abs() <= 1.0),
         Shape::Disk => plane(ray, t_max, |x, z| x * x + z * z <= 1.0),
-        Shape::Mesh(m) => m.mesh.intersect(ray, t_max, m.shading),
+        Shape::Mesh(m) => m.mesh.intersect_point(ray, t_max, m.shading),
     }
 }
 
@@ -82,6 +82,7 @@ fn hit(t: f32, p: Vec3A, n: Vec3A, part: u32) -> LocalHit {
         uv: None,
         dpduv: None,
         part,
+        prim: 0,
     }
 }
 

@@ -192,11 +192,26 @@ impl Scene {
             }
             _ => (Vec3A::ZERO, Vec3A::ZERO),
         };
+        self.texture_context_at(hit, dpdx, dpdy)
+    }
+
+    /// The texture context of a hit given the object-space offsets `dpdx`, `dpdy` to the
+    /// neighbouring pixels' hits (zero: no footprint). A mesh's dp/du and dp/dv are computed
+    /// here, and only when there is a footprint to map through them.
+    #[must_use]
+    #[inline]
+    pub fn texture_context_at(&self, hit: &SurfaceHit, dpdx: Vec3A, dpdy: Vec3A) -> TextureContext {
+        let obj = &self.objects[hit.object];
+        let footprint = dpdx != Vec3A::ZERO || dpdy != Vec3A::ZERO;
+        let dpduv = match (&obj.shape, hit.local.dpduv) {
+            (Shape::Mesh(m), None) if footprint => m.mesh.uv_derivatives(hit.local.prim),
+            (_, d) => d,
+        };
         let mut ctx = TextureContext {
             p: hit.local.p,
             dpdx,
             dpdy,
-            shape_uv: hit.local.uv.map(|uv| (uv, hit.local.dpduv)),
+            shape_uv: hit.local.uv.map(|uv| (uv, dpduv)),
             natural: natural_mapping(&obj.shape),
         };
         if let Shape::Mesh(m) = &obj.shape {

@@ -6,8 +6,9 @@
 
 use crate::math::{Vec3, Vec3A};
 
-/// Most primitives in a leaf.
+/// Most primitives in a leaf (below 16: the traversal stack packs a leaf's count in 4 bits).
 pub const MAX_LEAF: usize = 8;
+const _: () = assert!(MAX_LEAF < 16);
 /// SAH bins per axis.
 const BINS: usize = 16;
 /// Cost of visiting a node, relative to one primitive test: a step tests both children of a

@@ -37,6 +37,15 @@ fn harness(path: PathBuf) -> Harness<'static, ExplorerApp> {
     h
 }
 
+/// Picks the cylindrical mapping in the texture's combo box, as a user would, and lets the
+/// render finish.
+fn choose_cylindrical_mapping(h: &mut Harness<'_, ExplorerApp>) {
+    h.get_by_role_and_label(Role::ComboBox, "Mapping").click();
+    h.run_steps(3);
+    h.get_by_label("cylindrical").click();
+    settle(h);
+}
+
 /// Lets the render finish and the UI catch up with its last image.
 fn settle(h: &mut Harness<'_, ExplorerApp>) {
     for _ in 0..3 {
@@ -75,10 +84,7 @@ fn choosing_another_mapping_rerenders_and_changes_the_image() {
     let mut h = harness(small_earth(dir.path()));
     assert_eq!(texture_mapping(h.state()), Some(Mapping::Spherical));
     let before = image_bytes(h.state());
-    h.get_by_role_and_label(Role::ComboBox, "Mapping").click();
-    h.run_steps(3);
-    h.get_by_label("cylindrical").click();
-    settle(&mut h);
+    choose_cylindrical_mapping(&mut h);
     assert_eq!(texture_mapping(h.state()), Some(Mapping::Cylindrical));
     let after = image_bytes(h.state());
     assert_eq!(before.len(), after.len());
@@ -130,10 +136,7 @@ fn saving_then_reopening_a_screenshot_restores_the_preset() {
     let dir = tempfile::tempdir().expect("temp dir");
     let mut h = harness(small_earth(dir.path()));
     // An edit, so the screenshot holds something the preset file does not.
-    h.get_by_role_and_label(Role::ComboBox, "Mapping").click();
-    h.run_steps(3);
-    h.get_by_label("cylindrical").click();
-    settle(&mut h);
+    choose_cylindrical_mapping(&mut h);
     let shown = image_bytes(h.state());
     let desc = h.state().desc().cloned().expect("scene");
 
@@ -201,10 +204,7 @@ fn hovering_the_earth_explains_the_pixel() {
 fn unsaved_changes_are_asked_about_before_another_preset_opens() {
     let dir = tempfile::tempdir().expect("temp dir");
     let mut h = harness(small_earth(dir.path()));
-    h.get_by_role_and_label(Role::ComboBox, "Mapping").click();
-    h.run_steps(3);
-    h.get_by_label("cylindrical").click();
-    settle(&mut h);
+    choose_cylindrical_mapping(&mut h);
     let here = h.state().path().to_path_buf();
     let open_checker = |h: &mut Harness<'_, ExplorerApp>| {
         h.get_by_label("Presets").click();

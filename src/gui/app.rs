@@ -305,7 +305,7 @@ impl ExplorerApp {
 }
 
 /// Drops a finished or cancelled job on another thread (the drop joins the render thread).
-fn retire(job: Option<RenderJob>) {
+pub(super) fn retire(job: Option<RenderJob>) {
     if let Some(job) = job {
         job.cancel();
         let _ = std::thread::Builder::new()

@@ -1,6 +1,7 @@
 //! Comparing antialiasing modes: the A/B split (two modes of the same scene side by side, each
 //! with its time and its error against a high-spp reference) and the speed/error plot.
 
+use super::app::retire;
 use super::live::LiveImage;
 use crate::inspect::{AaMode, rmse};
 use crate::render::{Generation, RenderJob, RenderOptions};
@@ -70,15 +71,6 @@ impl Default for AbSplit {
             restart_wanted: false,
             message: None,
         }
-    }
-}
-
-fn retire(job: Option<RenderJob>) {
-    if let Some(job) = job {
-        job.cancel();
-        let _ = std::thread::Builder::new()
-            .name("texplore-retire".into())
-            .spawn(move || drop(job));
     }
 }
 

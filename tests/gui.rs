@@ -50,7 +50,9 @@ fn choose_cylindrical_mapping(h: &mut Harness<'_, ExplorerApp>) {
 fn settle(h: &mut Harness<'_, ExplorerApp>) {
     for _ in 0..3 {
         h.step();
-        h.state().wait_for_render();
+        h.state()
+            .wait_for_render(std::time::Duration::from_secs(120))
+            .expect("the render ends");
     }
     h.step();
     h.step();

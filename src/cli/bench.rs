@@ -1,7 +1,7 @@
 //! `texplore bench`: full-pass and preview timings per thread count.
 
 use crate::geometry::Mesh;
-use crate::render::{Film, PREVIEW_BLOCKS, render_pass, render_preview};
+use crate::render::{Film, PREVIEW_BLOCKS, render_pass, render_preview, thread_pool};
 use crate::scene::{
     AssetCache, Overrides, apply_overrides, build_scene, parse_preset, read_preset_or_png,
 };
@@ -54,9 +54,7 @@ fn mesh_scene(a: &BenchArgs, triangles: u32) -> Result<(crate::scene::SceneDesc,
     );
     let mut mesh = None;
     for &threads in &a.threads {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()?;
+        let pool = thread_pool(threads)?;
         let mut times = Vec::new();
         let mut cpu = Vec::new();
         for _ in 0..3 {
@@ -126,9 +124,7 @@ pub fn run(a: &BenchArgs) -> Result<()> {
     );
     let mut base = None;
     for &threads in &a.threads {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()?;
+        let pool = thread_pool(threads)?;
         let never = || false;
         let passes = pool.install(|| {
             let mut film = Film::new(a.width, a.height);

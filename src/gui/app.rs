@@ -150,15 +150,32 @@ impl ExplorerApp {
         self.job.as_ref().and_then(|j| j.image()).map(|(i, _)| i)
     }
 
-    /// Blocks until the current render has finished (for tests and scripted screenshots).
-    pub fn wait_for_render(&self) {
+    /// Blocks until the current render has finished, stopped or failed, or `deadline` has
+    /// passed (for tests and scripted screenshots).
+    ///
+    /// # Errors
+    /// The render failed, or it was still running at the deadline.
+    pub fn wait_for_render(&self, deadline: std::time::Duration) -> Result<(), String> {
+        let start = std::time::Instant::now();
         while let Some(job) = &self.job {
+            if let Some(failure) = job.failure() {
+                return Err(failure);
+            }
             let p = job.progress();
             if p.finished || p.cancelled {
                 break;
             }
+            if start.elapsed() > deadline {
+                return Err(format!(
+                    "the render was still running after {:.1} s ({} of {} spp)",
+                    deadline.as_secs_f64(),
+                    p.spp_done,
+                    p.spp_target
+                ));
+            }
             std::thread::sleep(std::time::Duration::from_millis(5));
         }
+        Ok(())
     }
 
     /// Saves the current image as a PNG with the scene embedded.
@@ -198,23 +215,27 @@ impl ExplorerApp {
             Ok(scene) => {
                 self.generation.bump();
                 let scene = Arc::new(scene);
-                // Dropping a job joins its thread; do it off the UI thread.
-                retire(self.job.take());
+                // Dropping a job cancels it without waiting for its task.
+                self.job = None;
+                let mut started = Ok(());
                 if self.ab.enabled {
                     self.ab
                         .restart(&rdesc, &self.path, &mut self.cache, &self.generation);
                 } else {
                     self.ab.stop();
-                    self.job = Some(RenderJob::start(
+                    match RenderJob::start(
                         scene.clone(),
                         RenderOptions::default(),
                         &self.generation,
-                    ));
+                    ) {
+                        Ok(job) => self.job = Some(job),
+                        Err(e) => started = Err(e.to_string()),
+                    }
                 }
                 self.live.reset();
                 self.scene = Some(scene);
                 self.good_desc = Some(desc);
-                self.error = None;
+                self.error = started.err();
                 self.inspector.refresh(self.scene.as_deref());
                 true
             }
@@ -301,16 +322,6 @@ impl ExplorerApp {
             false
         })
         .inner
-    }
-}
-
-/// Drops a finished or cancelled job on another thread (the drop joins the render thread).
-pub(super) fn retire(job: Option<RenderJob>) {
-    if let Some(job) = job {
-        job.cancel();
-        let _ = std::thread::Builder::new()
-            .name("texplore-retire".into())
-            .spawn(move || drop(job));
     }
 }
 

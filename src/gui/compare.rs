@@ -1,7 +1,6 @@
 //! Comparing antialiasing modes: the A/B split (two modes of the same scene side by side, each
 //! with its time and its error against a high-spp reference) and the speed/error plot.
 
-use super::app::retire;
 use super::live::LiveImage;
 use crate::inspect::{AaMode, rmse};
 use crate::render::{Generation, RenderJob, RenderOptions};
@@ -103,11 +102,10 @@ impl AbSplit {
     fn start(&mut self, slot: usize) {
         if let Some(scene) = self.waiting[slot].take() {
             self.exposure_scale = scene.settings.exposure_scale;
-            self.jobs[slot] = Some(RenderJob::start(
-                scene,
-                RenderOptions::default(),
-                &self.generation,
-            ));
+            match RenderJob::start(scene, RenderOptions::default(), &self.generation) {
+                Ok(job) => self.jobs[slot] = Some(job),
+                Err(e) => self.message = Some(e.to_string()),
+            }
             if let Some(live) = self.live.get_mut(slot) {
                 live.reset();
             }
@@ -116,9 +114,8 @@ impl AbSplit {
 
     /// Stops every job of the split.
     pub fn stop(&mut self) {
-        for j in &mut self.jobs {
-            retire(j.take());
-        }
+        // Dropping a job cancels it without waiting for its task.
+        self.jobs = [None, None, None];
         self.waiting = [None, None, None];
         self.errors = [None, None];
     }

@@ -1,11 +1,14 @@
-//! A render job on its own thread: preview passes, then one-sample passes until the target,
-//! publishing a display image after each; cancelled at once by bumping a generation counter.
+//! A render job, the one owner of a progressive render's lifecycle: a task on the shared worker
+//! pool runs preview passes, then one-sample passes until the target, publishing a display image
+//! after each; bumping a generation counter cancels it within one tile, and dropping the job
+//! cancels it without blocking the caller.
 
+use super::pool::{PoolError, thread_pool};
 use super::{DisplayImage, Film, PREVIEW_BLOCKS, render_preview, render_scheduled_pass};
 use crate::scene::Scene;
+use std::panic::AssertUnwindSafe;
 use std::sync::atomic::{AtomicU64, Ordering};
-use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
-use std::thread::JoinHandle;
+use std::sync::{Arc, Condvar, Mutex, MutexGuard, PoisonError};
 use std::time::{Duration, Instant};
 
 /// A shared counter: a job runs while the counter equals the value it started with. An edit
@@ -80,57 +83,113 @@ struct Published {
     film: Option<Arc<Film>>,
     progress: Progress,
     serial: u64,
+    /// The job's task has returned (finished, cancelled or failed).
+    done: bool,
+    /// Why the job stopped without finishing, when it was not cancelled.
+    failure: Option<String>,
 }
 
-/// A progressive render running on a background thread.
+/// What a job and its viewers share: the published state and the signal that the task ended.
+#[derive(Default)]
+struct Shared {
+    published: Mutex<Published>,
+    ended: Condvar,
+}
+
+impl Shared {
+    fn lock(&self) -> MutexGuard<'_, Published> {
+        self.published
+            .lock()
+            .unwrap_or_else(PoisonError::into_inner)
+    }
+}
+
+/// Marks the job done when the task returns or unwinds, so a waiter never waits for a task that
+/// is gone.
+struct EndGuard(Arc<Shared>);
+
+impl Drop for EndGuard {
+    fn drop(&mut self) {
+        self.0.lock().done = true;
+        self.0.ended.notify_all();
+    }
+}
+
+/// A progressive render running as a task on the shared worker pool ([`thread_pool`]).
+///
+/// Dropping a job cancels it without waiting: its task notices within one tile and returns, and
+/// everything it writes belongs to the job's shared state. [`RenderJob::wait`] and
+/// [`RenderJob::film_when_done`] block until the task has returned; do not call them from a
+/// worker of the same pool.
 pub struct RenderJob {
-    published: Arc<Mutex<Published>>,
+    shared: Arc<Shared>,
     generation: Generation,
     started_at: u64,
-    handle: Option<JoinHandle<()>>,
-}
-
-fn lock(m: &Mutex<Published>) -> MutexGuard<'_, Published> {
-    m.lock().unwrap_or_else(PoisonError::into_inner)
 }
 
 impl RenderJob {
-    /// Starts rendering `scene`. The job stops when done or when `generation` moves on.
-    #[must_use]
-    pub fn start(scene: Arc<Scene>, options: RenderOptions, generation: &Generation) -> Self {
-        let published = Arc::new(Mutex::new(Published::default()));
+    /// Starts rendering `scene` on the pool of `options.threads` workers. The job stops when
+    /// done or when `generation` moves on.
+    ///
+    /// # Errors
+    /// The worker pool could not be had (too many threads asked for, or the OS refused them).
+    pub fn start(
+        scene: Arc<Scene>,
+        options: RenderOptions,
+        generation: &Generation,
+    ) -> Result<Self, PoolError> {
+        let pool = thread_pool(options.threads)?;
+        let shared = Arc::new(Shared::default());
         let started_at = generation.current();
-        let (pub2, gen2) = (published.clone(), generation.clone());
-        let handle = std::thread::Builder::new()
-            .name("texplore-render".into())
-            .spawn(move || run(&scene, options, &gen2, started_at, &pub2))
-            .ok();
-        Self {
-            published,
+        let (task_shared, task_generation) = (shared.clone(), generation.clone());
+        pool.spawn(move || {
+            let guard = EndGuard(task_shared);
+            let shared = &guard.0;
+            let outcome = std::panic::catch_unwind(AssertUnwindSafe(|| {
+                run(&scene, options, &task_generation, started_at, shared);
+            }));
+            if let Err(panic) = outcome {
+                // A bug in the renderer: report it to the viewer instead of aborting the process
+                // (rayon aborts on a panic in a spawned task).
+                let what = panic
+                    .downcast_ref::<&str>()
+                    .map(ToString::to_string)
+                    .or_else(|| panic.downcast_ref::<String>().cloned())
+                    .unwrap_or_else(|| "unknown panic".into());
+                shared.lock().failure = Some(format!("the render stopped: {what}"));
+            }
+        });
+        Ok(Self {
+            shared,
             generation: generation.clone(),
             started_at,
-            handle,
-        }
+        })
     }
 
     /// Progress so far.
     #[must_use]
     pub fn progress(&self) -> Progress {
-        lock(&self.published).progress
+        self.shared.lock().progress
+    }
+
+    /// Why the job stopped without finishing, other than cancellation (a renderer bug).
+    #[must_use]
+    pub fn failure(&self) -> Option<String> {
+        self.shared.lock().failure.clone()
     }
 
     /// The latest display image and a serial number that changes whenever a new one is
     /// published (so a viewer uploads only new images).
     #[must_use]
     pub fn image(&self) -> Option<(Arc<DisplayImage>, u64)> {
-        let p = lock(&self.published);
+        let p = self.shared.lock();
         p.image.clone().map(|i| (i, p.serial))
     }
 
     /// The accumulated film after the last full pass (for metrics and saving).
     #[must_use]
     pub fn film(&self) -> Option<Arc<Film>> {
-        lock(&self.published).film.clone()
+        self.shared.lock().film.clone()
     }
 
     /// Stops this job (and any other of the same generation).
@@ -140,20 +199,28 @@ impl RenderJob {
         }
     }
 
+    fn wait_for_task(&self) {
+        let mut p = self.shared.lock();
+        while !p.done {
+            p = self
+                .shared
+                .ended
+                .wait(p)
+                .unwrap_or_else(PoisonError::into_inner);
+        }
+    }
+
     /// Waits for the job to finish or stop and returns the final film (`None` if cancelled).
     #[must_use]
-    pub fn film_when_done(mut self) -> Option<Arc<Film>> {
-        if let Some(h) = self.handle.take() {
-            let _ = h.join();
-        }
+    pub fn film_when_done(self) -> Option<Arc<Film>> {
+        self.wait_for_task();
         self.film()
     }
 
     /// Waits for the job to finish or stop.
-    pub fn wait(mut self) -> Progress {
-        if let Some(h) = self.handle.take() {
-            let _ = h.join();
-        }
+    #[must_use]
+    pub fn wait(self) -> Progress {
+        self.wait_for_task();
         self.progress()
     }
 }
@@ -161,9 +228,6 @@ impl RenderJob {
 impl Drop for RenderJob {
     fn drop(&mut self) {
         self.cancel();
-        if let Some(h) = self.handle.take() {
-            let _ = h.join();
-        }
     }
 }
 
@@ -172,20 +236,13 @@ fn run(
     options: RenderOptions,
     generation: &Generation,
     started_at: u64,
-    out: &Mutex<Published>,
+    out: &Shared,
 ) {
     let start = Instant::now();
     let cancelled = || generation.current() != started_at;
     let s = scene.settings;
-    let pool = match rayon::ThreadPoolBuilder::new()
-        .num_threads(options.threads)
-        .build()
-    {
-        Ok(p) => p,
-        Err(_) => return,
-    };
     let publish = |image: DisplayImage, film: Option<Arc<Film>>, progress: Progress| {
-        let mut p = lock(out);
+        let mut p = out.lock();
         p.image = Some(Arc::new(image));
         if film.is_some() {
             p.film = film;
@@ -197,51 +254,49 @@ fn run(
         spp_target: s.max_spp(),
         ..Progress::default()
     };
-    pool.install(|| {
-        if options.preview {
-            for block in PREVIEW_BLOCKS {
-                let Ok(pixels) = render_preview(scene, block, &cancelled) else {
-                    lock(out).progress.cancelled = true;
-                    return;
-                };
-                progress.preview_block = Some(block);
-                progress.elapsed = start.elapsed();
-                publish(
-                    DisplayImage::from_linear(s.width, s.height, &pixels, s.exposure_scale),
-                    None,
-                    progress,
-                );
-            }
-        }
-        let mut film = Film::new(s.width, s.height);
-        let mut tracing = Duration::ZERO;
-        let mut rays = 0.0;
-        let passes = s.max_spp();
-        for pass in 0..passes {
-            let t0 = Instant::now();
-            let Ok(pixels) = render_scheduled_pass(scene, &mut film, pass, &cancelled) else {
-                lock(out).progress.cancelled = true;
+    if options.preview {
+        for block in PREVIEW_BLOCKS {
+            let Ok(pixels) = render_preview(scene, block, &cancelled) else {
+                out.lock().progress.cancelled = true;
                 return;
             };
-            let dt = t0.elapsed();
-            tracing += dt;
-            rays += pixels as f64;
-            // An adaptive render ends early once every pixel has converged.
-            progress.finished = pixels == 0 || pass + 1 == passes;
-            if pixels > 0 {
-                progress.spp_done = pass + 1;
-                progress.last_pass = dt;
-                progress.last_pass_pixels = pixels;
-            }
-            progress.preview_block = None;
+            progress.preview_block = Some(block);
             progress.elapsed = start.elapsed();
-            progress.rays_per_second = rays / tracing.as_secs_f64().max(1e-9);
-            let image = film.to_display(s.exposure_scale);
-            let snapshot = progress.finished.then(|| Arc::new(film.clone()));
-            publish(image, snapshot, progress);
-            if progress.finished {
-                break;
-            }
+            publish(
+                DisplayImage::from_linear(s.width, s.height, &pixels, s.exposure_scale),
+                None,
+                progress,
+            );
         }
-    });
+    }
+    let mut film = Film::new(s.width, s.height);
+    let mut tracing = Duration::ZERO;
+    let mut rays = 0.0;
+    let passes = s.max_spp();
+    for pass in 0..passes {
+        let t0 = Instant::now();
+        let Ok(pixels) = render_scheduled_pass(scene, &mut film, pass, &cancelled) else {
+            out.lock().progress.cancelled = true;
+            return;
+        };
+        let dt = t0.elapsed();
+        tracing += dt;
+        rays += pixels as f64;
+        // An adaptive render ends early once every pixel has converged.
+        progress.finished = pixels == 0 || pass + 1 == passes;
+        if pixels > 0 {
+            progress.spp_done = pass + 1;
+            progress.last_pass = dt;
+            progress.last_pass_pixels = pixels;
+        }
+        progress.preview_block = None;
+        progress.elapsed = start.elapsed();
+        progress.rays_per_second = rays / tracing.as_secs_f64().max(1e-9);
+        let image = film.to_display(s.exposure_scale);
+        let snapshot = progress.finished.then(|| Arc::new(film.clone()));
+        publish(image, snapshot, progress);
+        if progress.finished {
+            break;
+        }
+    }
 }

@@ -4,10 +4,12 @@
 mod adaptive;
 mod film;
 mod job;
+mod pool;
 
 pub use adaptive::{CONTRAST_FACTOR, adaptive_mask, display_luminance};
 pub use film::{DisplayImage, Film, encode_srgb8};
 pub use job::{Generation, Progress, RenderJob, RenderOptions};
+pub use pool::{MAX_THREADS, PoolError, thread_pool};
 
 use crate::math::{Rgb, Vec2, hash3};
 use crate::sampler::{PixelFilter, permute};
@@ -320,8 +322,50 @@ mod tests {
                 preview: true,
             },
             &Generation::new(),
-        );
+        )
+        .expect("a pool of 2 workers");
         let film = job.film_when_done();
         assert!(film.as_deref() == Some(&blocking));
+    }
+
+    #[test]
+    fn a_dropped_job_stops_without_blocking_and_a_new_one_runs_on_the_same_pool() {
+        let mut sc = scene(false);
+        sc.settings.spp = 100_000;
+        let generation = Generation::new();
+        let options = RenderOptions {
+            threads: 2,
+            preview: false,
+        };
+        let sc = std::sync::Arc::new(sc);
+        let long = RenderJob::start(sc.clone(), options, &generation).expect("a pool");
+        while long.progress().spp_done == 0 {
+            std::thread::yield_now();
+        }
+        let t0 = std::time::Instant::now();
+        drop(long);
+        assert!(t0.elapsed() < std::time::Duration::from_millis(50));
+        // The cancelled task frees the pool within a tile: a short job after it finishes.
+        let mut short = (*sc).clone();
+        short.settings.spp = 2;
+        let job = RenderJob::start(std::sync::Arc::new(short), options, &generation).unwrap();
+        let p = job.wait();
+        assert!(p.finished && !p.cancelled);
+        assert_eq!(p.spp_done, 2);
+    }
+
+    #[test]
+    fn a_job_that_cannot_have_its_threads_is_an_error_not_a_hang() {
+        let e = RenderJob::start(
+            std::sync::Arc::new(scene(false)),
+            RenderOptions {
+                threads: MAX_THREADS + 1,
+                preview: true,
+            },
+            &Generation::new(),
+        )
+        .err()
+        .expect("refused");
+        assert!(e.to_string().contains("at most 1024"), "{e}");
     }
 }

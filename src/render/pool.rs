@@ -1,0 +1,80 @@
+//! The worker pools: one long-lived rayon pool per thread count, built on first use and shared
+//! by every render job, the command line and the tests. An orbit drag restarts a job on each
+//! mouse move; building a pool (and its threads) for each of them cost a thread start per
+//! worker per restart.
+
+use rayon::ThreadPool;
+use std::sync::{Arc, Mutex, PoisonError};
+
+/// The most worker threads a user may ask for. More threads than this only add start-up time and
+/// memory (a render uses at most one tile of 8 rows per thread); `--threads 100000` would take
+/// minutes to start.
+pub const MAX_THREADS: usize = 1024;
+
+/// Why no pool could be had.
+#[derive(Debug, thiserror::Error)]
+pub enum PoolError {
+    /// The count is above [`MAX_THREADS`].
+    #[error("{threads} worker threads asked for; at most {MAX_THREADS} are allowed")]
+    TooMany {
+        /// The count asked for.
+        threads: usize,
+    },
+    /// The operating system refused to start the threads.
+    #[error("cannot start {threads} worker threads: {source}")]
+    Build {
+        /// The count asked for (0: one per core).
+        threads: usize,
+        /// What rayon reported.
+        source: rayon::ThreadPoolBuildError,
+    },
+}
+
+/// Pools built so far, by requested thread count (0: one per core).
+static POOLS: Mutex<Vec<(usize, Arc<ThreadPool>)>> = Mutex::new(Vec::new());
+
+/// The shared pool of `threads` workers (0: one per core), built on the first call for that
+/// count and kept for the life of the process.
+///
+/// # Errors
+/// `threads` is above [`MAX_THREADS`], or the threads could not be started.
+pub fn thread_pool(threads: usize) -> Result<Arc<ThreadPool>, PoolError> {
+    if threads > MAX_THREADS {
+        return Err(PoolError::TooMany { threads });
+    }
+    let mut pools = POOLS.lock().unwrap_or_else(PoisonError::into_inner);
+    if let Some((_, pool)) = pools.iter().find(|(n, _)| *n == threads) {
+        return Ok(pool.clone());
+    }
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .thread_name(|i| format!("texplore-worker-{i}"))
+        .build()
+        .map_err(|source| PoolError::Build { threads, source })?;
+    let pool = Arc::new(pool);
+    pools.push((threads, pool.clone()));
+    Ok(pool)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn one_pool_per_count_is_shared() {
+        let a = thread_pool(3).unwrap();
+        let b = thread_pool(3).unwrap();
+        assert!(Arc::ptr_eq(&a, &b));
+        assert_eq!(a.current_num_threads(), 3);
+        assert!(!Arc::ptr_eq(&a, &thread_pool(1).unwrap()));
+    }
+
+    #[test]
+    fn absurd_counts_are_refused_with_the_limit() {
+        let e = thread_pool(100_000).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "100000 worker threads asked for; at most 1024 are allowed"
+        );
+    }
+}

@@ -54,7 +54,7 @@ fn rendered_texel(
         ..TexCoord::default()
     };
     let c = texture.sample(tc);
-    (c.2 == 7.0).then(|| (c.0 as u32, c.1 as u32))
+    (c.2 == 7.0).then_some((c.0 as u32, c.1 as u32))
 }
 
 /// A domain edge: the point, the lecture's (u, v) there worked by hand, and whether u = 1 is

@@ -265,3 +265,20 @@ fn explained_lookup_shows_the_renderers_texel() {
         ["u = 1.5000 is outside [0, 1]: black reads black there (no texel)"]
     );
 }
+
+#[test]
+fn interpolating_filters_at_the_closed_ends_take_the_neighbour_from_the_wrap() {
+    // u = 1 is halfway between the last texel centre (3.5 / 4) and the one beyond the edge,
+    // which the wrap supplies: the same value as at u = 0 under repeat (continuous across the
+    // tile seam), the edge texel under clamp and mirror, half black under black.
+    let img = ramp();
+    let at = |u: f32, w: Wrap| img.bilinear(Vec2::new(u, 0.25), w, Wrap::Clamp);
+    assert_eq!(at(1.0, Wrap::Repeat), at(0.0, Wrap::Repeat));
+    assert_eq!(at(1.0, Wrap::Repeat), Rgb(1.5, 0.0, 0.0));
+    assert_eq!(at(1.0, Wrap::Clamp), Rgb(3.0, 0.0, 0.0));
+    assert_eq!(at(1.0, Wrap::Mirror), Rgb(3.0, 0.0, 0.0));
+    assert_eq!(at(1.0, Wrap::Black), Rgb(1.5, 0.0, 0.0));
+    assert_eq!(at(0.0, Wrap::Black), Rgb(0.0, 0.0, 0.0));
+    let cubic = |u: f32, w: Wrap| img.bicubic(Vec2::new(u, 0.25), w, Wrap::Clamp);
+    assert_eq!(cubic(1.0, Wrap::Repeat), cubic(0.0, Wrap::Repeat));
+}

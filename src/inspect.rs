@@ -4,12 +4,12 @@
 //! Everything here is computed by the library; the GUI only displays it.
 
 use crate::geometry::Shape;
-use crate::mapping::{Mapping, TexCoord, explain_lookup, explain_mapping};
+use crate::mapping::{Mapping, TexCoord, explain_mapping};
 use crate::math::{Rgb, Vec2, Vec3A};
 use crate::render::Film;
 use crate::sampler::PixelSampler;
 use crate::scene::{Overrides, SceneDesc, apply_overrides};
-use crate::texture::{Filter, ImageData, Lookup, Texture, Wrap};
+use crate::texture::{Filter, ImageData, Lookup, Texture, Wrap, explain_lookup};
 use crate::{material::Material, scene::Scene};
 use std::sync::Arc;
 

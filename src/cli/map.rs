@@ -1,10 +1,10 @@
 //! `texplore map`: the lecture's formulas as a teaching tool.
 
-use crate::mapping::{Mapping, explain_lookup, explain_mapping};
-use crate::math::Vec3A;
-use crate::texture::Lookup;
+use crate::mapping::{Mapping, explain_mapping_f64};
+use crate::texture::{Lookup, Wrap, explain_lookup, explain_wrap};
 use anyhow::{Result, bail};
 use clap::ValueEnum;
+use glam::DVec3;
 
 /// `texplore map`.
 #[derive(Debug, clap::Args)]
@@ -12,19 +12,28 @@ use clap::ValueEnum;
 pub struct MapArgs {
     /// rectangular, cylindrical, spherical, light-probe, panoramic or mirror-ball.
     pub mapping: Mapping,
-    /// Local hit point x.
-    pub x: f32,
+    /// Local hit point x (read as f64: the formulas are worked in f64).
+    #[arg(allow_hyphen_values = true)]
+    pub x: f64,
     /// Local hit point y.
-    pub y: f32,
+    #[arg(allow_hyphen_values = true)]
+    pub y: f64,
     /// Local hit point z.
-    pub z: f32,
+    #[arg(allow_hyphen_values = true)]
+    pub z: f64,
     /// Texture resolution for the column and row (hres vres).
     #[arg(long, num_args = 2, value_names = ["W", "H"], default_values_t = [2048, 1024])]
     pub res: Vec<u32>,
     /// Texel lookup: lecture = (int)((hres - 1) u); centred = min(floor(u hres), hres - 1).
     #[arg(long, value_enum, default_value_t = LookupArg::Centred)]
     pub lookup: LookupArg,
-    /// Print one JSON object: u, v, column, row (row counted from the bottom, as v).
+    /// The texture's wrap mode for coordinates outside [0, 1]: repeat, clamp, mirror or black
+    /// (u = 1 and v = 1 are inside). Cylindrical and spherical u always repeat across the seam,
+    /// spherical v always clamps, as in the renderer.
+    #[arg(long, default_value = "repeat")]
+    pub wrap: Wrap,
+    /// Print one JSON object: u, v (before wrapping), column, row (row counted from the bottom,
+    /// as v; null outside [0, 1] under wrap black).
     #[arg(long)]
     pub json: bool,
 }
@@ -52,27 +61,25 @@ pub fn run(a: &MapArgs) -> Result<()> {
     if hres == 0 || vres == 0 {
         bail!("--res must be at least 1 x 1");
     }
-    let p = Vec3A::new(a.x, a.y, a.z);
+    // f64 throughout: the lecture's arithmetic as written, not the renderer's f32 rounding.
+    let p = DVec3::new(a.x, a.y, a.z);
     let lookup = Lookup::from(a.lookup);
-    let uv = a.mapping.map_point(p).uv;
-    let wrapped = |t: f32| {
-        if a.mapping == Mapping::Rectangular {
-            t - t.floor()
-        } else {
-            t.clamp(0.0, 1.0)
-        }
-    };
-    let (u, v) = (wrapped(uv.x), wrapped(uv.y));
-    let (column, row) = (lookup.index(u, hres), lookup.index(v, vres));
+    let (mapping_lines, uv) = explain_mapping_f64(a.mapping, p);
+    // The wraps the renderer applies: the texture's, except across a periodic mapping's seam
+    // (repeat) and at the spherical map's poles (clamp).
+    let wraps = Wrap::for_mapping(a.mapping, a.wrap);
+    let (wrapped, wrap_lines) = explain_wrap(uv.x, uv.y, wraps);
+    let texel = wrapped.map(|(u, v)| (lookup.index(u, hres), lookup.index(v, vres)));
     if a.json {
         let out = serde_json::json!({
             "mapping": a.mapping.name(),
             "point": [a.x, a.y, a.z],
             "u": uv.x,
             "v": uv.y,
-            "column": column,
-            "row": row,
-            "file_row": vres - 1 - row,
+            "wrap": a.wrap.to_string(),
+            "column": texel.map(|t| t.0),
+            "row": texel.map(|t| t.1),
+            "file_row": texel.map(|t| vres - 1 - t.1),
             "lookup": lookup.name(),
             "res": [hres, vres],
         });
@@ -81,24 +88,43 @@ pub fn run(a: &MapArgs) -> Result<()> {
     }
     println!(
         "{} mapping of the local hit point ({}, {}, {}):",
-        a.mapping, a.x, a.y, a.z
+        a.mapping,
+        shortest(a.x),
+        shortest(a.y),
+        shortest(a.z)
     );
-    for line in explain_mapping(a.mapping, p) {
+    for line in mapping_lines {
         println!("  {line}");
     }
-    if (u, v) != (uv.x, uv.y) {
-        println!("  wrapped (repeat) into [0, 1]: u = {u:.4}, v = {v:.4}");
+    for line in wrap_lines {
+        println!("  {line}");
     }
     println!(
         "texel in a {hres} x {vres} image ({} lookup):",
         lookup.name()
     );
-    for line in explain_lookup(u, v, hres, vres, lookup) {
-        println!("  {line}");
+    match (wrapped, texel) {
+        (Some((u, v)), Some((_, row))) => {
+            for line in explain_lookup(u, v, hres, vres, lookup) {
+                println!("  {line}");
+            }
+            println!(
+                "  (row counts from the bottom, as v does; the file's row from the top is {})",
+                vres - 1 - row
+            );
+        }
+        _ => println!("  none: the texture reads black outside [0, 1] under wrap black"),
     }
-    println!(
-        "  (row counts from the bottom, as v does; the file's row from the top is {})",
-        vres - 1 - row
-    );
     Ok(())
+}
+
+/// A coordinate as typed, in the shortest form that reads back the same (5e-324 stays 5e-324,
+/// not 324 digits of zeros).
+fn shortest(x: f64) -> String {
+    let a = x.abs();
+    if x == 0.0 || !a.is_finite() || (1e-4..1e6).contains(&a) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
 }

@@ -1,133 +1,273 @@
 //! The lecture's formulas with a hit point's numbers substituted, for `texplore map` and the
 //! GUI's inspector.
+//!
+//! The worked formulas run in f64 (a teaching tool shows the lecture's arithmetic, not f32
+//! rounding: a point such as (5e-324, 5e-324, 1) is not flushed to the axis), with the same
+//! special cases as the renderer's f32 formulas in the parent module: the same (u, v) up to
+//! f32 rounding (tested on many points), the same seam, poles and antipode.
 
 use super::Mapping;
-use crate::math::{PI, TAU, Vec3A};
-use crate::texture::Lookup;
+use glam::{DVec2, DVec3, Vec3A};
+use std::f64::consts::{PI, TAU};
 
-/// The formula lines that take local hit point `p` to (u, v) under `mapping`.
+/// A number as the worked formulas print it: four decimals, in scientific notation when that
+/// would show nothing (below 1e-4, 1e6 and above), and in full when four decimals would round
+/// to a whole number the value is not (0.99999994 is not 1: it picks a different texel).
 #[must_use]
-pub fn explain_mapping(mapping: Mapping, p: Vec3A) -> Vec<String> {
-    let mut out = Vec::new();
-    let len = p.length();
-    let n = if len > 0.0 && len.is_finite() {
-        p / len
-    } else {
-        p
-    };
-    let on_unit = (len - 1.0).abs() < 1e-4;
-    let (x, y, z) = (p.x, p.y, p.z);
-    let uv = mapping.map_point(p).uv;
-    let phi_lines = |out: &mut Vec<String>, x: f32, z: f32| {
-        let raw = x.atan2(z);
-        out.push(format!(
-            "phi = atan2(x, z) = atan2({x:.4}, {z:.4}) = {raw:.4} rad"
-        ));
-        if raw < 0.0 {
-            out.push(format!(
-                "phi < 0, so phi += 2 pi: phi = {:.4} rad",
-                raw + TAU
-            ));
-        }
-        out.push(format!("u = phi / (2 pi) = {:.4}", uv.x));
-    };
-    match mapping {
-        Mapping::Rectangular => {
-            out.push(format!("u = (z + 1) / 2 = ({z:.4} + 1) / 2 = {:.4}", uv.x));
-            out.push(format!("v = (x + 1) / 2 = ({x:.4} + 1) / 2 = {:.4}", uv.y));
-        }
-        Mapping::Cylindrical => {
-            phi_lines(&mut out, x, z);
-            out.push(format!("v = (y + 1) / 2 = ({y:.4} + 1) / 2 = {:.4}", uv.y));
-        }
-        Mapping::Spherical | Mapping::Uv => {
-            if !on_unit {
-                out.push(format!(
-                    "|p| = {len:.4}: normalised to the unit sphere, ({:.4}, {:.4}, {:.4})",
-                    n.x, n.y, n.z
-                ));
-            }
-            phi_lines(&mut out, n.x, n.z);
-            let theta = (1.0 - uv.y) * PI;
-            out.push(format!(
-                "theta = acos(y) = acos({:.4}) = {theta:.4} rad",
-                n.y.clamp(-1.0, 1.0)
-            ));
-            out.push(format!("v = 1 - theta / pi = {:.4}", uv.y));
-            if mapping == Mapping::Uv {
-                out.push("(uv: this shape carries no (u, v) of its own, so its natural spherical map is used)".into());
-            }
-        }
-        Mapping::LightProbe | Mapping::Panoramic | Mapping::MirrorBall => {
-            if !on_unit {
-                out.push(format!(
-                    "|p| = {len:.4}: normalised to the unit sphere, ({:.4}, {:.4}, {:.4})",
-                    n.x, n.y, n.z
-                ));
-            }
-            let flip = mapping == Mapping::Panoramic;
-            let zz = if flip { -n.z } else { n.z };
-            let d = (n.x * n.x + n.y * n.y).sqrt();
-            let alpha = d.atan2(zz);
-            if flip {
-                out.push(format!(
-                    "alpha = acos(-z) = acos({zz:.4}) = {alpha:.4} rad (panoramic: z flipped)"
-                ));
-            } else {
-                out.push(format!("alpha = acos(z) = acos({zz:.4}) = {alpha:.4} rad"));
-            }
-            if d > 0.0 {
-                out.push(format!("sin beta = y / sqrt(x^2 + y^2) = {:.4}, cos beta = x / sqrt(x^2 + y^2) = {:.4}", n.y / d, n.x / d));
-            } else {
-                out.push(
-                    "x = y = 0: beta is undefined (the lecture divides by zero); the limit is used"
-                        .into(),
-                );
-            }
-            let r = if mapping == Mapping::MirrorBall {
-                let r = (alpha * 0.5).sin();
-                out.push(format!("r = sin(alpha / 2) = {r:.4} (mirror ball)"));
-                r
-            } else {
-                let r = alpha / PI;
-                out.push(format!("r = alpha / pi = {r:.4}"));
-                r
-            };
-            let _ = r;
-            out.push(format!("u = (1 + r cos beta) / 2 = {:.4}", uv.x));
-            out.push(format!("v = (1 + r sin beta) / 2 = {:.4}", uv.y));
-        }
+pub fn explain_number(x: f64) -> String {
+    let a = x.abs();
+    if x != 0.0 && a.is_finite() && !(1e-4..1e6).contains(&a) {
+        return format!("{x:.4e}");
     }
-    out
+    let short = format!("{x:.4}");
+    let shown: f64 = short.parse().unwrap_or(x);
+    if shown != x && shown.fract() == 0.0 {
+        format!("{x}")
+    } else {
+        short
+    }
 }
 
-/// The lines that take (u, v) to a texel column and row (counted from the bottom, v up).
+/// The formula lines that take the local hit point `p` (f32, as the renderer has it) to (u, v)
+/// under `mapping`, worked in f64 from the exact value of `p`.
 #[must_use]
-pub fn explain_lookup(u: f32, v: f32, hres: u32, vres: u32, lookup: Lookup) -> Vec<String> {
-    let (c, r) = (
-        lookup.index(u.clamp(0.0, 1.0), hres),
-        lookup.index(v.clamp(0.0, 1.0), vres),
-    );
-    match lookup {
-        Lookup::Lecture => vec![
-            format!(
-                "column = (int)((hres - 1) u) = (int)({} x {u:.4}) = {c}",
-                hres - 1
-            ),
-            format!(
-                "row = (int)((vres - 1) v) = (int)({} x {v:.4}) = {r}",
-                vres - 1
-            ),
-        ],
-        Lookup::Centred => vec![
-            format!(
-                "column = min(floor(u hres), hres - 1) = min(floor({u:.4} x {hres}), {}) = {c}",
-                hres - 1
-            ),
-            format!(
-                "row = min(floor(v vres), vres - 1) = min(floor({v:.4} x {vres}), {}) = {r}",
-                vres - 1
-            ),
-        ],
+pub fn explain_mapping(mapping: Mapping, p: Vec3A) -> Vec<String> {
+    explain_mapping_f64(mapping, p.as_dvec3()).0
+}
+
+/// (u, v) of `p` under `mapping` by the f64 formulas `texplore map` shows: the renderer's
+/// [`Mapping::map_point`] up to f32 rounding.
+#[must_use]
+pub fn map_uv_f64(mapping: Mapping, p: DVec3) -> DVec2 {
+    worked(mapping, p, &mut None)
+}
+
+/// The formula lines that take the local hit point `p` to (u, v) under `mapping`, in f64, and
+/// the (u, v) they arrive at.
+#[must_use]
+pub fn explain_mapping_f64(mapping: Mapping, p: DVec3) -> (Vec<String>, DVec2) {
+    let mut out = Some(Vec::new());
+    let uv = worked(mapping, p, &mut out);
+    (out.unwrap_or_default(), uv)
+}
+
+/// Pushes a line when lines are wanted (formatting is skipped for [`map_uv_f64`]).
+macro_rules! line {
+    ($out:expr, $($arg:tt)*) => {
+        if let Some(lines) = $out.as_mut() {
+            lines.push(format!($($arg)*));
+        }
+    };
+}
+
+/// The f64 formulas, writing their lines to `out` when it is `Some`.
+fn worked(mapping: Mapping, p: DVec3, out: &mut Option<Vec<String>>) -> DVec2 {
+    let n = explain_number;
+    let uv = match mapping {
+        Mapping::Rectangular => {
+            let (u, v) = ((p.z + 1.0) * 0.5, (p.x + 1.0) * 0.5);
+            line!(out, "u = (z + 1) / 2 = ({} + 1) / 2 = {}", n(p.z), n(u));
+            line!(out, "v = (x + 1) / 2 = ({} + 1) / 2 = {}", n(p.x), n(v));
+            DVec2::new(u, v)
+        }
+        Mapping::Cylindrical => {
+            let u = match rescaled(DVec3::new(p.x, 0.0, p.z)) {
+                // The lecture's atan2(x, z) on the point as given (libm's atan2 is exact at
+                // any scale); the renderer's rescaling only keeps its f32 squares finite.
+                Some(_) => azimuth(p.x, p.z, out),
+                None => {
+                    line!(
+                        out,
+                        "x = z = 0 (on the axis): phi is undefined, u = 0 as the renderer"
+                    );
+                    0.0
+                }
+            };
+            let raw = (p.y + 1.0) * 0.5;
+            line!(out, "v = (y + 1) / 2 = ({} + 1) / 2 = {}", n(p.y), n(raw));
+            let v = if raw.is_nan() {
+                0.5
+            } else {
+                raw.clamp(0.0, 1.0)
+            };
+            if v != raw {
+                line!(
+                    out,
+                    "off the cylinder's height: v clamped into [0, 1], v = {}",
+                    n(v)
+                );
+            }
+            DVec2::new(u, v)
+        }
+        Mapping::Spherical | Mapping::Uv => {
+            let Some((q, _)) = rescaled(p) else {
+                line!(
+                    out,
+                    "p = (0, 0, 0) or not finite: no direction, (u, v) = (0, 0.5) as the renderer"
+                );
+                return DVec2::new(0.0, 0.5);
+            };
+            let len = q.length();
+            let nq = q / len;
+            if ((p.length() - 1.0).abs()) >= 1e-4 || !p.length().is_finite() {
+                line!(
+                    out,
+                    "|p| = {}: normalised to the unit sphere, ({}, {}, {})",
+                    n(p.length()),
+                    n(nq.x),
+                    n(nq.y),
+                    n(nq.z)
+                );
+            }
+            let u = azimuth(nq.x, nq.z, out);
+            // theta = acos(y / |p|), computed as atan2(sqrt(x^2 + z^2), y) (exact off the
+            // sphere, as the renderer).
+            let theta = q.x.hypot(q.z).atan2(q.y);
+            line!(
+                out,
+                "theta = acos(y) = acos({}) = {} rad",
+                n(nq.y.clamp(-1.0, 1.0)),
+                n(theta)
+            );
+            let v = (1.0 - theta / PI).clamp(0.0, 1.0);
+            line!(out, "v = 1 - theta / pi = {}", n(v));
+            if mapping == Mapping::Uv {
+                line!(
+                    out,
+                    "(uv: this shape carries no (u, v) of its own, so its natural spherical map is used)"
+                );
+            }
+            DVec2::new(u, v)
+        }
+        Mapping::LightProbe | Mapping::Panoramic | Mapping::MirrorBall => probe(mapping, p, out),
+    };
+    if uv.is_finite() {
+        uv
+    } else {
+        line!(
+            out,
+            "(u, v) is not finite: (0.5, 0.5), as the renderer answers for NaN and infinite input"
+        );
+        DVec2::splat(0.5)
     }
+}
+
+/// u = phi / 2 pi with phi = atan2(x, z) brought into [0, 2 pi), u in [0, 1): u = 1 is the
+/// seam, read as u = 0 (the renderer's `azimuth`).
+fn azimuth(x: f64, z: f64, out: &mut Option<Vec<String>>) -> f64 {
+    let n = explain_number;
+    let raw = x.atan2(z);
+    line!(
+        out,
+        "phi = atan2(x, z) = atan2({}, {}) = {} rad",
+        n(x),
+        n(z),
+        n(raw)
+    );
+    let phi = if raw < 0.0 {
+        let phi = raw + TAU;
+        line!(out, "phi < 0, so phi += 2 pi: phi = {} rad", n(phi));
+        phi
+    } else {
+        raw
+    };
+    let u = phi / TAU;
+    line!(out, "u = phi / (2 pi) = {}", n(u));
+    if u < 1.0 {
+        u.max(0.0) + 0.0
+    } else {
+        line!(
+            out,
+            "u = 1 is the seam u = 0 (u = 0 and u = 1 are one meridian): u = 0"
+        );
+        0.0
+    }
+}
+
+/// The light-probe maps: alpha = acos(z) (of -z for the panoramic), r = alpha / pi (sin(alpha
+/// / 2) for the mirror ball), u = (1 + r cos beta) / 2, v = (1 + r sin beta) / 2.
+fn probe(mapping: Mapping, p: DVec3, out: &mut Option<Vec<String>>) -> DVec2 {
+    let n = explain_number;
+    let Some((q, _)) = rescaled(p) else {
+        line!(
+            out,
+            "p = (0, 0, 0) or not finite: no direction, (u, v) = (0.5, 0.5) as the renderer"
+        );
+        return DVec2::splat(0.5);
+    };
+    let nq = q / q.length();
+    if ((p.length() - 1.0).abs()) >= 1e-4 || !p.length().is_finite() {
+        line!(
+            out,
+            "|p| = {}: normalised to the unit sphere, ({}, {}, {})",
+            n(p.length()),
+            n(nq.x),
+            n(nq.y),
+            n(nq.z)
+        );
+    }
+    let flip = mapping == Mapping::Panoramic;
+    let z = if flip { -nq.z } else { nq.z };
+    let d = nq.x.hypot(nq.y);
+    let alpha = d.atan2(z);
+    if flip {
+        line!(
+            out,
+            "alpha = acos(-z) = acos({}) = {} rad (panoramic: z flipped)",
+            n(z),
+            n(alpha)
+        );
+    } else {
+        line!(out, "alpha = acos(z) = acos({}) = {} rad", n(z), n(alpha));
+    }
+    let r = if mapping == Mapping::MirrorBall {
+        (alpha * 0.5).sin()
+    } else {
+        alpha / PI
+    };
+    // beta from (x, y) rescaled on its own, so tiny x and y keep their direction.
+    let (cos_b, sin_b) = match rescaled(DVec3::new(nq.x, nq.y, 0.0)) {
+        Some((b, _)) => {
+            let h = b.x.hypot(b.y);
+            let (c, s) = (b.x / h, b.y / h);
+            line!(
+                out,
+                "sin beta = y / sqrt(x^2 + y^2) = {}, cos beta = x / sqrt(x^2 + y^2) = {}",
+                n(s),
+                n(c)
+            );
+            (c, s)
+        }
+        None if z > 0.0 => {
+            line!(
+                out,
+                "x = y = 0: beta is undefined (the lecture divides by zero), but r = 0 here: the image centre"
+            );
+            (0.0, 0.0)
+        }
+        None => {
+            line!(
+                out,
+                "x = y = 0 at the antipode: beta is undefined (the whole rim meets here); the rim point beta = 0 is used"
+            );
+            (1.0, 0.0)
+        }
+    };
+    if mapping == Mapping::MirrorBall {
+        line!(out, "r = sin(alpha / 2) = {} (mirror ball)", n(r));
+    } else {
+        line!(out, "r = alpha / pi = {}", n(r));
+    }
+    let u = (0.5 + 0.5 * r * cos_b).clamp(0.0, 1.0);
+    let v = (0.5 + 0.5 * r * sin_b).clamp(0.0, 1.0);
+    line!(out, "u = (1 + r cos beta) / 2 = {}", n(u));
+    line!(out, "v = (1 + r sin beta) / 2 = {}", n(v));
+    DVec2::new(u, v)
+}
+
+/// `p` divided by its largest component (squares neither overflow nor underflow), `None` for
+/// the origin and for NaN or infinite input: the renderer's `rescaled`.
+fn rescaled(p: DVec3) -> Option<(DVec3, f64)> {
+    let s = p.abs().max_element();
+    (s > 0.0 && s.is_finite()).then(|| (p / s, s))
 }

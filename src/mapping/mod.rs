@@ -8,7 +8,7 @@
 
 mod explain;
 
-pub use explain::{explain_lookup, explain_mapping};
+pub use explain::{explain_mapping, explain_mapping_f64, explain_number, map_uv_f64};
 
 use crate::math::{PI, TAU, Vec2, Vec3A, atan2};
 use serde::{Deserialize, Serialize};
@@ -270,8 +270,11 @@ fn azimuth<const GRAD: bool>(x: f32, z: f32) -> (f32, Vec3A) {
     if phi < 0.0 {
         phi += TAU;
     }
-    // phi + 2 pi can round up to exactly 2 pi: u == 1 is the seam, which wraps to 0 anyway.
-    let u = (phi / TAU).clamp(0.0, 1.0);
+    // u in [0, 1): u = 1 and u = 0 are one seam, read as u = 0 (the texture's first column,
+    // where the wrap used to send u = 1 before [0, 1] was closed). phi + 2 pi can round up to
+    // exactly 2 pi; `+ 0.0` turns the -0 of atan2(-0, z) into 0.
+    let u = phi / TAU;
+    let u = if u < 1.0 { u.max(0.0) + 0.0 } else { 0.0 };
     let rho2 = x * x + z * z;
     let grad = if !GRAD {
         Vec3A::ZERO

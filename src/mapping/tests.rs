@@ -296,3 +296,152 @@ fn map_uv_is_map_point_without_gradients_bit_for_bit() {
         }
     }
 }
+
+#[test]
+fn periodic_u_is_below_1_and_its_seam_is_0() {
+    let tiny = f32::from_bits(1);
+    for m in [Mapping::Cylindrical, Mapping::Spherical] {
+        for y in [-0.999, -0.5, 0.0, 0.5, 0.999] {
+            let r = (1.0f32 - y * y).sqrt();
+            // Just west of the seam phi + 2 pi rounds to 2 pi: u = 1, the seam, read as u = 0.
+            for x in [-tiny, -1e-30, -0.0, 0.0] {
+                let (u, _) = uv(m, [x, y, r]);
+                assert_eq!(u.to_bits(), 0, "{m} at ({x}, {y}, {r}): u = {u}");
+            }
+            // Just east of it, u is 0 or just above (tiny / 2 pi underflows).
+            let (u, _) = uv(m, [tiny, y, r]);
+            assert!((0.0..1e-30).contains(&u), "{m}: {u}");
+            // A micro-radian west, u stays below 1.
+            let (u, _) = uv(m, [-1e-6 * r, y, r]);
+            assert!(u < 1.0 && u > 0.999_999, "{m}: {u}");
+        }
+    }
+}
+
+/// The points the f32 renderer and the f64 worked formulas are compared on: every octant, many
+/// magnitudes, the axes, the seam and the poles.
+fn comparison_points() -> Vec<Vec3A> {
+    let mut rng = crate::math::SampleRng::new(5, 6, 7);
+    let mut points = vec![
+        Vec3A::ZERO,
+        Vec3A::X,
+        Vec3A::Y,
+        -Vec3A::Y,
+        Vec3A::Z,
+        -Vec3A::Z,
+        Vec3A::new(-1e-30, 0.2, 0.9),
+        Vec3A::new(1e-40, 1.0, 1e-40),
+        Vec3A::new(f32::from_bits(1), f32::from_bits(1), 1.0),
+        Vec3A::new(1.0, 0.0, 1.0),
+        Vec3A::new(-1.0, 0.0, -1.0),
+        Vec3A::new(1.0, 1.0, 1.0),
+    ];
+    for i in 0..20_000 {
+        let d = Vec3A::new(
+            rng.next_f32() * 2.0 - 1.0,
+            rng.next_f32() * 2.0 - 1.0,
+            rng.next_f32() * 2.0 - 1.0,
+        );
+        let scale = match i % 4 {
+            0 => 1.0,
+            1 => 10f32.powi((i % 61) - 30),
+            2 => 1.0 / d.length(), // on the unit sphere
+            _ => rng.next_f32() * 2.0,
+        };
+        points.push(d * scale);
+    }
+    points
+}
+
+/// Distance between two values of u, across the seam for periodic mappings.
+fn u_distance(m: Mapping, a: f64, b: f64) -> f64 {
+    let d = (a - b).abs();
+    if m.u_is_periodic() || m == Mapping::Uv {
+        d.min(1.0 - d)
+    } else {
+        d
+    }
+}
+
+#[test]
+fn f64_worked_formulas_agree_with_the_renderer_to_f32_rounding() {
+    for m in Mapping::ALL {
+        let mut worst = (0.0f64, Vec3A::ZERO);
+        for p in comparison_points() {
+            let r = m.map_uv(p);
+            let e = map_uv_f64(m, p.as_dvec3());
+            // The probe maps' antipode is a singular point (the whole rim meets there), and the
+            // mirror ball's 1 + z cancels in f32 next to it: compared away from it.
+            let n = p.as_dvec3().normalize_or_zero();
+            let z = if m == Mapping::Panoramic { -n.z } else { n.z };
+            let probe = matches!(
+                m,
+                Mapping::LightProbe | Mapping::Panoramic | Mapping::MirrorBall
+            );
+            if probe && 1.0 + z < 1e-2 {
+                continue;
+            }
+            // Relative beyond 1: the rectangular map is unbounded.
+            let mut err = (u_distance(m, f64::from(r.x), e.x) / e.x.abs().max(1.0))
+                .max((f64::from(r.y) - e.y).abs() / e.y.abs().max(1.0));
+            if m == Mapping::MirrorBall {
+                // r = sin(alpha / 2) is computed as d / sqrt(2 (1 + z)): an f32 rounding of z
+                // (6e-8) weighs 1 / (1 + z) times more towards the antipode.
+                err *= (1.0 + z).min(1.0);
+            }
+            if err > worst.0 {
+                worst = (err, p);
+            }
+        }
+        // A few f32 ulps (6e-8 near 1); measured at most 1.1e-7.
+        assert!(
+            worst.0 < 2e-7,
+            "{m}: f32 and f64 differ by {} at {}",
+            worst.0,
+            worst.1
+        );
+    }
+}
+
+#[test]
+fn worked_formulas_keep_tiny_coordinates() {
+    // Read as f64, (5e-324, 5e-324, 1) is not on the axis: beta is 45 degrees.
+    let p = glam::DVec3::new(5e-324, 5e-324, 1.0);
+    let (lines, uv) = explain_mapping_f64(Mapping::LightProbe, p);
+    assert!(
+        lines.iter().any(|l| l
+            == "sin beta = y / sqrt(x^2 + y^2) = 0.7071, cos beta = x / sqrt(x^2 + y^2) = 0.7071"),
+        "{lines:#?}"
+    );
+    assert_eq!(uv, glam::DVec2::splat(0.5));
+    let (lines, _) = explain_mapping_f64(Mapping::Rectangular, p);
+    assert_eq!(lines[1], "v = (x + 1) / 2 = (4.9407e-324 + 1) / 2 = 0.5000");
+    let (lines, uv) = explain_mapping_f64(Mapping::Spherical, p);
+    assert!(
+        lines[0].starts_with("phi = atan2(x, z) = atan2(4.9407e-324, 1.0000) = 4.9407e-324 rad"),
+        "{lines:#?}"
+    );
+    assert_eq!(uv.x, 5e-324 / std::f64::consts::TAU);
+    // At the seam the lines say why u is 0.
+    let (lines, uv) =
+        explain_mapping_f64(Mapping::Cylindrical, glam::DVec3::new(-1e-300, 0.0, 1.0));
+    assert_eq!(uv.x, 0.0);
+    assert!(
+        lines
+            .iter()
+            .any(|l| l.starts_with("u = 1 is the seam u = 0")),
+        "{lines:#?}"
+    );
+}
+
+#[test]
+fn numbers_in_worked_formulas() {
+    assert_eq!(explain_number(0.25), "0.2500");
+    assert_eq!(explain_number(1.0), "1.0000");
+    assert_eq!(explain_number(0.0), "0.0000");
+    assert_eq!(explain_number(2e-5), "2.0000e-5");
+    assert_eq!(explain_number(3e7), "3.0000e7");
+    assert_eq!(explain_number(0.999_999_999), "0.999999999");
+    assert_eq!(explain_number(0.999_999), "0.999999");
+    assert_eq!(explain_number(0.123_456), "0.1235");
+}

@@ -5,11 +5,13 @@
 //! mapping first, then look up or compute the colour.
 
 mod debug;
+mod explain;
 mod image;
 mod mip;
 mod procedural;
 
 pub use debug::{View, mip_level_color};
+pub use explain::{explain_lookup, explain_wrap};
 pub use image::{
     ImageData, MAX_IMAGE_BYTES, MAX_IMAGE_DIMENSION, TILE, Texels, load_image, save_png,
 };
@@ -114,14 +116,16 @@ impl Lookup {
         }
     }
 
-    /// The texel index along an axis of `n` texels for a coordinate already wrapped to [0, 1].
+    /// The texel index along an axis of `n` texels for a coordinate already wrapped to [0, 1]
+    /// (closed: t == 1 is the last texel under both lookups). Generic over [`Real`] so that the
+    /// renderer (f32) and `texplore map` (f64) run one formula.
     #[must_use]
     #[inline]
-    pub fn index(self, t: f32, n: u32) -> u32 {
+    pub fn index<T: Real>(self, t: T, n: u32) -> u32 {
         let last = n - 1;
         let i = match self {
-            Self::Lecture => (last as f32 * t) as u32, // truncation, as the C++ (int) cast
-            Self::Centred => (t * n as f32) as u32,
+            Self::Lecture => (T::from_u32(last) * t).trunc_u32(), // as the C++ (int) cast
+            Self::Centred => (t * T::from_u32(n)).trunc_u32(),
         };
         i.min(last)
     }
@@ -157,23 +161,30 @@ impl Wrap {
     }
 
     /// A continuous coordinate brought into [0, 1], or `None` outside under [`Wrap::Black`].
+    ///
+    /// The square is closed: t in [0, 1], both ends included, is returned as it is under every
+    /// mode, so u == 1 reaches the last texel (the lecture's far edge); only coordinates
+    /// outside are wrapped. (The periodic mappings never return u == 1: their seam is u = 0.)
     #[must_use]
     #[inline]
-    pub fn coord(self, t: f32) -> Option<f32> {
+    pub fn coord<T: Real>(self, t: T) -> Option<T> {
+        if t >= T::ZERO && t <= T::ONE {
+            return Some(t);
+        }
         if t.is_nan() {
-            return Some(0.0);
+            return Some(T::ZERO);
         }
         match self {
             Self::Repeat => {
                 let f = t - t.floor();
-                Some(if f < 1.0 { f } else { 0.0 }) // -1e-9 - floor rounds up to 1.0
+                Some(if f < T::ONE { f } else { T::ZERO }) // -1e-9 - floor rounds up to 1.0
             }
-            Self::Clamp => Some(t.clamp(0.0, 1.0)),
+            Self::Clamp => Some(if t < T::ZERO { T::ZERO } else { T::ONE }),
             Self::Mirror => {
-                let f = t.rem_euclid(2.0);
-                Some(if f > 1.0 { 2.0 - f } else { f.min(1.0) })
+                let f = t.rem_euclid(T::TWO);
+                Some(if f > T::ONE { T::TWO - f } else { f })
             }
-            Self::Black => (0.0..=1.0).contains(&t).then_some(t),
+            Self::Black => None,
         }
     }
 
@@ -301,17 +312,7 @@ impl ImageTexture {
     #[must_use]
     #[inline]
     pub fn wraps(&self) -> (Wrap, Wrap) {
-        let wu = if self.mapping.u_is_periodic() {
-            Wrap::Repeat
-        } else {
-            self.wrap
-        };
-        let wv = if self.mapping.v_clamps() {
-            Wrap::Clamp
-        } else {
-            self.wrap
-        };
-        (wu, wv)
+        Wrap::for_mapping(self.mapping, self.wrap)
     }
 
     /// The colour at a hit.
@@ -351,6 +352,91 @@ impl ImageTexture {
         }
     }
 }
+
+impl Wrap {
+    /// The wrap modes along u and v of a texture with wrap mode `wrap` under `mapping`: periodic
+    /// mappings wrap u across their seam, the spherical map clamps v at its poles.
+    #[must_use]
+    #[inline]
+    pub const fn for_mapping(mapping: Mapping, wrap: Self) -> (Self, Self) {
+        let wu = if mapping.u_is_periodic() {
+            Self::Repeat
+        } else {
+            wrap
+        };
+        let wv = if mapping.v_clamps() {
+            Self::Clamp
+        } else {
+            wrap
+        };
+        (wu, wv)
+    }
+}
+
+/// The floating-point types the wrap and lookup formulas run in: `f32` in the renderer, `f64` in
+/// `texplore map`, which shows the lecture's arithmetic without f32 rounding. One formula for
+/// both ([`Wrap::coord`], [`Lookup::index`]), monomorphised, so the renderer pays nothing.
+pub trait Real:
+    Copy + PartialOrd + std::ops::Sub<Output = Self> + std::ops::Mul<Output = Self>
+{
+    /// 0.
+    const ZERO: Self;
+    /// 1.
+    const ONE: Self;
+    /// 2.
+    const TWO: Self;
+    /// The largest integer not above `self`.
+    #[must_use]
+    fn floor(self) -> Self;
+    /// The least non-negative remainder of `self` divided by `m`.
+    #[must_use]
+    fn rem_euclid(self, m: Self) -> Self;
+    /// Whether `self` is NaN.
+    fn is_nan(self) -> bool;
+    /// `n` as this type (rounded to nearest, as `as`).
+    fn from_u32(n: u32) -> Self;
+    /// Truncated towards zero and saturated to `u32` (0 for NaN): the C++ `(int)` cast on the
+    /// range lookups use.
+    fn trunc_u32(self) -> u32;
+    /// As `f64`, exactly (for printing).
+    fn to_f64(self) -> f64;
+}
+
+macro_rules! impl_real {
+    ($t:ty) => {
+        impl Real for $t {
+            const ZERO: Self = 0.0;
+            const ONE: Self = 1.0;
+            const TWO: Self = 2.0;
+            #[inline]
+            fn floor(self) -> Self {
+                <$t>::floor(self)
+            }
+            #[inline]
+            fn rem_euclid(self, m: Self) -> Self {
+                <$t>::rem_euclid(self, m)
+            }
+            #[inline]
+            fn is_nan(self) -> bool {
+                <$t>::is_nan(self)
+            }
+            #[inline]
+            fn from_u32(n: u32) -> Self {
+                n as $t
+            }
+            #[inline]
+            fn trunc_u32(self) -> u32 {
+                self as u32
+            }
+            #[inline]
+            fn to_f64(self) -> f64 {
+                f64::from(self)
+            }
+        }
+    };
+}
+impl_real!(f32);
+impl_real!(f64);
 
 #[cfg(test)]
 mod tests;

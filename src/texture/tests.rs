@@ -13,16 +13,16 @@ fn ramp() -> ImageData {
 #[test]
 fn lecture_lookup_never_reaches_the_last_column_before_u_1() {
     // column = (int)((hres - 1) u) with hres = 4
-    assert_eq!(Lookup::Lecture.index(0.0, 4), 0);
-    assert_eq!(Lookup::Lecture.index(0.34, 4), 1);
-    assert_eq!(Lookup::Lecture.index(0.99, 4), 2);
-    assert_eq!(Lookup::Lecture.index(1.0, 4), 3);
+    assert_eq!(Lookup::Lecture.index(0.0f32, 4), 0);
+    assert_eq!(Lookup::Lecture.index(0.34f32, 4), 1);
+    assert_eq!(Lookup::Lecture.index(0.99f32, 4), 2);
+    assert_eq!(Lookup::Lecture.index(1.0f32, 4), 3);
     // Texel-centred: min(floor(u hres), hres - 1)
-    assert_eq!(Lookup::Centred.index(0.0, 4), 0);
-    assert_eq!(Lookup::Centred.index(0.2499, 4), 0);
-    assert_eq!(Lookup::Centred.index(0.25, 4), 1);
-    assert_eq!(Lookup::Centred.index(0.99, 4), 3);
-    assert_eq!(Lookup::Centred.index(1.0, 4), 3);
+    assert_eq!(Lookup::Centred.index(0.0f32, 4), 0);
+    assert_eq!(Lookup::Centred.index(0.2499f32, 4), 0);
+    assert_eq!(Lookup::Centred.index(0.25f32, 4), 1);
+    assert_eq!(Lookup::Centred.index(0.99f32, 4), 3);
+    assert_eq!(Lookup::Centred.index(1.0f32, 4), 3);
     for n in [1, 2, 3, 1000] {
         for t in [0.0, 0.5, 1.0 - f32::EPSILON, 1.0] {
             assert!(Lookup::Centred.index(t, n) < n && Lookup::Lecture.index(t, n) < n);
@@ -51,14 +51,14 @@ fn v_counts_from_the_bottom_of_the_image() {
 
 #[test]
 fn wrap_modes() {
-    assert_eq!(Wrap::Repeat.coord(1.25), Some(0.25));
-    assert_eq!(Wrap::Repeat.coord(-0.25), Some(0.75));
-    assert_eq!(Wrap::Repeat.coord(-1e-9), Some(0.0));
-    assert_eq!(Wrap::Clamp.coord(1.5), Some(1.0));
-    assert_eq!(Wrap::Mirror.coord(1.25), Some(0.75));
-    assert_eq!(Wrap::Mirror.coord(-0.25), Some(0.25));
-    assert_eq!(Wrap::Black.coord(1.5), None);
-    assert_eq!(Wrap::Black.coord(0.5), Some(0.5));
+    assert_eq!(Wrap::Repeat.coord(1.25f32), Some(0.25));
+    assert_eq!(Wrap::Repeat.coord(-0.25f32), Some(0.75));
+    assert_eq!(Wrap::Repeat.coord(-1e-9f32), Some(0.0));
+    assert_eq!(Wrap::Clamp.coord(1.5f32), Some(1.0));
+    assert_eq!(Wrap::Mirror.coord(1.25f32), Some(0.75));
+    assert_eq!(Wrap::Mirror.coord(-0.25f32), Some(0.25));
+    assert_eq!(Wrap::Black.coord(1.5f32), None);
+    assert_eq!(Wrap::Black.coord(0.5f32), Some(0.5));
     assert_eq!(Wrap::Repeat.index(-1, 4), Some(3));
     assert_eq!(Wrap::Clamp.index(-1, 4), Some(0));
     assert_eq!(Wrap::Mirror.index(-1, 4), Some(0));
@@ -149,4 +149,136 @@ fn uv_grid_labels_its_corners() {
     // The u = 0 edge is the bold red frame.
     let edge = img.texel(0, 128);
     assert!(edge.0 > 0.5 && edge.1 < 0.1);
+}
+
+#[test]
+fn the_square_is_closed_under_every_wrap() {
+    // u = 0 and u = 1 are inside: no mode moves them, and 1 reaches the last texel.
+    for w in Wrap::ALL {
+        assert_eq!(w.coord(0.0f32), Some(0.0), "{w}");
+        assert_eq!(w.coord(1.0f32), Some(1.0), "{w}");
+        assert_eq!(w.coord(1.0f64), Some(1.0), "{w}");
+        assert_eq!(w.coord(0.5f32), Some(0.5), "{w}");
+    }
+    // Just outside, each mode does its own thing.
+    let above = f32::from_bits(1.0f32.to_bits() + 1);
+    assert_eq!(Wrap::Repeat.coord(above), Some(above - 1.0));
+    assert_eq!(Wrap::Clamp.coord(above), Some(1.0));
+    assert_eq!(Wrap::Mirror.coord(above), Some(2.0 - above));
+    assert_eq!(Wrap::Black.coord(above), None);
+    // Whole numbers outside: repeat starts the next tile at 0, mirror turns at 1.
+    assert_eq!(Wrap::Repeat.coord(2.0f32), Some(0.0));
+    assert_eq!(Wrap::Repeat.coord(-1.0f32), Some(0.0));
+    assert_eq!(Wrap::Mirror.coord(2.0f32), Some(0.0));
+    assert_eq!(Wrap::Mirror.coord(3.0f32), Some(1.0));
+    assert_eq!(Wrap::Mirror.coord(-1.0f32), Some(1.0));
+    // The nearest lookup at u = v = 1 reads the top-right texel under both lookups and every
+    // mode (it read the first column and the bottom row under repeat).
+    let img = ramp();
+    for w in Wrap::ALL {
+        for lookup in Lookup::ALL {
+            assert_eq!(
+                img.nearest(Vec2::ONE, lookup, w, w),
+                Rgb(3.0, 1.0, 0.0),
+                "{w} {lookup}"
+            );
+            assert_eq!(
+                img.nearest(Vec2::ZERO, lookup, w, w),
+                Rgb(0.0, 0.0, 0.0),
+                "{w} {lookup}"
+            );
+        }
+    }
+}
+
+#[test]
+fn wrap_and_lookup_agree_in_f32_and_f64() {
+    // One formula for both types: on f32 inputs, the f64 run gives the same texel except where
+    // f32 rounding of the product moves it across a texel boundary.
+    let mut rng = crate::math::SampleRng::new(17, 2, 3);
+    let mut differ = 0;
+    for i in 0..200_000 {
+        let t = match i % 4 {
+            0 => rng.next_f32() * 6.0 - 3.0,
+            1 => rng.next_f32(),
+            2 => (rng.next_f32() * 8.0).round() - 4.0, // whole numbers: the closed ends
+            _ => 1.0 - rng.next_f32() * 1e-6,
+        };
+        for w in Wrap::ALL {
+            let (a, b) = (w.coord(t), w.coord(f64::from(t)));
+            assert_eq!(a.is_some(), b.is_some(), "{w} {t}");
+            let (Some(a), Some(b)) = (a, b) else { continue };
+            assert!((f64::from(a) - b).abs() <= 1e-6, "{w} {t}: {a} {b}");
+            for n in [1, 4, 1023, 2048] {
+                for lookup in Lookup::ALL {
+                    let (i32_, i64_) = (lookup.index(a, n), lookup.index(b, n));
+                    assert!(i32_.abs_diff(i64_) <= 1, "{w} {lookup} {t} {n}");
+                    differ += usize::from(i32_ != i64_);
+                }
+            }
+        }
+    }
+    // Rounding at a boundary is rare.
+    assert!(differ < 200, "{differ} lookups differ");
+}
+
+#[test]
+fn explained_lookup_shows_the_renderers_texel() {
+    // The example: u = 1 on a 1024-wide image is column 1023 under the lecture's formula.
+    let lines = explain_lookup(1.0f64, 0.5, 1024, 512, Lookup::Lecture);
+    assert_eq!(
+        lines[0],
+        "column = (int)((hres - 1) u) = (int)(1023 x 1.0000) = 1023"
+    );
+    assert_eq!(
+        lines[1],
+        "row = (int)((vres - 1) v) = (int)(511 x 0.5000) = 255"
+    );
+    let lines = explain_lookup(1.0f32, 1.0, 1024, 512, Lookup::Centred);
+    assert_eq!(
+        lines[0],
+        "column = min(floor(u hres), hres - 1) = min(floor(1.0000 x 1024), 1023) = 1023"
+    );
+    // Just below 1, four decimals would say 1.0000 and hide why the column is 1022.
+    let below = 1.0 - 1e-9;
+    let lines = explain_lookup(below, 0.0, 1024, 512, Lookup::Lecture);
+    assert_eq!(
+        lines[0],
+        "column = (int)((hres - 1) u) = (int)(1023 x 0.999999999) = 1022"
+    );
+    // The wrap only speaks for coordinates outside.
+    let (w, lines) = explain_wrap(1.0f64, 0.0, (Wrap::Repeat, Wrap::Repeat));
+    assert_eq!((w, lines.len()), (Some((1.0, 0.0)), 0));
+    let (w, lines) = explain_wrap(1.25f64, -0.25, (Wrap::Repeat, Wrap::Mirror));
+    assert_eq!(w, Some((0.25, 0.25)));
+    assert_eq!(
+        lines,
+        [
+            "u = 1.2500 is outside [0, 1]: repeat brings it to u = 0.2500",
+            "v = -0.2500 is outside [0, 1]: mirror brings it to v = 0.2500"
+        ]
+    );
+    let (w, lines) = explain_wrap(1.5f32, 0.5, (Wrap::Black, Wrap::Black));
+    assert_eq!(w, None);
+    assert_eq!(
+        lines,
+        ["u = 1.5000 is outside [0, 1]: black reads black there (no texel)"]
+    );
+}
+
+#[test]
+fn interpolating_filters_at_the_closed_ends_take_the_neighbour_from_the_wrap() {
+    // u = 1 is halfway between the last texel centre (3.5 / 4) and the one beyond the edge,
+    // which the wrap supplies: the same value as at u = 0 under repeat (continuous across the
+    // tile seam), the edge texel under clamp and mirror, half black under black.
+    let img = ramp();
+    let at = |u: f32, w: Wrap| img.bilinear(Vec2::new(u, 0.25), w, Wrap::Clamp);
+    assert_eq!(at(1.0, Wrap::Repeat), at(0.0, Wrap::Repeat));
+    assert_eq!(at(1.0, Wrap::Repeat), Rgb(1.5, 0.0, 0.0));
+    assert_eq!(at(1.0, Wrap::Clamp), Rgb(3.0, 0.0, 0.0));
+    assert_eq!(at(1.0, Wrap::Mirror), Rgb(3.0, 0.0, 0.0));
+    assert_eq!(at(1.0, Wrap::Black), Rgb(1.5, 0.0, 0.0));
+    assert_eq!(at(0.0, Wrap::Black), Rgb(0.0, 0.0, 0.0));
+    let cubic = |u: f32, w: Wrap| img.bicubic(Vec2::new(u, 0.25), w, Wrap::Clamp);
+    assert_eq!(cubic(1.0, Wrap::Repeat), cubic(0.0, Wrap::Repeat));
 }

@@ -2,15 +2,16 @@
 
 use crate::mapping::{Mapping, explain_lookup, explain_mapping};
 use crate::math::Vec3A;
+use crate::names::value_parser;
 use crate::texture::Lookup;
 use anyhow::{Result, bail};
-use clap::ValueEnum;
 
 /// `texplore map`.
 #[derive(Debug, clap::Args)]
 #[command(allow_negative_numbers = true)]
 pub struct MapArgs {
-    /// rectangular, cylindrical, spherical, light-probe, panoramic or mirror-ball.
+    /// The mapping.
+    #[arg(value_parser = value_parser::<Mapping>())]
     pub mapping: Mapping,
     /// Local hit point x.
     pub x: f32,
@@ -21,30 +22,12 @@ pub struct MapArgs {
     /// Texture resolution for the column and row (hres vres).
     #[arg(long, num_args = 2, value_names = ["W", "H"], default_values_t = [2048, 1024])]
     pub res: Vec<u32>,
-    /// Texel lookup: lecture = (int)((hres - 1) u); centred = min(floor(u hres), hres - 1).
-    #[arg(long, value_enum, default_value_t = LookupArg::Centred)]
-    pub lookup: LookupArg,
+    /// Texel lookup.
+    #[arg(long, default_value_t = Lookup::Centred, value_parser = value_parser::<Lookup>())]
+    pub lookup: Lookup,
     /// Print one JSON object: u, v, column, row (row counted from the bottom, as v).
     #[arg(long)]
     pub json: bool,
-}
-
-/// Texel lookups on the command line.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum LookupArg {
-    /// The lecture's (int)((hres - 1) u).
-    Lecture,
-    /// Texel-centred min(floor(u hres), hres - 1).
-    Centred,
-}
-
-impl From<LookupArg> for Lookup {
-    fn from(l: LookupArg) -> Self {
-        match l {
-            LookupArg::Lecture => Self::Lecture,
-            LookupArg::Centred => Self::Centred,
-        }
-    }
 }
 
 pub fn run(a: &MapArgs) -> Result<()> {
@@ -53,7 +36,7 @@ pub fn run(a: &MapArgs) -> Result<()> {
         bail!("--res must be at least 1 x 1");
     }
     let p = Vec3A::new(a.x, a.y, a.z);
-    let lookup = Lookup::from(a.lookup);
+    let lookup = a.lookup;
     let uv = a.mapping.map_point(p).uv;
     let wrapped = |t: f32| {
         if a.mapping == Mapping::Rectangular {

@@ -2,6 +2,7 @@
 
 use super::*;
 use crate::math::srgb8_to_linear;
+use strum::VariantArray;
 
 /// A 4 x 2 image whose texel (column c, row-from-bottom r) has red = c and green = r.
 fn ramp() -> ImageData {
@@ -65,7 +66,7 @@ fn wrap_modes() {
     assert_eq!(Wrap::Mirror.index(4, 4), Some(3));
     assert_eq!(Wrap::Mirror.index(9, 4), Some(1));
     assert_eq!(Wrap::Black.index(4, 4), None);
-    for w in Wrap::ALL {
+    for &w in Wrap::VARIANTS {
         assert!(w.coord(f32::NAN).is_some_and(|t| (0.0..=1.0).contains(&t)));
         for i in [-9, -1, 0, 3, 4, 1000] {
             assert!(w.index(i, 4).is_none_or(|k| k < 4));
@@ -94,7 +95,7 @@ fn bilinear_hits_texel_centres_and_blends_between() {
 fn one_by_one_and_one_by_n_images() {
     let one = ImageData::from_fn(1, 1, "1x1", |_, _| Rgb(0.5, 0.25, 1.0));
     for uv in [Vec2::ZERO, Vec2::ONE, Vec2::new(7.3, -2.1)] {
-        for l in Lookup::ALL {
+        for &l in Lookup::VARIANTS {
             assert_eq!(
                 one.nearest(uv, l, Wrap::Repeat, Wrap::Mirror),
                 Rgb(0.5, 0.25, 1.0)

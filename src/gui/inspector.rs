@@ -132,7 +132,7 @@ impl Inspector {
                 ui.label("local hit point");
                 ui.label(v3(i.local_point)).on_hover_text(
                     "The lecture's local_hit_point: the hit in the generic object's own space, \
-                 which the mapping reads",
+                     which the mapping reads",
                 );
                 ui.end_row();
                 ui.label("texture");

@@ -86,7 +86,7 @@ pub enum ProjectionDesc {
 
 impl Default for ProjectionDesc {
     fn default() -> Self {
-        Self::Pinhole { fov: 45.0 }
+        ProjectionKind::Pinhole.default_desc()
     }
 }
 
@@ -941,5 +941,90 @@ impl ProjectionDesc {
             Self::Fisheye { .. } => ProjectionKind::Fisheye,
             Self::Spherical { .. } => ProjectionKind::Spherical,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use strum::VariantArray;
+
+    /// What a menu pick makes is of the kind picked.
+    #[test]
+    fn every_kind_defaults_to_a_desc_of_that_kind() {
+        for &k in ShapeKind::VARIANTS {
+            assert_eq!(k.default_desc().kind(), k);
+        }
+        for &k in TextureKind::VARIANTS {
+            assert_eq!(k.default_desc().kind(), k);
+        }
+        for &k in MaterialKind::VARIANTS {
+            assert_eq!(k.default_desc().kind(), k);
+        }
+        for &k in LightKind::VARIANTS {
+            assert_eq!(k.default_desc().kind(), k);
+        }
+        for &k in ProjectionKind::VARIANTS {
+            assert_eq!(k.default_desc().kind(), k);
+        }
+    }
+
+    /// A kind's defaults are what a preset that leaves every optional field out reads as.
+    #[test]
+    fn kind_defaults_match_the_preset_defaults() {
+        let checker: TextureDesc = ron::from_str("Checker()").expect("checker");
+        assert_eq!(checker, TextureKind::Checker.default_desc());
+        let grid: TextureDesc = ron::from_str("UvGrid()").expect("uv grid");
+        assert_eq!(grid, TextureKind::UvGrid.default_desc());
+        let mesh: TextureDesc = ron::from_str("MeshMaterial()").expect("mesh material");
+        assert_eq!(mesh, TextureKind::MeshMaterial.default_desc());
+        let image: TextureDesc = ron::from_str(r#"Image(path: "")"#).expect("image");
+        assert_eq!(image, TextureKind::Image.default_desc());
+        let phong: MaterialDesc =
+            ron::from_str("Phong(cd: Constant((0.7, 0.7, 0.7)))").expect("phong");
+        assert_eq!(phong, MaterialKind::Phong.default_desc());
+    }
+
+    #[test]
+    fn switching_kinds_keeps_the_mapping_texture_and_coefficients() {
+        let earth = TextureDesc::Image {
+            path: "earth.jpg".into(),
+            mapping: Mapping::Cylindrical,
+            filter: Filter::Ewa,
+            lookup: Lookup::Lecture,
+            wrap: Wrap::Clamp,
+            scale: 2.0,
+            srgb: true,
+            max_anisotropy: 4.0,
+        };
+        assert_eq!(
+            earth.converted(TextureKind::Checker).mapping(),
+            Some(Mapping::Cylindrical)
+        );
+        // A mesh's material is read through the mesh's (u, v) unless told otherwise.
+        assert_eq!(
+            earth.converted(TextureKind::MeshMaterial).mapping(),
+            Some(Mapping::Uv)
+        );
+        let phong = MaterialDesc::Phong {
+            ka: 0.1,
+            kd: 0.9,
+            cd: earth.clone(),
+            ks: 0.5,
+            cs: Rgb::WHITE,
+            exp: 50.0,
+        };
+        assert_eq!(
+            phong.converted(MaterialKind::Matte),
+            MaterialDesc::Matte {
+                ka: 0.1,
+                kd: 0.9,
+                cd: earth.clone()
+            }
+        );
+        assert_eq!(
+            phong.converted(MaterialKind::Emissive),
+            MaterialDesc::Emissive { ls: 1.0, ce: earth }
+        );
     }
 }

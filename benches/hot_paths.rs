@@ -7,6 +7,7 @@ use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
 use std::path::Path;
 use std::sync::Arc;
+use strum::VariantArray;
 use texplore::geometry::{Shape, intersect_shape};
 use texplore::mapping::{Mapping, TexCoord};
 use texplore::math::{Ray, SampleRng, Vec2, Vec3A};
@@ -69,7 +70,7 @@ fn mappings(c: &mut Criterion) {
         .collect();
     let (dpdx, dpdy) = (Vec3A::new(1e-3, 0.0, 0.0), Vec3A::new(0.0, 1e-3, 0.0));
     let mut g = c.benchmark_group("mapping");
-    for m in Mapping::ALL {
+    for &m in Mapping::VARIANTS {
         let mut i = 0;
         g.bench_function(m.name(), |b| {
             b.iter(|| {
@@ -103,7 +104,7 @@ fn filters(c: &mut Criterion) {
         .collect();
     let mut g = c.benchmark_group("filter");
     let mip = Arc::new(MipPyramid::build(image.clone()));
-    for filter in Filter::ALL {
+    for &filter in Filter::VARIANTS {
         let tex = ImageTexture {
             image: image.clone(),
             mapping: Mapping::Spherical,

@@ -12,6 +12,7 @@ use crate::scene::{Overrides, SceneDesc, apply_overrides};
 use crate::texture::{Filter, ImageData, Lookup, Texture, Wrap, explain_lookup};
 use crate::{material::Material, scene::Scene};
 use std::sync::Arc;
+use strum::VariantArray;
 
 /// The texel one lookup picks for the inspected (u, v).
 #[derive(Clone, Debug, PartialEq)]
@@ -159,7 +160,7 @@ impl Scene {
         let texels = match (&image, wrapped_uv) {
             (Some(read), Some(uv)) => {
                 let (w, h) = (read.image.width(), read.image.height());
-                Lookup::ALL
+                Lookup::VARIANTS
                     .iter()
                     .map(|&lookup| {
                         let column = lookup.index(uv.x, w);

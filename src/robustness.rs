@@ -119,6 +119,7 @@ pub fn screenshot_bytes(data: &[u8], path: &Path) -> Result<crate::scene::SceneD
 pub fn mesh_bytes(data: &[u8], path: &Path) -> Result<()> {
     use crate::geometry::{Mesh, Shading};
     use crate::math::{Ray, Vec3A};
+    use strum::VariantArray;
     std::fs::write(path, data).expect("the fuzz harness cannot write its scratch file");
     let result = crate::meshio::load_mesh(path).and_then(|d| Mesh::new(d, path));
     let mesh = match result {
@@ -144,7 +145,7 @@ pub fn mesh_bytes(data: &[u8], path: &Path) -> Result<()> {
         let target = lo + (hi - lo) * Vec3A::new(0.5 + 0.4 * a.sin(), 0.5, 0.5 + 0.4 * a.cos());
         let origin = centre + dir_out * reach * 2.0;
         let ray = Ray::new(origin, target - origin);
-        for shading in Shading::ALL {
+        for &shading in Shading::VARIANTS {
             if let Some(h) = mesh.intersect(&ray, f32::INFINITY, shading) {
                 assert!(h.t.is_finite() && h.p.is_finite(), "hit {h:?}");
                 assert!(h.n.is_finite() && h.ns.is_finite(), "normal {h:?}");

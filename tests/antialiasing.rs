@@ -7,6 +7,7 @@
 //! samples per pixel, at low resolution so each test runs in seconds.
 
 use std::path::{Path, PathBuf};
+use strum::VariantArray;
 use texplore::mapping::MAX_FOOTPRINT;
 use texplore::math::{Vec2, linear_to_srgb};
 use texplore::render::{Film, render_blocking};
@@ -215,8 +216,8 @@ fn looking_down_at_a_pole_every_filter_and_view_is_finite() {
     desc.camera.eye = texplore::math::Vec3::new(0.0, 3.0, 0.0);
     desc.camera.up = texplore::math::Vec3::Z;
     desc.objects[0].transform.rotate = texplore::math::Vec3::ZERO;
-    for filter in Filter::ALL {
-        for view in View::ALL {
+    for &filter in Filter::VARIANTS {
+        for &view in View::VARIANTS {
             desc.render.view = view;
             let film = render_desc(
                 &desc,

@@ -6,6 +6,7 @@
 use std::path::Path;
 use std::process::Command;
 use std::sync::Arc;
+use strum::VariantArray;
 use texplore::mapping::{Mapping, TexCoord};
 use texplore::math::{Rgb, Vec2, Vec3A};
 use texplore::render::render_blocking;
@@ -151,11 +152,11 @@ fn every_mapping_reads_the_lectures_texel_at_the_edges_of_its_domain() {
     let mut checked = 0;
     for (w, h) in [(7, 5), (1024, 512), (1, 1), (3, 2)] {
         let image = Arc::new(coordinates_image(w, h));
-        for m in Mapping::ALL {
+        for &m in Mapping::VARIANTS {
             for e in domain_edges(m) {
                 let p = Vec3A::from(e.p);
-                for lookup in Lookup::ALL {
-                    for wrap in Wrap::ALL {
+                for &lookup in Lookup::VARIANTS {
+                    for &wrap in Wrap::VARIANTS {
                         let (u, v) = e.uv;
                         let want_column = if e.seam {
                             0
@@ -187,7 +188,7 @@ fn just_outside_the_far_edge_the_wrap_decides() {
     let beyond = f32::from_bits(1.0f32.to_bits() + 1);
     let p = Vec3A::new(0.0, 0.0, 2.0 * beyond - 1.0); // u just above 1
     let at = |lookup, wrap| rendered_texel(&image, Mapping::Rectangular, lookup, wrap, p);
-    for lookup in Lookup::ALL {
+    for &lookup in Lookup::VARIANTS {
         assert_eq!(at(lookup, Wrap::Repeat).map(|t| t.0), Some(0));
         assert_eq!(at(lookup, Wrap::Clamp).map(|t| t.0), Some(3));
         // Mirrored to just below 1: the lecture's (int)(3 x 0.99999988) is 2.
@@ -197,8 +198,8 @@ fn just_outside_the_far_edge_the_wrap_decides() {
     }
     // Exactly on the far corner every mode reads the last texel.
     let corner = Vec3A::new(1.0, 0.0, 1.0);
-    for lookup in Lookup::ALL {
-        for wrap in Wrap::ALL {
+    for &lookup in Lookup::VARIANTS {
+        for &wrap in Wrap::VARIANTS {
             assert_eq!(
                 rendered_texel(&image, Mapping::Rectangular, lookup, wrap, corner),
                 Some((3, 3)),
@@ -228,8 +229,8 @@ fn a_render_shows_the_last_column_along_the_far_edge() {
     let dir = tempfile::tempdir().unwrap();
     write_far_column_red(&dir.path().join("far.png"));
     let preset = dir.path().join("far.ron");
-    for lookup in Lookup::ALL {
-        for wrap in Wrap::ALL {
+    for &lookup in Lookup::VARIANTS {
+        for &wrap in Wrap::VARIANTS {
             let text = format!(
                 "(version: 1,
                   camera: (eye: (0, 5, 1), look_at: (0, 0, 1), up: (0, 0, 1), projection: Pinhole(fov: 30)),

@@ -5,9 +5,16 @@ use egui::accesskit::Role;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable as _;
 use std::path::{Path, PathBuf};
+use strum::VariantArray;
 use texplore::gui::{AppOptions, ExplorerApp};
 use texplore::mapping::Mapping;
-use texplore::scene::{TextureDesc, load_preset, save_preset};
+use texplore::names::Named;
+use texplore::sampler::PixelSampler;
+use texplore::scene::{
+    LightKind, MaterialKind, ProjectionKind, ShapeKind, TextureDesc, TextureKind, load_preset,
+    save_preset,
+};
+use texplore::texture::{Filter, Lookup, View, Wrap};
 
 const WINDOW: [f32; 2] = [1280.0, 800.0];
 
@@ -297,4 +304,67 @@ fn the_uv_debug_view_shows_u_in_red_and_v_in_green() {
         (r - uv.x).abs() < 0.02 && (g - uv.y).abs() < 0.02,
         "pixel ({r}, {g}) against (u, v) = {uv}"
     );
+}
+
+/// Opens the combo box `label`, checks that it offers an entry for every variant the library
+/// names (each name shows once more while the menu is open), and closes it again.
+fn assert_menu_offers_every<T: Named>(h: &mut Harness<'_, ExplorerApp>, label: &str) {
+    let count = |h: &Harness<'_, ExplorerApp>, name: &str| h.query_all_by_label(name).count();
+    // The lower menus of the scene panel are scrolled out of sight at first.
+    h.get_by_role_and_label(Role::ComboBox, label)
+        .scroll_to_me();
+    h.run_steps(3);
+    let before: Vec<usize> = T::VARIANTS.iter().map(|v| count(h, v.label())).collect();
+    h.get_by_role_and_label(Role::ComboBox, label).click();
+    h.run_steps(3);
+    for (v, before) in T::VARIANTS.iter().zip(before) {
+        assert_eq!(
+            count(h, v.label()),
+            before + 1,
+            "the {label} menu should offer '{}' once",
+            v.label()
+        );
+    }
+    h.get_by_role_and_label(Role::ComboBox, label).click();
+    h.run_steps(3);
+}
+
+#[test]
+fn every_menu_offers_every_variant_the_library_names() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut h = harness(small_earth(dir.path()));
+    assert_menu_offers_every::<ShapeKind>(&mut h, "Shape");
+    assert_menu_offers_every::<MaterialKind>(&mut h, "Material");
+    assert_menu_offers_every::<TextureKind>(&mut h, "Texture");
+    assert_menu_offers_every::<Mapping>(&mut h, "Mapping");
+    assert_menu_offers_every::<Filter>(&mut h, "Filter");
+    assert_menu_offers_every::<Lookup>(&mut h, "Lookup");
+    assert_menu_offers_every::<Wrap>(&mut h, "Wrap");
+    assert_menu_offers_every::<PixelSampler>(&mut h, "Sampler");
+    assert_menu_offers_every::<ProjectionKind>(&mut h, "Camera");
+    assert_menu_offers_every::<View>(&mut h, "View");
+    for &kind in LightKind::VARIANTS {
+        let button = format!("Add {}", kind.label());
+        assert!(h.query_by_label(&button).is_some(), "no '{button}' button");
+    }
+}
+
+#[test]
+fn picking_a_texture_kind_gives_its_defaults_and_keeps_the_mapping() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut h = harness(small_earth(dir.path()));
+    h.get_by_role_and_label(Role::ComboBox, "Texture").click();
+    h.run_steps(3);
+    h.get_by_label(TextureKind::Checker.label()).click();
+    settle(&mut h);
+    let texture = h.state().desc().expect("scene").objects[0]
+        .material
+        .texture()
+        .clone();
+    let mut expected = TextureKind::Checker.default_desc();
+    expected.set_mapping(Mapping::Spherical);
+    assert_eq!(texture, expected);
+    // The checker's own settings replace the image's.
+    assert!(h.query_by_label("squares along u").is_some());
+    assert!(h.query_by_label("Lookup").is_none());
 }

@@ -3,6 +3,7 @@
 
 use proptest::prelude::*;
 use std::path::Path;
+use strum::VariantArray;
 use texplore::mapping::{MAX_FOOTPRINT, Mapping};
 use texplore::math::{Ray, Rgb, Vec3A};
 use texplore::render::render_blocking;
@@ -76,7 +77,7 @@ fn check_mapping_at(m: Mapping, p: Vec3A) -> Result<(), String> {
         return Err(format!("{m} at {p:?}: (u, v) = {uv:?} outside [0, 1]"));
     }
     for (w, h) in [(1, 1), (1, 7), (2048, 1024), (3, 5), (65_535, 3)] {
-        for lookup in Lookup::ALL {
+        for &lookup in Lookup::VARIANTS {
             let (c, r) = (lookup.index(uv.x, w), lookup.index(uv.y, h));
             if c >= w || r >= h {
                 return Err(format!("{m} at {p:?}: texel ({c}, {r}) outside {w}x{h}"));
@@ -88,7 +89,7 @@ fn check_mapping_at(m: Mapping, p: Vec3A) -> Result<(), String> {
 
 #[test]
 fn every_mapping_is_defined_at_every_adversarial_point() {
-    for m in Mapping::ALL {
+    for &m in Mapping::VARIANTS {
         for p in adversarial_points() {
             check_mapping_at(m, p).unwrap();
             check_mapping_at(m, -p).unwrap();
@@ -107,7 +108,7 @@ proptest! {
         y in prop::num::f32::NORMAL | prop::num::f32::SUBNORMAL | prop::num::f32::ZERO,
         z in prop::num::f32::NORMAL | prop::num::f32::SUBNORMAL | prop::num::f32::ZERO,
     ) {
-        for m in Mapping::ALL {
+        for &m in Mapping::VARIANTS {
             prop_assert!(check_mapping_at(m, Vec3A::new(x, y, z)).is_ok(), "{:?}", check_mapping_at(m, Vec3A::new(x, y, z)));
         }
     }
@@ -116,7 +117,7 @@ proptest! {
     #[test]
     fn mappings_on_the_unit_sphere(theta in 0.0f32..=std::f32::consts::PI, phi in -7.0f32..7.0) {
         let p = Vec3A::new(theta.sin() * phi.sin(), theta.cos(), theta.sin() * phi.cos());
-        for m in Mapping::ALL {
+        for &m in Mapping::VARIANTS {
             prop_assert!(check_mapping_at(m, p).is_ok());
         }
     }
@@ -346,8 +347,8 @@ fn every_preset_in_every_mode_renders_finite() {
     let presets = list_presets(&Path::new(env!("CARGO_MANIFEST_DIR")).join("presets")).unwrap();
     let mut cache = AssetCache::new();
     for p in &presets {
-        for filter in Filter::ALL {
-            for sampler in texplore::sampler::PixelSampler::ALL {
+        for &filter in Filter::VARIANTS {
+            for &sampler in texplore::sampler::PixelSampler::VARIANTS {
                 let mut desc = load_preset(p).unwrap();
                 apply_overrides(
                     &mut desc,
@@ -376,13 +377,13 @@ fn render_image_sphere(img: &image::RgbImage, mapping: &str) -> Vec<(Filter, Wra
     img.save(&path).unwrap();
     let mut out = Vec::new();
     let mut cache = AssetCache::new();
-    for wrap in Wrap::ALL {
+    for &wrap in Wrap::VARIANTS {
         let text = format!(
             "(version: 1, camera: (eye: (0.3, 0.6, 3)), render: (width: 40, height: 30, spp: 1),
               objects: [(shape: Sphere, transform: (scale: (1, 1, 1)), material: Emissive(ce: Image(path: \"t.png\", mapping: {mapping}, wrap: {wrap:?})))])"
         );
         let preset = dir.path().join("p.ron");
-        for filter in Filter::ALL {
+        for &filter in Filter::VARIANTS {
             let mut desc = parse_preset(&text, &preset).unwrap();
             apply_overrides(
                 &mut desc,
@@ -556,7 +557,7 @@ fn degenerate_triangles_load_count_and_render_finite() {
     );
     // Both render finite under every filter, seen from above through the UV grid.
     for (file, lit) in [("degenerate.ply", 1), ("flat_uv.ply", 1)] {
-        for filter in Filter::ALL {
+        for &filter in Filter::VARIANTS {
             let text = format!(
                 "(version: 1, camera: (eye: (0.1, 4, 0.2), look_at: (0, 0, 0)), render: (width: 32, height: 32, spp: 2),
                   lights: [Directional(direction: (0.2, 1, 0.1), ls: 1, shadows: true)],

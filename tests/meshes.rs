@@ -4,6 +4,7 @@
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
+use strum::VariantArray;
 use texplore::geometry::{Mesh, MeshData, Shape};
 use texplore::math::{Ray, Vec2, Vec3, Vec3A, srgb8_to_linear};
 use texplore::meshio::{PlyFormat, load_mesh, read_ply_from, torus, write_ply};
@@ -147,7 +148,7 @@ fn ascii_and_binary_plys_give_the_same_image() {
     let dir = tempfile::tempdir().unwrap();
     let data = torus(40, 16, 1.0, 0.4);
     let mut films = Vec::new();
-    for format in PlyFormat::ALL {
+    for &format in PlyFormat::VARIANTS {
         let path = dir.path().join(format!("torus-{format}.ply"));
         let mut f = std::io::BufWriter::new(std::fs::File::create(&path).unwrap());
         write_ply(&mut f, &data, format).unwrap();

@@ -1,16 +1,17 @@
 //! `texplore map`: the lecture's formulas as a teaching tool.
 
 use crate::mapping::{Mapping, explain_mapping_f64};
+use crate::names::value_parser;
 use crate::texture::{Lookup, Wrap, explain_lookup, explain_wrap};
 use anyhow::{Result, bail};
-use clap::ValueEnum;
 use glam::DVec3;
 
 /// `texplore map`.
 #[derive(Debug, clap::Args)]
 #[command(allow_negative_numbers = true)]
 pub struct MapArgs {
-    /// rectangular, cylindrical, spherical, light-probe, panoramic or mirror-ball.
+    /// The mapping.
+    #[arg(value_parser = value_parser::<Mapping>())]
     pub mapping: Mapping,
     /// Local hit point x (read as f64: the formulas are worked in f64).
     #[arg(allow_hyphen_values = true)]
@@ -24,36 +25,18 @@ pub struct MapArgs {
     /// Texture resolution for the column and row (hres vres).
     #[arg(long, num_args = 2, value_names = ["W", "H"], default_values_t = [2048, 1024])]
     pub res: Vec<u32>,
-    /// Texel lookup: lecture = (int)((hres - 1) u); centred = min(floor(u hres), hres - 1).
-    #[arg(long, value_enum, default_value_t = LookupArg::Centred)]
-    pub lookup: LookupArg,
+    /// Texel lookup.
+    #[arg(long, default_value_t = Lookup::Centred, value_parser = value_parser::<Lookup>())]
+    pub lookup: Lookup,
     /// The texture's wrap mode for coordinates outside [0, 1]: repeat, clamp, mirror or black
     /// (u = 1 and v = 1 are inside). Cylindrical and spherical u always repeat across the seam,
     /// spherical v always clamps, as in the renderer.
-    #[arg(long, default_value = "repeat")]
+    #[arg(long, default_value_t = Wrap::Repeat, value_parser = value_parser::<Wrap>())]
     pub wrap: Wrap,
     /// Print one JSON object: u, v (before wrapping), column, row (row counted from the bottom,
     /// as v; null outside [0, 1] under wrap black).
     #[arg(long)]
     pub json: bool,
-}
-
-/// Texel lookups on the command line.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum LookupArg {
-    /// The lecture's (int)((hres - 1) u).
-    Lecture,
-    /// Texel-centred min(floor(u hres), hres - 1).
-    Centred,
-}
-
-impl From<LookupArg> for Lookup {
-    fn from(l: LookupArg) -> Self {
-        match l {
-            LookupArg::Lecture => Self::Lecture,
-            LookupArg::Centred => Self::Centred,
-        }
-    }
 }
 
 pub fn run(a: &MapArgs) -> Result<()> {
@@ -63,7 +46,7 @@ pub fn run(a: &MapArgs) -> Result<()> {
     }
     // f64 throughout: the lecture's arithmetic as written, not the renderer's f32 rounding.
     let p = DVec3::new(a.x, a.y, a.z);
-    let lookup = Lookup::from(a.lookup);
+    let lookup = a.lookup;
     let (mapping_lines, uv) = explain_mapping_f64(a.mapping, p);
     // The wraps the renderer applies: the texture's, except across a periodic mapping's seam
     // (repeat) and at the spherical map's poles (clamp).

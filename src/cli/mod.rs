@@ -9,8 +9,6 @@ mod render;
 mod report;
 mod snapshot;
 
-pub use map::LookupArg;
-
 use anyhow::Result;
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;

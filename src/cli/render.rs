@@ -1,5 +1,6 @@
 //! `texplore render`.
 
+use crate::names::value_parser;
 use crate::render::render_blocking;
 use crate::sampler::{PixelFilter, PixelSampler};
 use crate::scene::{
@@ -31,18 +32,17 @@ pub struct RenderArgs {
     /// Random seed (overrides the preset).
     #[arg(long)]
     pub seed: Option<u32>,
-    /// Texture filter for every image and checker texture (overrides the preset): nearest,
-    /// bilinear, bicubic, trilinear, ewa.
-    #[arg(long)]
+    /// Texture filter for every image and checker texture (overrides the preset).
+    #[arg(long, value_parser = value_parser::<Filter>())]
     pub filter: Option<Filter>,
     /// Largest anisotropy the EWA filter follows, 1 to 64 (overrides the preset; default 8).
     #[arg(long = "max-aniso", value_name = "RATIO")]
     pub max_aniso: Option<f32>,
-    /// Pixel sampler (overrides the preset): regular, random, jittered, n-rooks, ...
-    #[arg(long)]
+    /// Pixel sampler (overrides the preset).
+    #[arg(long, value_parser = value_parser::<PixelSampler>())]
     pub sampler: Option<PixelSampler>,
-    /// Pixel reconstruction filter (overrides the preset): box, tent, gaussian.
-    #[arg(long = "pixel-filter", value_name = "FILTER")]
+    /// Pixel reconstruction filter (overrides the preset).
+    #[arg(long = "pixel-filter", value_name = "FILTER", value_parser = value_parser::<PixelFilter>())]
     pub pixel_filter: Option<PixelFilter>,
     /// Adaptive sampling: after --spp samples everywhere, up to MAX_SPP where the estimated
     /// error exceeds THRESHOLD (display units, default 0.01). E.g. `--spp 1 --adaptive 16`.
@@ -51,8 +51,8 @@ pub struct RenderArgs {
     /// Turn off the preset's adaptive sampling.
     #[arg(long, conflicts_with = "adaptive")]
     pub no_adaptive: bool,
-    /// What to render: shaded, uv, mip-level, texel-grid, seams.
-    #[arg(long)]
+    /// What to render: the shaded image or a debug view.
+    #[arg(long, value_parser = value_parser::<View>())]
     pub view: Option<View>,
     /// Worker threads (default: one per core).
     #[arg(long, default_value_t = 0)]

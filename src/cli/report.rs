@@ -1,5 +1,6 @@
 //! `texplore report`: speed against error for presets, written as CSV, Markdown and plots.
 
+use crate::names::value_parser;
 use crate::report::{
     Mode, ProgressUpdate, ReferenceSettings, ReportConfig, Stage, default_cache_dir, run_scene,
     write_outputs,
@@ -44,10 +45,10 @@ pub struct ReportArgs {
     #[arg(long, default_value_t = 4096)]
     pub reference_spp: u32,
     /// Texture filter of the reference.
-    #[arg(long, default_value = "bilinear")]
+    #[arg(long, default_value = "bilinear", value_parser = value_parser::<Filter>())]
     pub reference_filter: Filter,
     /// Pixel sampler of the reference.
-    #[arg(long, default_value = "jittered")]
+    #[arg(long, default_value = "jittered", value_parser = value_parser::<PixelSampler>())]
     pub reference_sampler: PixelSampler,
     /// Where references are cached (default: the user's cache directory,
     /// ~/.cache/texplore/references, else OUTPUT/.refs).

@@ -12,31 +12,49 @@ use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
 /// How a mesh's shading normal is found.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    Default,
+    PartialEq,
+    Eq,
+    Hash,
+    Serialize,
+    Deserialize,
+    strum::VariantArray,
+    strum::IntoStaticStr,
+    strum::EnumString,
+    strum::EnumMessage,
+    strum::Display,
+)]
+#[strum(
+    serialize_all = "kebab-case",
+    parse_err_ty = String,
+    parse_err_fn = crate::names::unknown::<Shading>
+)]
 pub enum Shading {
     /// The lecture's `FlatUVMeshTriangle`: each triangle's own normal (facets show).
+    #[strum(message = "One normal per triangle: facets show.")]
     Flat,
     /// The lecture's `SmoothUVMeshTriangle`: vertex normals (the file's, else area-weighted
     /// averages of the adjacent triangles') interpolated by barycentrics.
     #[default]
+    #[strum(message = "Vertex normals interpolated across each triangle: smooth.")]
     Smooth,
 }
 
-impl Shading {
-    /// Both shadings.
-    pub const ALL: [Self; 2] = [Self::Flat, Self::Smooth];
-
-    /// The name used on the command line and in menus.
-    #[must_use]
-    pub const fn name(self) -> &'static str {
-        match self {
-            Self::Flat => "flat",
-            Self::Smooth => "smooth",
-        }
-    }
+impl crate::names::Named for Shading {
+    const WHAT: &'static str = "shading";
 }
 
-crate::named_enum!(Shading, "shading");
+impl Shading {
+    /// The name used on the command line and in menus.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        self.into()
+    }
+}
 
 /// The material a mesh file names (an OBJ's .mtl): its diffuse colour and image.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -690,6 +708,7 @@ impl WoopRay {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use strum::VariantArray;
 
     fn quad() -> MeshData {
         // The lecture's two triangles.
@@ -728,7 +747,7 @@ mod tests {
             (-0.2, -0.9),
             (0.0, 0.0),
         ] {
-            for shading in Shading::ALL {
+            for &shading in Shading::VARIANTS {
                 let h = m.intersect(&down(x, z), f32::INFINITY, shading).unwrap();
                 let uv = h.uv.unwrap();
                 assert!((uv - Vec2::new((z + 1.0) / 2.0, (x + 1.0) / 2.0)).length() < 1e-6);
@@ -776,7 +795,7 @@ mod tests {
         let m = Mesh::new(d, Path::new("degenerate")).unwrap();
         for k in 0..400 {
             let (x, z) = ((k % 20) as f32 / 10.0 - 0.95, (k / 20) as f32 / 10.0 - 0.95);
-            for shading in Shading::ALL {
+            for &shading in Shading::VARIANTS {
                 if let Some(h) = m.intersect(&down(x, z), 1e9, shading) {
                     assert!(h.p.is_finite() && h.n.is_finite() && h.ns.is_finite());
                     assert!(h.uv.unwrap().is_finite());

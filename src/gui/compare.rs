@@ -13,6 +13,7 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc::{Receiver, channel};
 use std::time::Duration;
+use strum::VariantArray;
 
 /// Samples per pixel of the reference both sides are measured against.
 pub const REFERENCE_SPP: u32 = 256;
@@ -220,12 +221,8 @@ impl AbSplit {
             let name = ["A", "B"][side];
             ui.horizontal(|ui| {
                 let m = &mut self.modes[side];
-                let mut changed = super::widgets::enum_combo(
-                    ui,
-                    &format!("{name} sampler"),
-                    &mut m.sampler,
-                    PixelSampler::description,
-                );
+                let mut changed =
+                    super::widgets::enum_combo(ui, &format!("{name} sampler"), &mut m.sampler);
                 changed |= ui
                     .horizontal(|ui| {
                         let l = ui.label(format!("{name} spp"));
@@ -243,7 +240,7 @@ impl AbSplit {
                             .selectable_value(&mut m.filter, None, "as in the scene")
                             .on_hover_text("Each texture keeps its own filter")
                             .changed();
-                        for f in Filter::ALL {
+                        for &f in Filter::VARIANTS {
                             changed |= ui
                                 .selectable_value(&mut m.filter, Some(f), f.name())
                                 .on_hover_text(f.description())

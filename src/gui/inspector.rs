@@ -2,10 +2,10 @@
 //! point, the mapping's formula with this pixel's numbers, (u, v), the texel both lookups pick,
 //! the footprint and mip level; the texture view marks the texel and draws the footprint.
 
-use crate::inspect::Inspection;
+use crate::inspect::{ImageRead, Inspection};
 use crate::math::{Rgb, Vec2, linear_to_srgb};
 use crate::scene::Scene;
-use crate::texture::ImageData;
+use crate::texture::{ImageData, Lookup};
 use std::sync::Arc;
 
 /// Largest side of the texture overview uploaded to the GPU (bigger images are subsampled).
@@ -112,40 +112,51 @@ impl Inspector {
             return;
         };
         let v3 = |v: crate::math::Vec3A| format!("({:.4}, {:.4}, {:.4})", v.x, v.y, v.z);
-        egui::Grid::new("inspect-hit").num_columns(2).striped(true).show(ui, |ui| {
-            ui.label("pixel");
-            ui.label(format!("({:.0}, {:.0})", i.pixel.x.floor(), i.pixel.y.floor()));
-            ui.end_row();
-            ui.label("object");
-            ui.label(format!("{} ({})", i.object_name, i.shape));
-            ui.end_row();
-            ui.label("world hit point");
-            ui.label(v3(i.world_point));
-            ui.end_row();
-            ui.label("local hit point");
-            ui.label(v3(i.local_point)).on_hover_text("The lecture's local_hit_point: the hit in the generic object's own space, which the mapping reads");
-            ui.end_row();
-            ui.label("texture");
-            ui.label(i.texture_kind);
-            ui.end_row();
-            if let Some(m) = i.mapping {
-                ui.label("mapping");
-                ui.label(m.name()).on_hover_text(m.description());
+        egui::Grid::new("inspect-hit")
+            .num_columns(2)
+            .striped(true)
+            .show(ui, |ui| {
+                ui.label("pixel");
+                ui.label(format!(
+                    "({:.0}, {:.0})",
+                    i.pixel.x.floor(),
+                    i.pixel.y.floor()
+                ));
                 ui.end_row();
-            }
-            ui.label("texture colour");
-            ui.horizontal(|ui| {
-                let (r, _) = ui.allocate_exact_size(egui::vec2(28.0, 14.0), egui::Sense::hover());
-                ui.painter().rect_filled(r, 2.0, srgb(i.texture_colour));
-                let c = i.texture_colour;
-                ui.label(format!("({:.3}, {:.3}, {:.3}) linear", c.0, c.1, c.2));
+                ui.label("object");
+                ui.label(format!("{} ({})", i.object_name, i.shape));
+                ui.end_row();
+                ui.label("world hit point");
+                ui.label(v3(i.world_point));
+                ui.end_row();
+                ui.label("local hit point");
+                ui.label(v3(i.local_point)).on_hover_text(
+                    "The lecture's local_hit_point: the hit in the generic object's own space, \
+                     which the mapping reads",
+                );
+                ui.end_row();
+                ui.label("texture");
+                ui.label(i.texture_kind);
+                ui.end_row();
+                if let Some(m) = i.mapping {
+                    ui.label("mapping");
+                    ui.label(m.name()).on_hover_text(m.description());
+                    ui.end_row();
+                }
+                ui.label("texture colour");
+                ui.horizontal(|ui| {
+                    let (r, _) =
+                        ui.allocate_exact_size(egui::vec2(28.0, 14.0), egui::Sense::hover());
+                    ui.painter().rect_filled(r, 2.0, srgb(i.texture_colour));
+                    let c = i.texture_colour;
+                    ui.label(format!("({:.3}, {:.3}, {:.3}) linear", c.0, c.1, c.2));
+                });
+                ui.end_row();
+                ui.label("pixel radiance");
+                let c = i.radiance;
+                ui.label(format!("({:.3}, {:.3}, {:.3})", c.0, c.1, c.2));
+                ui.end_row();
             });
-            ui.end_row();
-            ui.label("pixel radiance");
-            let c = i.radiance;
-            ui.label(format!("({:.3}, {:.3}, {:.3})", c.0, c.1, c.2));
-            ui.end_row();
-        });
         if !i.mapping_lines.is_empty() {
             ui.separator();
             ui.strong("Mapping, with this pixel's numbers");
@@ -177,11 +188,15 @@ impl Inspector {
                 {
                     ui.label("footprint");
                     ui.monospace(format!("{a:.2} x {b:.2} texels"))
-                        .on_hover_text("Lengths of the two axes of the pixel's footprint ellipse in the texture");
+                        .on_hover_text(
+                        "Lengths of the two axes of the pixel's footprint ellipse in the texture",
+                    );
                     ui.end_row();
                     ui.label("mip level");
-                    ui.monospace(format!("{level:.2}"))
-                        .on_hover_text("log2 of the longest footprint axis in texels: the level a trilinear mip filter reads");
+                    ui.monospace(format!("{level:.2}")).on_hover_text(
+                        "log2 of the longest footprint axis in texels: \
+                         the level a trilinear mip filter reads",
+                    );
                     ui.end_row();
                 }
             });
@@ -217,14 +232,13 @@ impl Inspector {
     }
 
     /// The whole texture with a cross at (u, v), and a zoom on the texels around it with both
-    /// lookups' texels outlined and the footprint ellipse.
+    /// lookups' texels outlined and the footprint ellipse, side by side.
     fn texture_views(&mut self, ui: &mut egui::Ui, i: &Inspection) {
         let (Some(read), Some(uv)) = (&i.image, i.wrapped_uv) else {
             return;
         };
         let img = &read.image;
         let key = Arc::as_ptr(img) as usize;
-        let (w, h) = (img.width(), img.height());
         if self.overview.as_ref().is_none_or(|(k, _)| *k != key) {
             let tex = ui.ctx().load_texture(
                 "inspector-overview",
@@ -233,45 +247,118 @@ impl Inspector {
             );
             self.overview = Some((key, tex));
         }
-        let texel_xy = Vec2::new(uv.x * w as f32, (1.0 - uv.y) * h as f32); // file space, y down
         let col = ((ui.available_width() - 8.0) * 0.5).max(120.0);
         ui.horizontal_top(|ui| {
-        ui.vertical(|ui| {
-        ui.set_width(col);
-        if let Some((_, tex)) = &self.overview {
-            let width = col;
-            let size = egui::vec2(width, width * h as f32 / w as f32);
-            let (rect, _) = ui.allocate_exact_size(size, egui::Sense::hover());
-            let p = ui.painter_at(rect);
-            p.image(
-                tex.id(),
-                rect,
-                egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0)),
-                egui::Color32::WHITE,
-            );
-            let at = rect.min + egui::vec2(uv.x * rect.width(), (1.0 - uv.y) * rect.height());
-            let stroke = egui::Stroke::new(1.5, egui::Color32::YELLOW);
-            p.line_segment(
-                [
-                    egui::pos2(rect.left(), at.y),
-                    egui::pos2(rect.right(), at.y),
-                ],
-                egui::Stroke::new(1.0, egui::Color32::from_white_alpha(120)),
-            );
-            p.line_segment(
-                [
-                    egui::pos2(at.x, rect.top()),
-                    egui::pos2(at.x, rect.bottom()),
-                ],
-                egui::Stroke::new(1.0, egui::Color32::from_white_alpha(120)),
-            );
-            p.circle_stroke(at, 5.0, stroke);
-        }
-        ui.label(
-            "Right: the texels around the hit. Yellow: the centred lookup's texel; cyan: the lecture's; magenta: the pixel's footprint.",
-        );
+            ui.vertical(|ui| {
+                ui.set_width(col);
+                if let Some((_, tex)) = &self.overview {
+                    draw_overview(ui, tex, img, uv, col);
+                }
+                ui.label(
+                    "Right: the texels around the hit. Yellow: the centred lookup's texel; \
+                     cyan: the lecture's; magenta: the pixel's footprint.",
+                );
+            });
+            let zoom = Zoom::around(i, img, uv);
+            let tex = self.zoom_texture(ui.ctx(), key, &zoom, read);
+            zoom.draw(ui, &tex, i, col);
         });
-        // Zoom: a square of texels around the hit, big enough for the footprint.
+    }
+
+    /// The zoom's texels as a texture, uploaded again only when the square moves.
+    fn zoom_texture(
+        &mut self,
+        ctx: &egui::Context,
+        image: usize,
+        zoom: &Zoom,
+        read: &ImageRead,
+    ) -> egui::TextureHandle {
+        let key = ZoomKey {
+            image,
+            origin: zoom.origin,
+            n: zoom.n,
+        };
+        if let Some((k, tex)) = &self.zoom
+            && *k == key
+        {
+            return tex.clone();
+        }
+        let img = &read.image;
+        let (w, h) = (img.width(), img.height());
+        let (wu, wv) = read.wraps;
+        let n = zoom.n;
+        let mut pixels = Vec::with_capacity((n * n) as usize);
+        for y in 0..n {
+            for x in 0..n {
+                let col = wu.index(zoom.origin.0 + i64::from(x), w);
+                // Wrap in v works on rows from the bottom.
+                let from_bottom = i64::from(h) - 1 - (zoom.origin.1 + i64::from(y));
+                let row = wv.index(from_bottom, h);
+                pixels.push(match (col, row) {
+                    (Some(c), Some(r)) => srgb(img.texel(c, r)),
+                    _ => egui::Color32::BLACK,
+                });
+            }
+        }
+        let image = egui::ColorImage::new([n as usize, n as usize], pixels);
+        let tex = ctx.load_texture("inspector-zoom", image, egui::TextureOptions::NEAREST);
+        self.zoom = Some((key, tex.clone()));
+        tex
+    }
+}
+
+/// The whole texture, `width` wide, with a cross and a circle at (u, v).
+fn draw_overview(
+    ui: &mut egui::Ui,
+    tex: &egui::TextureHandle,
+    img: &ImageData,
+    uv: Vec2,
+    width: f32,
+) {
+    let size = egui::vec2(width, width * img.height() as f32 / img.width() as f32);
+    let (rect, _) = ui.allocate_exact_size(size, egui::Sense::hover());
+    let p = ui.painter_at(rect);
+    p.image(tex.id(), rect, UNIT_UV, egui::Color32::WHITE);
+    let at = rect.min + egui::vec2(uv.x * rect.width(), (1.0 - uv.y) * rect.height());
+    let line = egui::Stroke::new(1.0, egui::Color32::from_white_alpha(120));
+    p.line_segment(
+        [
+            egui::pos2(rect.left(), at.y),
+            egui::pos2(rect.right(), at.y),
+        ],
+        line,
+    );
+    p.line_segment(
+        [
+            egui::pos2(at.x, rect.top()),
+            egui::pos2(at.x, rect.bottom()),
+        ],
+        line,
+    );
+    p.circle_stroke(at, 5.0, egui::Stroke::new(1.5, egui::Color32::YELLOW));
+}
+
+/// The whole of a texture, in egui's texture coordinates.
+const UNIT_UV: egui::Rect = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
+
+/// The footprint's colour.
+const MAGENTA: egui::Color32 = egui::Color32::from_rgb(255, 60, 255);
+
+/// The square of texels the zoom shows: `n` a side from `origin`, in file texels (y down).
+struct Zoom {
+    /// The hit in file texels (x right, y down).
+    texel_xy: Vec2,
+    origin: (i64, i64),
+    n: u32,
+    /// The image's size in texels.
+    size: (u32, u32),
+}
+
+impl Zoom {
+    /// A square around the hit at `uv`, big enough for the footprint.
+    fn around(i: &Inspection, img: &ImageData, uv: Vec2) -> Self {
+        let (w, h) = (img.width(), img.height());
+        let texel_xy = Vec2::new(uv.x * w as f32, (1.0 - uv.y) * h as f32);
         let major = i
             .footprint
             .and_then(|f| f.axes_texels)
@@ -281,49 +368,31 @@ impl Inspector {
             texel_xy.x.floor() as i64 - i64::from(n / 2),
             texel_xy.y.floor() as i64 - i64::from(n / 2),
         );
-        let zkey = ZoomKey {
-            image: key,
+        Self {
+            texel_xy,
             origin,
             n,
-        };
-        if self.zoom.as_ref().is_none_or(|(k, _)| *k != zkey) {
-            let (wu, wv) = read.wraps;
-            let mut pixels = Vec::with_capacity((n * n) as usize);
-            for y in 0..n {
-                for x in 0..n {
-                    let col = wu.index(origin.0 + i64::from(x), w);
-                    // Wrap in v works on rows from the bottom.
-                    let from_bottom = i64::from(h) - 1 - (origin.1 + i64::from(y));
-                    let row = wv.index(from_bottom, h);
-                    pixels.push(match (col, row) {
-                        (Some(c), Some(r)) => srgb(img.texel(c, r)),
-                        _ => egui::Color32::BLACK,
-                    });
-                }
-            }
-            let image = egui::ColorImage::new([n as usize, n as usize], pixels);
-            let tex = ui
-                .ctx()
-                .load_texture("inspector-zoom", image, egui::TextureOptions::NEAREST);
-            self.zoom = Some((zkey, tex));
+            size: (w, h),
         }
-        let Some((_, tex)) = &self.zoom else { return };
-        let side = col;
+    }
+
+    /// The zoom `side` points square: the texels, their grid when big enough, the texels both
+    /// lookups pick and the footprint ellipse.
+    fn draw(&self, ui: &mut egui::Ui, tex: &egui::TextureHandle, i: &Inspection, side: f32) {
         let (rect, _) = ui.allocate_exact_size(egui::vec2(side, side), egui::Sense::hover());
         let p = ui.painter_at(rect);
-        p.image(
-            tex.id(),
-            rect,
-            egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0)),
-            egui::Color32::WHITE,
-        );
-        let scale = side / n as f32;
+        p.image(tex.id(), rect, UNIT_UV, egui::Color32::WHITE);
+        let scale = side / self.n as f32;
         let to_screen = |x: f32, y: f32| {
-            rect.min + egui::vec2((x - origin.0 as f32) * scale, (y - origin.1 as f32) * scale)
+            rect.min
+                + egui::vec2(
+                    (x - self.origin.0 as f32) * scale,
+                    (y - self.origin.1 as f32) * scale,
+                )
         };
         if scale >= 6.0 {
             let grid = egui::Stroke::new(0.5, egui::Color32::from_black_alpha(90));
-            for k in 0..=n {
+            for k in 0..=self.n {
                 let o = k as f32 * scale;
                 p.line_segment(
                     [
@@ -341,21 +410,12 @@ impl Inspector {
                 );
             }
         }
-        // The texels the lookups pick, drawn where the hit is (the picks are in [0, w) already).
-        let near = |c: u32, fr: u32| {
-            // Choose the copy of the texel nearest the hit (wrap can put it one period away).
-            let unwrap = |t: f32, at: f32, period: f32| t + ((at - t) / period).round() * period;
-            (
-                unwrap(c as f32, texel_xy.x, w as f32),
-                unwrap(fr as f32, texel_xy.y, h as f32),
-            )
-        };
         for pick in &i.texels {
-            let colour = match pick.lookup.name() {
-                "centred" => egui::Color32::YELLOW,
-                _ => egui::Color32::from_rgb(0, 220, 255),
+            let colour = match pick.lookup {
+                Lookup::Centred => egui::Color32::YELLOW,
+                Lookup::Lecture => egui::Color32::from_rgb(0, 220, 255),
             };
-            let (x, y) = near(pick.column, pick.file_row);
+            let (x, y) = self.nearest_copy(pick.column, pick.file_row);
             let r = egui::Rect::from_min_max(to_screen(x, y), to_screen(x + 1.0, y + 1.0));
             p.rect_stroke(
                 r.shrink(1.0),
@@ -364,28 +424,32 @@ impl Inspector {
                 egui::StrokeKind::Inside,
             );
         }
-        // The footprint: the image of the unit circle under d(u,v)/dx, d(u,v)/dy, in texels (y down).
+        // The footprint: the image of the unit circle under d(u,v)/dx, d(u,v)/dy, in texels
+        // (y down).
         if let Some(f) = i.footprint {
-            let ax = Vec2::new(f.duvdx.x * w as f32, -f.duvdx.y * h as f32);
-            let ay = Vec2::new(f.duvdy.x * w as f32, -f.duvdy.y * h as f32);
+            let (w, h) = (self.size.0 as f32, self.size.1 as f32);
+            let ax = Vec2::new(f.duvdx.x * w, -f.duvdx.y * h);
+            let ay = Vec2::new(f.duvdy.x * w, -f.duvdy.y * h);
             let pts: Vec<egui::Pos2> = (0..=64)
                 .map(|k| {
                     let t = k as f32 / 64.0 * std::f32::consts::TAU;
-                    let q = texel_xy + ax * (0.5 * t.cos()) + ay * (0.5 * t.sin());
+                    let q = self.texel_xy + ax * (0.5 * t.cos()) + ay * (0.5 * t.sin());
                     to_screen(q.x, q.y)
                 })
                 .collect();
-            p.add(egui::Shape::line(
-                pts,
-                egui::Stroke::new(2.0, egui::Color32::from_rgb(255, 60, 255)),
-            ));
-            p.circle_filled(
-                to_screen(texel_xy.x, texel_xy.y),
-                2.5,
-                egui::Color32::from_rgb(255, 60, 255),
-            );
+            p.add(egui::Shape::line(pts, egui::Stroke::new(2.0, MAGENTA)));
+            p.circle_filled(to_screen(self.texel_xy.x, self.texel_xy.y), 2.5, MAGENTA);
         }
-        });
+    }
+
+    /// Where to draw the texel a lookup picked (in [0, w) x [0, h) already): the copy of it
+    /// nearest the hit, since a wrap can put the hit a period away.
+    fn nearest_copy(&self, column: u32, file_row: u32) -> (f32, f32) {
+        let unwrap = |t: f32, at: f32, period: f32| t + ((at - t) / period).round() * period;
+        (
+            unwrap(column as f32, self.texel_xy.x, self.size.0 as f32),
+            unwrap(file_row as f32, self.texel_xy.y, self.size.1 as f32),
+        )
     }
 }
 

@@ -3,7 +3,7 @@
 //! inspector. In A/B mode, two images side by side with a draggable divider.
 
 use super::compare::AbSplit;
-use super::widgets::{enum_combo, view_tip};
+use super::widgets::enum_combo;
 use crate::math::Vec2;
 use crate::texture::View;
 
@@ -39,7 +39,7 @@ const ZOOM_PER_POINT: f32 = 0.002;
 fn toolbar(ui: &mut egui::Ui, out: &mut ViewOutput, view: Option<&mut View>) {
     ui.horizontal(|ui| {
         if let Some(view) = view {
-            out.view_changed = enum_combo(ui, "View", view, |v: View| view_tip(v.name()));
+            out.view_changed = enum_combo(ui, "View", view);
         }
         if ui
             .button("Reset view")

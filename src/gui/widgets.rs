@@ -1,16 +1,12 @@
-//! Small shared widgets: a combo box over any named enum, labelled number rows, tooltips.
+//! Small shared widgets: a combo box over any named enum, labelled number rows, colours.
 
 use crate::math::{Rgb, Vec3};
 use crate::names::Named;
 
-/// A combo box over every variant of a named enum (`ALL` in menu order, `name()` as text), with
-/// `tip(variant)` as each entry's and the box's tooltip. Returns whether the value changed.
-pub fn enum_combo<T: Named + PartialEq>(
-    ui: &mut egui::Ui,
-    label: &str,
-    value: &mut T,
-    tip: impl Fn(T) -> &'static str,
-) -> bool {
+/// A combo box over every variant of a named enum (`VARIANTS` in menu order, the name as text),
+/// with the variant's description from the library as each entry's and the box's tooltip.
+/// Returns whether the value changed.
+pub fn enum_combo<T: Named>(ui: &mut egui::Ui, label: &str, value: &mut T) -> bool {
     let before = *value;
     ui.horizontal(|ui| {
         let l = ui.label(label);
@@ -19,49 +15,14 @@ pub fn enum_combo<T: Named + PartialEq>(
             .show_ui(ui, |ui| {
                 for &option in T::VARIANTS {
                     ui.selectable_value(value, option, option.label())
-                        .on_hover_text(tip(option));
+                        .on_hover_text(option.tip());
                 }
             })
             .response
             .labelled_by(l.id)
-            .on_hover_text(tip(*value));
+            .on_hover_text(value.tip());
     });
     *value != before
-}
-
-/// A combo box over a list of named choices that are not a library enum (shapes, material and
-/// texture kinds). Returns the index picked this frame.
-pub fn choice_combo(
-    ui: &mut egui::Ui,
-    label: &str,
-    current: &str,
-    choices: &[(&str, &str)],
-) -> Option<usize> {
-    let mut picked = None;
-    ui.horizontal(|ui| {
-        let l = ui.label(label);
-        let tip = choices
-            .iter()
-            .find(|(n, _)| *n == current)
-            .map_or("", |(_, t)| *t);
-        egui::ComboBox::from_id_salt(label)
-            .selected_text(current)
-            .show_ui(ui, |ui| {
-                for (i, (name, tip)) in choices.iter().enumerate() {
-                    if ui
-                        .selectable_label(*name == current, *name)
-                        .on_hover_text(*tip)
-                        .clicked()
-                    {
-                        picked = Some(i);
-                    }
-                }
-            })
-            .response
-            .labelled_by(l.id)
-            .on_hover_text(tip);
-    });
-    picked.filter(|&i| choices[i].0 != current)
 }
 
 /// A labelled drag value. Returns whether it changed.
@@ -118,47 +79,4 @@ pub fn colour(ui: &mut egui::Ui, label: &str, c: &mut Rgb) -> bool {
         changed
     })
     .inner
-}
-
-/// One sentence on a debug view.
-#[must_use]
-pub fn view_tip(name: &str) -> &'static str {
-    match name {
-        "shaded" => "The rendered image.",
-        "uv" => "(u, v) as colour: red is u, green is v, after the wrap mode.",
-        "mip-level" => {
-            "The mip level each pixel's footprint selects: blue magnified, then green, yellow, red, white for coarser levels."
-        }
-        "texel-grid" => {
-            "The image with the texel grid drawn on it (the base texels, or a mip level's far away)."
-        }
-        "seams" => {
-            "The image with the mapping's seams: magenta where u wraps, yellow at the poles, cyan at tile edges."
-        }
-        _ => "What the viewport shows: the image or a debug view of the texture stage.",
-    }
-}
-
-/// One sentence on a wrap mode.
-#[must_use]
-pub fn wrap_tip(name: &str) -> &'static str {
-    match name {
-        "repeat" => "Tiles the texture outside [0, 1].",
-        "clamp" => "Extends the edge texels outside [0, 1].",
-        "mirror" => "Tiles with every other copy mirrored, so the edges meet seamlessly.",
-        "black" => "Black outside [0, 1], to show where the mapping leaves the texture.",
-        _ => "What the texture does outside [0, 1].",
-    }
-}
-
-/// One sentence on a texel lookup.
-#[must_use]
-pub fn lookup_tip(name: &str) -> &'static str {
-    match name {
-        "lecture" => {
-            "The lecture's column = (int)((hres - 1) u): stretches the image by hres / (hres - 1)."
-        }
-        "centred" => "column = min(floor(u hres), hres - 1): every texel covers an equal share.",
-        _ => "Which texel a nearest lookup picks.",
-    }
 }

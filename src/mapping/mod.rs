@@ -14,82 +14,80 @@ use crate::math::{PI, TAU, Vec2, Vec3A, atan2};
 use serde::{Deserialize, Serialize};
 
 /// How a hit point becomes texture coordinates.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    Default,
+    PartialEq,
+    Eq,
+    Hash,
+    Serialize,
+    Deserialize,
+    strum::VariantArray,
+    strum::IntoStaticStr,
+    strum::EnumString,
+    strum::EnumMessage,
+    strum::Display,
+)]
+#[strum(
+    serialize_all = "kebab-case",
+    parse_err_ty = String,
+    parse_err_fn = crate::names::unknown::<Mapping>
+)]
 pub enum Mapping {
     /// The generic rectangle: u = (z + 1) / 2, v = (x + 1) / 2. Points off the rectangle give
     /// coordinates outside [0, 1] and the texture's wrap mode decides (so a plane tiles).
+    #[strum(
+        message = "Projects the texture along y onto the generic rectangle (x, z) in [-1, 1]^2."
+    )]
     Rectangular,
     /// phi = atan2(x, z) in [0, 2 pi), u = phi / 2 pi, v = (y + 1) / 2.
+    #[strum(
+        message = "Wraps the texture once around the y axis; v follows the height y in [-1, 1]."
+    )]
     Cylindrical,
     /// u as cylindrical, theta = acos(y), v = 1 - theta / pi (the Earth).
     #[default]
+    #[strum(message = "Latitude-longitude (equirectangular) map: u is longitude, v is latitude.")]
     Spherical,
     /// The lecture's light-probe (angular) map: alpha = acos(z), r = alpha / pi,
     /// u = (1 + r cos beta) / 2, v = (1 + r sin beta) / 2.
+    #[strum(
+        message = "Angular light-probe map: the distance from the image centre is the angle from +z."
+    )]
     LightProbe,
     /// The light-probe map with z flipped (alpha = acos(-z)), for probes made from panorama
     /// photographs, which are mirror reversals of a photographed ball.
+    #[strum(message = "The light-probe map with z flipped, for probes made from panoramas.")]
     Panoramic,
     /// A mirror-ball probe seen from +z: r = sin(alpha / 2) instead of alpha / pi
     /// (reads `texplore probe --format mirror-ball`).
+    #[strum(message = "Mirror-ball probe: the image of a reflective sphere photographed from +z.")]
     MirrorBall,
     /// The (u, v) the shape carries: a mesh's vertex coordinates, or the shape's own natural
     /// parameterisation (spherical on spheres, cylindrical on cylinders, rectangular on planes).
+    #[strum(
+        message = "The shape's own (u, v): a mesh's vertex coordinates, or its natural parameterisation."
+    )]
     Uv,
 }
 
-impl Mapping {
-    /// Every mapping, in menu order.
-    pub const ALL: [Self; 7] = [
-        Self::Rectangular,
-        Self::Cylindrical,
-        Self::Spherical,
-        Self::LightProbe,
-        Self::Panoramic,
-        Self::MirrorBall,
-        Self::Uv,
-    ];
+impl crate::names::Named for Mapping {
+    const WHAT: &'static str = "mapping";
+}
 
+impl Mapping {
     /// The name used on the command line and in menus.
     #[must_use]
-    pub const fn name(self) -> &'static str {
-        match self {
-            Self::Rectangular => "rectangular",
-            Self::Cylindrical => "cylindrical",
-            Self::Spherical => "spherical",
-            Self::LightProbe => "light-probe",
-            Self::Panoramic => "panoramic",
-            Self::MirrorBall => "mirror-ball",
-            Self::Uv => "uv",
-        }
+    pub fn name(self) -> &'static str {
+        self.into()
     }
 
     /// One sentence on what the mapping does, for tooltips and `--help`.
     #[must_use]
-    pub const fn description(self) -> &'static str {
-        match self {
-            Self::Rectangular => {
-                "Projects the texture along y onto the generic rectangle (x, z) in [-1, 1]^2."
-            }
-            Self::Cylindrical => {
-                "Wraps the texture once around the y axis; v follows the height y in [-1, 1]."
-            }
-            Self::Spherical => {
-                "Latitude-longitude (equirectangular) map: u is longitude, v is latitude."
-            }
-            Self::LightProbe => {
-                "Angular light-probe map: the distance from the image centre is the angle from +z."
-            }
-            Self::Panoramic => {
-                "The light-probe map with z flipped, for probes made from panoramas."
-            }
-            Self::MirrorBall => {
-                "Mirror-ball probe: the image of a reflective sphere photographed from +z."
-            }
-            Self::Uv => {
-                "The shape's own (u, v): a mesh's vertex coordinates, or its natural parameterisation."
-            }
-        }
+    pub fn description(self) -> &'static str {
+        crate::names::Named::tip(self)
     }
 
     /// Whether u wraps around (the seam of a closed surface): filters then read across it.
@@ -194,8 +192,6 @@ impl Mapping {
         .bounded()
     }
 }
-
-crate::named_enum!(Mapping, "mapping");
 
 /// (u, v) at a point with the gradients of u and v with respect to the object-space point.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -2,6 +2,7 @@
 //! gradients against central finite differences.
 
 use super::*;
+use strum::VariantArray;
 
 const EPS: f32 = 1e-6;
 
@@ -124,7 +125,7 @@ fn singular_points_are_defined() {
         [f32::NAN, 0.0, 1.0],
         [f32::INFINITY, 0.0, 0.0],
     ];
-    for m in Mapping::ALL {
+    for &m in Mapping::VARIANTS {
         for p in specials {
             let r = m.map_point(Vec3A::from(p));
             let t = m.map_with_differentials(
@@ -249,7 +250,7 @@ fn uv_mapping_uses_mesh_coordinates_and_their_derivatives() {
 
 #[test]
 fn names_round_trip() {
-    for m in Mapping::ALL {
+    for &m in Mapping::VARIANTS {
         assert_eq!(m.name().parse::<Mapping>().unwrap(), m);
     }
     assert!(
@@ -280,7 +281,7 @@ fn map_uv_is_map_point_without_gradients_bit_for_bit() {
             rng.next_f32() * 4.0 - 2.0,
         ));
     }
-    for m in Mapping::ALL {
+    for &m in Mapping::VARIANTS {
         for &p in &points {
             let full = m.map_point(p).uv;
             let fast = m.map_uv(p);
@@ -365,7 +366,7 @@ fn u_distance(m: Mapping, a: f64, b: f64) -> f64 {
 
 #[test]
 fn f64_worked_formulas_agree_with_the_renderer_to_f32_rounding() {
-    for m in Mapping::ALL {
+    for &m in Mapping::VARIANTS {
         let mut worst = (0.0f64, Vec3A::ZERO);
         for p in comparison_points() {
             let r = m.map_uv(p);

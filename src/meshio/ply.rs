@@ -26,32 +26,46 @@ pub const UV_NAMES: [(&str, &str); 4] = [
 ];
 
 /// PLY encodings.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    PartialEq,
+    Eq,
+    strum::VariantArray,
+    strum::IntoStaticStr,
+    strum::EnumString,
+    strum::EnumMessage,
+    strum::Display,
+)]
+#[strum(
+    serialize_all = "snake_case",
+    parse_err_ty = String,
+    parse_err_fn = crate::names::unknown::<PlyFormat>
+)]
 pub enum PlyFormat {
     /// Text.
+    #[strum(message = "Text: one element per line.")]
     Ascii,
     /// Binary, little-endian.
+    #[strum(message = "Binary, little-endian.")]
     BinaryLittleEndian,
     /// Binary, big-endian.
+    #[strum(message = "Binary, big-endian.")]
     BinaryBigEndian,
 }
 
-impl PlyFormat {
-    /// Every encoding.
-    pub const ALL: [Self; 3] = [Self::Ascii, Self::BinaryLittleEndian, Self::BinaryBigEndian];
-
-    /// The name in the `format` header line.
-    #[must_use]
-    pub const fn name(self) -> &'static str {
-        match self {
-            Self::Ascii => "ascii",
-            Self::BinaryLittleEndian => "binary_little_endian",
-            Self::BinaryBigEndian => "binary_big_endian",
-        }
-    }
+impl crate::names::Named for PlyFormat {
+    const WHAT: &'static str = "PLY format";
 }
 
-crate::named_enum!(PlyFormat, "PLY format");
+impl PlyFormat {
+    /// The name in the `format` header line.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        self.into()
+    }
+}
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Scalar {

@@ -23,6 +23,7 @@ use crate::texture::Filter;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
+use strum::VariantArray;
 
 /// Why a report stopped.
 #[derive(Debug, thiserror::Error)]
@@ -95,10 +96,10 @@ impl Mode {
     /// Every filter with every sampler.
     #[must_use]
     pub fn all() -> Vec<Self> {
-        Filter::ALL
+        Filter::VARIANTS
             .iter()
             .flat_map(|&filter| {
-                PixelSampler::ALL
+                PixelSampler::VARIANTS
                     .iter()
                     .map(move |&sampler| Self::new(filter, sampler))
             })
@@ -109,11 +110,11 @@ impl Mode {
     /// sampler: each option once, at a cost linear in the number of options.
     #[must_use]
     pub fn default_set() -> Vec<Self> {
-        let mut v: Vec<Self> = Filter::ALL
+        let mut v: Vec<Self> = Filter::VARIANTS
             .iter()
             .map(|&filter| Self::new(filter, PixelSampler::Jittered))
             .collect();
-        for &sampler in &PixelSampler::ALL {
+        for &sampler in PixelSampler::VARIANTS {
             let m = Self::new(Filter::Bilinear, sampler);
             if !v.contains(&m) {
                 v.push(m);
@@ -153,12 +154,12 @@ impl Mode {
                 ))
             })?;
             let filters: Vec<Filter> = if f == "*" {
-                Filter::ALL.to_vec()
+                Filter::VARIANTS.to_vec()
             } else {
                 vec![f.parse().map_err(ReportError::Invalid)?]
             };
             let samplers: Vec<PixelSampler> = if smp == "*" {
-                PixelSampler::ALL.to_vec()
+                PixelSampler::VARIANTS.to_vec()
             } else {
                 vec![smp.parse().map_err(ReportError::Invalid)?]
             };
@@ -586,15 +587,18 @@ mod tests {
         );
         assert_eq!(
             Mode::parse_list("all").unwrap().len(),
-            Filter::ALL.len() * PixelSampler::ALL.len()
+            Filter::VARIANTS.len() * PixelSampler::VARIANTS.len()
         );
         assert_eq!(
             Mode::parse_list("*/jittered").unwrap().len(),
-            Filter::ALL.len()
+            Filter::VARIANTS.len()
         );
         let d = Mode::default_set();
         // Every filter with jittered, bilinear with the other samplers, two adaptive modes.
-        assert_eq!(d.len(), Filter::ALL.len() + PixelSampler::ALL.len() - 1 + 2);
+        assert_eq!(
+            d.len(),
+            Filter::VARIANTS.len() + PixelSampler::VARIANTS.len() - 1 + 2
+        );
         assert_eq!(d.iter().filter(|m| m.adaptive).count(), 2);
         let e = Mode::parse_list("bilinear/zigzag").unwrap_err().to_string();
         assert!(e.contains("zigzag") && e.contains("jittered"), "{e}");

@@ -10,62 +10,68 @@ use crate::math::{SampleRng, Vec2, hash3};
 use serde::{Deserialize, Serialize};
 
 /// Where in a pixel its samples go.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    Default,
+    PartialEq,
+    Eq,
+    Hash,
+    Serialize,
+    Deserialize,
+    strum::VariantArray,
+    strum::IntoStaticStr,
+    strum::EnumString,
+    strum::EnumMessage,
+    strum::Display,
+)]
+#[strum(
+    serialize_all = "kebab-case",
+    parse_err_ty = String,
+    parse_err_fn = crate::names::unknown::<PixelSampler>
+)]
 pub enum PixelSampler {
     /// A grid of cell centres (aliases like one sample, just finer).
+    #[strum(
+        message = "Samples on a regular grid of cell centres: cheap, but aliases like a finer single sample."
+    )]
     Regular,
     /// Independent uniform points.
+    #[strum(message = "Independent uniform random points: unbiased but clumpy.")]
     Random,
     /// One random point per grid cell (stratified).
     #[default]
+    #[strum(message = "One random point in each cell of a grid: stratified in 2D.")]
     Jittered,
     /// One point per row and per column of an N x N grid (Shirley's n-rooks).
+    #[strum(message = "One point in every row and every column: stratified in x and in y.")]
     NRooks,
     /// Kensler's correlated multi-jittered: jittered and n-rooks at once.
+    #[strum(
+        message = "Kensler's correlated multi-jittered: stratified in 2D and in x and y at once."
+    )]
     MultiJittered,
     /// The Hammersley set (x = i / N, y = radical inverse of i), scrambled per pixel.
+    #[strum(message = "The Hammersley low-discrepancy set, scrambled per pixel.")]
     Hammersley,
 }
 
-impl PixelSampler {
-    /// Every sampler, in menu order.
-    pub const ALL: [Self; 6] = [
-        Self::Regular,
-        Self::Random,
-        Self::Jittered,
-        Self::NRooks,
-        Self::MultiJittered,
-        Self::Hammersley,
-    ];
+impl crate::names::Named for PixelSampler {
+    const WHAT: &'static str = "sampler";
+}
 
+impl PixelSampler {
     /// The name used on the command line and in menus.
     #[must_use]
-    pub const fn name(self) -> &'static str {
-        match self {
-            Self::Regular => "regular",
-            Self::Random => "random",
-            Self::Jittered => "jittered",
-            Self::NRooks => "n-rooks",
-            Self::MultiJittered => "multi-jittered",
-            Self::Hammersley => "hammersley",
-        }
+    pub fn name(self) -> &'static str {
+        self.into()
     }
 
     /// One sentence on what the sampler does, for tooltips.
     #[must_use]
-    pub const fn description(self) -> &'static str {
-        match self {
-            Self::Regular => {
-                "Samples on a regular grid of cell centres: cheap, but aliases like a finer single sample."
-            }
-            Self::Random => "Independent uniform random points: unbiased but clumpy.",
-            Self::Jittered => "One random point in each cell of a grid: stratified in 2D.",
-            Self::NRooks => "One point in every row and every column: stratified in x and in y.",
-            Self::MultiJittered => {
-                "Kensler's correlated multi-jittered: stratified in 2D and in x and y at once."
-            }
-            Self::Hammersley => "The Hammersley low-discrepancy set, scrambled per pixel.",
-        }
+    pub fn description(self) -> &'static str {
+        crate::names::Named::tip(self)
     }
 
     /// Sample `index` of `count` in pixel `pixel`, as an offset in [0, 1)^2 from the pixel's
@@ -116,8 +122,6 @@ impl PixelSampler {
         p.min(Vec2::splat(1.0 - f32::EPSILON / 2.0))
     }
 }
-
-crate::named_enum!(PixelSampler, "sampler");
 
 /// A near-square grid with at least `count` cells: columns x rows.
 #[must_use]
@@ -207,6 +211,7 @@ fn cmj(s: u32, count: u32, p: u32) -> Vec2 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use strum::VariantArray;
 
     fn points(s: PixelSampler, n: u32, pixel: u32) -> Vec<Vec2> {
         (0..n).map(|i| s.sample(7, pixel, i, n)).collect()
@@ -214,7 +219,7 @@ mod tests {
 
     #[test]
     fn all_points_in_the_unit_square_and_deterministic() {
-        for s in PixelSampler::ALL {
+        for &s in PixelSampler::VARIANTS {
             for n in [1, 2, 3, 5, 16, 17, 64, 100] {
                 let a = points(s, n, 3);
                 assert_eq!(a, points(s, n, 3));

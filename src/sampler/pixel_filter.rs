@@ -13,29 +13,49 @@ pub const GAUSSIAN_SIGMA: f32 = 0.5;
 pub const GAUSSIAN_RADIUS: f32 = 1.5;
 
 /// How a pixel weighs the points around its centre.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    Default,
+    PartialEq,
+    Eq,
+    Hash,
+    Serialize,
+    Deserialize,
+    strum::VariantArray,
+    strum::IntoStaticStr,
+    strum::EnumString,
+    strum::EnumMessage,
+    strum::Display,
+)]
+#[strum(
+    serialize_all = "kebab-case",
+    parse_err_ty = String,
+    parse_err_fn = crate::names::unknown::<PixelFilter>
+)]
 pub enum PixelFilter {
     /// Every point of the pixel square weighs the same (the lecture's average).
     #[default]
+    #[strum(message = "Every point of the pixel square weighs the same (the lecture's average).")]
     Box,
     /// A tent of radius 1 pixel: smoother, less aliasing, slightly softer.
+    #[strum(message = "A tent of radius 1 pixel: smoother, less aliasing, slightly softer.")]
     Tent,
     /// A radially symmetric Gaussian, sigma 0.5 pixel, cut off at 1.5 pixels.
+    #[strum(message = "A radially symmetric Gaussian, sigma 0.5 pixel, cut off at 1.5 pixels.")]
     Gaussian,
 }
 
-impl PixelFilter {
-    /// Every filter, in menu order.
-    pub const ALL: [Self; 3] = [Self::Box, Self::Tent, Self::Gaussian];
+impl crate::names::Named for PixelFilter {
+    const WHAT: &'static str = "pixel filter";
+}
 
+impl PixelFilter {
     /// The name used on the command line and in menus.
     #[must_use]
-    pub const fn name(self) -> &'static str {
-        match self {
-            Self::Box => "box",
-            Self::Tent => "tent",
-            Self::Gaussian => "gaussian",
-        }
+    pub fn name(self) -> &'static str {
+        self.into()
     }
 
     /// The offset from the pixel centre, in pixels, of the sample at `p` in [0, 1)^2.
@@ -59,8 +79,6 @@ impl PixelFilter {
         }
     }
 }
-
-crate::named_enum!(PixelFilter, "pixel filter");
 
 /// The inverse CDF of the tent of radius 1 on [-1, 1].
 #[inline]

@@ -86,7 +86,7 @@ pub enum ProjectionDesc {
 
 impl Default for ProjectionDesc {
     fn default() -> Self {
-        Self::Pinhole { fov: 45.0 }
+        ProjectionKind::Pinhole.default_desc()
     }
 }
 
@@ -535,5 +535,496 @@ impl MaterialDesc {
             Self::Matte { cd, .. } | Self::Phong { cd, .. } => cd,
             Self::Emissive { ce, .. } => ce,
         }
+    }
+}
+
+/// The kinds of [`ShapeDesc`], as the shape menu names them.
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    PartialEq,
+    Eq,
+    Hash,
+    strum::VariantArray,
+    strum::IntoStaticStr,
+    strum::EnumString,
+    strum::EnumMessage,
+    strum::Display,
+)]
+#[strum(parse_err_ty = String, parse_err_fn = crate::names::unknown::<ShapeKind>)]
+pub enum ShapeKind {
+    /// [`ShapeDesc::Sphere`].
+    #[strum(message = "The unit sphere at the origin (place it with the transform).")]
+    Sphere,
+    /// [`ShapeDesc::Cylinder`].
+    #[strum(message = "The open cylinder of radius 1 around y, from y = -1 to 1.")]
+    Cylinder,
+    /// [`ShapeDesc::Plane`].
+    #[strum(message = "The infinite plane y = 0.")]
+    Plane,
+    /// [`ShapeDesc::Rectangle`].
+    #[strum(message = "The generic rectangle (x, z) in [-1, 1]^2 in the plane y = 0.")]
+    Rectangle,
+    /// [`ShapeDesc::Disk`].
+    #[strum(message = "The unit disk in the plane y = 0.")]
+    Disk,
+    /// [`ShapeDesc::Mesh`].
+    #[strum(
+        message = "A triangle mesh from a PLY or OBJ file: type its path or drop the file on the window."
+    )]
+    Mesh,
+}
+
+impl crate::names::Named for ShapeKind {
+    const WHAT: &'static str = "shape";
+}
+
+/// The kinds of [`TextureDesc`], as the texture menu names them.
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    PartialEq,
+    Eq,
+    Hash,
+    strum::VariantArray,
+    strum::IntoStaticStr,
+    strum::EnumString,
+    strum::EnumMessage,
+    strum::Display,
+)]
+#[strum(parse_err_ty = String, parse_err_fn = crate::names::unknown::<TextureKind>)]
+pub enum TextureKind {
+    /// [`TextureDesc::Constant`].
+    #[strum(message = "One colour everywhere.")]
+    Constant,
+    /// [`TextureDesc::Image`].
+    #[strum(message = "An image file read through a mapping.")]
+    Image,
+    /// [`TextureDesc::Checker`].
+    #[strum(message = "A procedural checkerboard in (u, v).")]
+    Checker,
+    /// [`TextureDesc::UvGrid`].
+    #[strum(
+        serialize = "UV grid",
+        message = "The labelled UV test grid: cells A1 (u = v = 0) to H8."
+    )]
+    UvGrid,
+    /// [`TextureDesc::MeshMaterial`].
+    #[strum(
+        serialize = "Mesh material",
+        message = "The image or colour the mesh file's material names (OBJ .mtl); meshes only."
+    )]
+    MeshMaterial,
+}
+
+impl crate::names::Named for TextureKind {
+    const WHAT: &'static str = "texture";
+}
+
+/// The kinds of [`MaterialDesc`], as the material menu names them.
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    PartialEq,
+    Eq,
+    Hash,
+    strum::VariantArray,
+    strum::IntoStaticStr,
+    strum::EnumString,
+    strum::EnumMessage,
+    strum::Display,
+)]
+#[strum(parse_err_ty = String, parse_err_fn = crate::names::unknown::<MaterialKind>)]
+pub enum MaterialKind {
+    /// [`MaterialDesc::Matte`].
+    #[strum(
+        message = "The lecture's SV_Matte: ambient plus Lambertian diffuse with a textured colour."
+    )]
+    Matte,
+    /// [`MaterialDesc::Phong`].
+    #[strum(message = "Matte with a Phong highlight.")]
+    Phong,
+    /// [`MaterialDesc::Emissive`].
+    #[strum(message = "The lecture's SV_Emissive: glows with its texture and ignores the lights.")]
+    Emissive,
+}
+
+impl crate::names::Named for MaterialKind {
+    const WHAT: &'static str = "material";
+}
+
+/// The kinds of [`LightDesc`], as the lights panel names them.
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    PartialEq,
+    Eq,
+    Hash,
+    strum::VariantArray,
+    strum::IntoStaticStr,
+    strum::EnumString,
+    strum::EnumMessage,
+    strum::Display,
+)]
+#[strum(parse_err_ty = String, parse_err_fn = crate::names::unknown::<LightKind>)]
+pub enum LightKind {
+    /// [`LightDesc::Directional`].
+    #[strum(
+        serialize = "directional",
+        message = "A light from one direction, like the sun."
+    )]
+    Directional,
+    /// [`LightDesc::Point`].
+    #[strum(
+        serialize = "point",
+        message = "A light from a point, without fall-off."
+    )]
+    Point,
+}
+
+impl crate::names::Named for LightKind {
+    const WHAT: &'static str = "light";
+}
+
+/// The kinds of [`ProjectionDesc`], as the camera menu names them.
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    PartialEq,
+    Eq,
+    Hash,
+    strum::VariantArray,
+    strum::IntoStaticStr,
+    strum::EnumString,
+    strum::EnumMessage,
+    strum::Display,
+)]
+#[strum(parse_err_ty = String, parse_err_fn = crate::names::unknown::<ProjectionKind>)]
+pub enum ProjectionKind {
+    /// [`ProjectionDesc::Pinhole`].
+    #[strum(message = "Perspective with a vertical field of view.")]
+    Pinhole,
+    /// [`ProjectionDesc::Fisheye`].
+    #[strum(message = "Equidistant fisheye: the angle from the axis grows linearly to the rim.")]
+    Fisheye,
+    /// [`ProjectionDesc::Spherical`].
+    #[strum(message = "Equirectangular panorama: longitude across, latitude up.")]
+    Spherical,
+}
+
+impl crate::names::Named for ProjectionKind {
+    const WHAT: &'static str = "camera";
+}
+
+impl ShapeKind {
+    /// The shape a menu pick makes: a mesh starts with no path (it builds nothing until one is
+    /// given).
+    #[must_use]
+    pub fn default_desc(self) -> ShapeDesc {
+        match self {
+            Self::Sphere => ShapeDesc::Sphere,
+            Self::Cylinder => ShapeDesc::Cylinder { capped: false },
+            Self::Plane => ShapeDesc::Plane,
+            Self::Rectangle => ShapeDesc::Rectangle,
+            Self::Disk => ShapeDesc::Disk,
+            Self::Mesh => ShapeDesc::Mesh {
+                path: String::new(),
+                shading: Shading::default(),
+            },
+        }
+    }
+}
+
+impl ShapeDesc {
+    /// Which kind of shape this is.
+    #[must_use]
+    pub const fn kind(&self) -> ShapeKind {
+        match self {
+            Self::Sphere => ShapeKind::Sphere,
+            Self::Cylinder { .. } => ShapeKind::Cylinder,
+            Self::Plane => ShapeKind::Plane,
+            Self::Rectangle => ShapeKind::Rectangle,
+            Self::Disk => ShapeKind::Disk,
+            Self::Mesh { .. } => ShapeKind::Mesh,
+        }
+    }
+}
+
+impl TextureKind {
+    /// The texture with a preset's defaults for every field it may leave out; an image starts
+    /// with no path.
+    #[must_use]
+    pub fn default_desc(self) -> TextureDesc {
+        match self {
+            Self::Constant => TextureDesc::Constant(Rgb::grey(0.7)),
+            Self::Image => TextureDesc::Image {
+                path: String::new(),
+                mapping: Mapping::default(),
+                filter: Filter::default(),
+                lookup: Lookup::default(),
+                wrap: Wrap::default(),
+                scale: one(),
+                srgb: yes(),
+                max_anisotropy: default_max_anisotropy(),
+            },
+            Self::Checker => TextureDesc::Checker {
+                mapping: Mapping::default(),
+                squares: default_squares(),
+                colors: default_checker_colors(),
+                filter: Filter::default(),
+            },
+            Self::UvGrid => TextureDesc::UvGrid {
+                mapping: Mapping::default(),
+                filter: Filter::default(),
+                wrap: Wrap::default(),
+                max_anisotropy: default_max_anisotropy(),
+            },
+            Self::MeshMaterial => TextureDesc::MeshMaterial {
+                mapping: uv_mapping(),
+                filter: Filter::default(),
+                lookup: Lookup::default(),
+                wrap: Wrap::default(),
+                max_anisotropy: default_max_anisotropy(),
+            },
+        }
+    }
+}
+
+impl TextureDesc {
+    /// Which kind of texture this is.
+    #[must_use]
+    pub const fn kind(&self) -> TextureKind {
+        match self {
+            Self::Constant(_) => TextureKind::Constant,
+            Self::Image { .. } => TextureKind::Image,
+            Self::Checker { .. } => TextureKind::Checker,
+            Self::UvGrid { .. } => TextureKind::UvGrid,
+            Self::MeshMaterial { .. } => TextureKind::MeshMaterial,
+        }
+    }
+
+    /// A texture of another kind with its defaults, keeping this one's mapping (but a mesh
+    /// material starts from the mesh's own (u, v)).
+    #[must_use]
+    pub fn converted(&self, kind: TextureKind) -> Self {
+        let mut t = kind.default_desc();
+        if let (Some(mapping), false) = (self.mapping(), kind == TextureKind::MeshMaterial) {
+            t.set_mapping(mapping);
+        }
+        t
+    }
+}
+
+impl MaterialKind {
+    /// The material with a preset's defaults and a constant grey colour.
+    #[must_use]
+    pub fn default_desc(self) -> MaterialDesc {
+        let colour = TextureKind::Constant.default_desc();
+        match self {
+            Self::Matte => MaterialDesc::Matte {
+                ka: default_ka(),
+                kd: default_kd(),
+                cd: colour,
+            },
+            Self::Phong => MaterialDesc::Phong {
+                ka: default_ka(),
+                kd: default_kd(),
+                cd: colour,
+                ks: default_ks(),
+                cs: white(),
+                exp: default_exp(),
+            },
+            Self::Emissive => MaterialDesc::Emissive {
+                ls: one(),
+                ce: colour,
+            },
+        }
+    }
+}
+
+impl MaterialDesc {
+    /// Which kind of material this is.
+    #[must_use]
+    pub const fn kind(&self) -> MaterialKind {
+        match self {
+            Self::Matte { .. } => MaterialKind::Matte,
+            Self::Phong { .. } => MaterialKind::Phong,
+            Self::Emissive { .. } => MaterialKind::Emissive,
+        }
+    }
+
+    /// A material of another kind with its defaults, keeping this one's texture and its
+    /// ambient and diffuse coefficients where both kinds have them.
+    #[must_use]
+    pub fn converted(&self, kind: MaterialKind) -> Self {
+        let mut m = kind.default_desc();
+        *m.texture_mut() = self.texture().clone();
+        if let (
+            Self::Matte { ka, kd, .. } | Self::Phong { ka, kd, .. },
+            Self::Matte {
+                ka: to_ka,
+                kd: to_kd,
+                ..
+            }
+            | Self::Phong {
+                ka: to_ka,
+                kd: to_kd,
+                ..
+            },
+        ) = (self, &mut m)
+        {
+            (*to_ka, *to_kd) = (*ka, *kd);
+        }
+        m
+    }
+}
+
+impl LightKind {
+    /// A new light of this kind: white, casting shadows, from above and in front of the origin.
+    #[must_use]
+    pub fn default_desc(self) -> LightDesc {
+        match self {
+            Self::Directional => LightDesc::Directional {
+                direction: Vec3::new(1.0, 1.0, 1.0),
+                ls: one(),
+                color: white(),
+                shadows: yes(),
+            },
+            Self::Point => LightDesc::Point {
+                position: Vec3::new(0.0, 4.0, 4.0),
+                ls: one(),
+                color: white(),
+                shadows: yes(),
+            },
+        }
+    }
+}
+
+impl LightDesc {
+    /// Which kind of light this is.
+    #[must_use]
+    pub const fn kind(&self) -> LightKind {
+        match self {
+            Self::Directional { .. } => LightKind::Directional,
+            Self::Point { .. } => LightKind::Point,
+        }
+    }
+}
+
+impl ProjectionKind {
+    /// The projection with its usual angles: 45 degrees for the pinhole, the half sphere for the
+    /// fisheye, everything for the panorama.
+    #[must_use]
+    pub const fn default_desc(self) -> ProjectionDesc {
+        match self {
+            Self::Pinhole => ProjectionDesc::Pinhole { fov: 45.0 },
+            Self::Fisheye => ProjectionDesc::Fisheye { fov: 180.0 },
+            Self::Spherical => ProjectionDesc::Spherical {
+                h_fov: 360.0,
+                v_fov: 180.0,
+            },
+        }
+    }
+}
+
+impl ProjectionDesc {
+    /// Which kind of projection this is.
+    #[must_use]
+    pub const fn kind(&self) -> ProjectionKind {
+        match self {
+            Self::Pinhole { .. } => ProjectionKind::Pinhole,
+            Self::Fisheye { .. } => ProjectionKind::Fisheye,
+            Self::Spherical { .. } => ProjectionKind::Spherical,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use strum::VariantArray;
+
+    /// What a menu pick makes is of the kind picked.
+    #[test]
+    fn every_kind_defaults_to_a_desc_of_that_kind() {
+        for &k in ShapeKind::VARIANTS {
+            assert_eq!(k.default_desc().kind(), k);
+        }
+        for &k in TextureKind::VARIANTS {
+            assert_eq!(k.default_desc().kind(), k);
+        }
+        for &k in MaterialKind::VARIANTS {
+            assert_eq!(k.default_desc().kind(), k);
+        }
+        for &k in LightKind::VARIANTS {
+            assert_eq!(k.default_desc().kind(), k);
+        }
+        for &k in ProjectionKind::VARIANTS {
+            assert_eq!(k.default_desc().kind(), k);
+        }
+    }
+
+    /// A kind's defaults are what a preset that leaves every optional field out reads as.
+    #[test]
+    fn kind_defaults_match_the_preset_defaults() {
+        let checker: TextureDesc = ron::from_str("Checker()").expect("checker");
+        assert_eq!(checker, TextureKind::Checker.default_desc());
+        let grid: TextureDesc = ron::from_str("UvGrid()").expect("uv grid");
+        assert_eq!(grid, TextureKind::UvGrid.default_desc());
+        let mesh: TextureDesc = ron::from_str("MeshMaterial()").expect("mesh material");
+        assert_eq!(mesh, TextureKind::MeshMaterial.default_desc());
+        let image: TextureDesc = ron::from_str(r#"Image(path: "")"#).expect("image");
+        assert_eq!(image, TextureKind::Image.default_desc());
+        let phong: MaterialDesc =
+            ron::from_str("Phong(cd: Constant((0.7, 0.7, 0.7)))").expect("phong");
+        assert_eq!(phong, MaterialKind::Phong.default_desc());
+    }
+
+    #[test]
+    fn switching_kinds_keeps_the_mapping_texture_and_coefficients() {
+        let earth = TextureDesc::Image {
+            path: "earth.jpg".into(),
+            mapping: Mapping::Cylindrical,
+            filter: Filter::Ewa,
+            lookup: Lookup::Lecture,
+            wrap: Wrap::Clamp,
+            scale: 2.0,
+            srgb: true,
+            max_anisotropy: 4.0,
+        };
+        assert_eq!(
+            earth.converted(TextureKind::Checker).mapping(),
+            Some(Mapping::Cylindrical)
+        );
+        // A mesh's material is read through the mesh's (u, v) unless told otherwise.
+        assert_eq!(
+            earth.converted(TextureKind::MeshMaterial).mapping(),
+            Some(Mapping::Uv)
+        );
+        let phong = MaterialDesc::Phong {
+            ka: 0.1,
+            kd: 0.9,
+            cd: earth.clone(),
+            ks: 0.5,
+            cs: Rgb::WHITE,
+            exp: 50.0,
+        };
+        assert_eq!(
+            phong.converted(MaterialKind::Matte),
+            MaterialDesc::Matte {
+                ka: 0.1,
+                kd: 0.9,
+                cd: earth.clone()
+            }
+        );
+        assert_eq!(
+            phong.converted(MaterialKind::Emissive),
+            MaterialDesc::Emissive { ls: 1.0, ce: earth }
+        );
     }
 }

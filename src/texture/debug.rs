@@ -7,47 +7,67 @@ use crate::math::{Rgb, srgb_to_linear};
 use serde::{Deserialize, Serialize};
 
 /// What a render shows.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    Default,
+    PartialEq,
+    Eq,
+    Hash,
+    Serialize,
+    Deserialize,
+    strum::VariantArray,
+    strum::IntoStaticStr,
+    strum::EnumString,
+    strum::EnumMessage,
+    strum::Display,
+)]
+#[strum(
+    serialize_all = "kebab-case",
+    parse_err_ty = String,
+    parse_err_fn = crate::names::unknown::<View>
+)]
 pub enum View {
     /// The shaded image.
     #[default]
+    #[strum(message = "The rendered image.")]
     Shaded,
     /// (u, v) as colour: red = u, green = v (after the wrap mode), so the PNG's 8-bit red and
     /// green values are u and v times 255. Untextured surfaces are dark grey.
+    #[strum(message = "(u, v) as colour: red is u, green is v, after the wrap mode.")]
     Uv,
     /// The mip level the pixel's footprint selects, as a colour ramp: blue where the texture is
     /// magnified, then green (level 0), yellow, orange, red, magenta, white (level 5 and up).
+    #[strum(
+        message = "The mip level each pixel's footprint selects: blue magnified, then green, yellow, red, white for coarser levels."
+    )]
     MipLevel,
     /// The shaded image with the texel grid drawn on it: the base texels up close, and far away
     /// the grid of the finest mip level whose texels span at least 4 pixels (lines in that
     /// level's colour from [`View::MipLevel`]).
+    #[strum(
+        message = "The image with the texel grid drawn on it (the base texels, or a mip level's far away)."
+    )]
     TexelGrid,
     /// The shaded image with the mapping's seams: magenta where u wraps on a closed surface
     /// (the cylindrical and spherical seam), yellow at the spherical map's poles, cyan on the
     /// edges of the texture's tiles.
+    #[strum(
+        message = "The image with the mapping's seams: magenta where u wraps, yellow at the poles, cyan at tile edges."
+    )]
     Seams,
 }
 
-impl View {
-    /// Every view, in menu order.
-    pub const ALL: [Self; 5] = [
-        Self::Shaded,
-        Self::Uv,
-        Self::MipLevel,
-        Self::TexelGrid,
-        Self::Seams,
-    ];
+impl crate::names::Named for View {
+    const WHAT: &'static str = "view";
+}
 
+impl View {
     /// The name used on the command line and in menus.
     #[must_use]
-    pub const fn name(self) -> &'static str {
-        match self {
-            Self::Shaded => "shaded",
-            Self::Uv => "uv",
-            Self::MipLevel => "mip-level",
-            Self::TexelGrid => "texel-grid",
-            Self::Seams => "seams",
-        }
+    pub fn name(self) -> &'static str {
+        self.into()
     }
 
     /// Whether this view needs ray differentials (every view but the shaded one).
@@ -56,8 +76,6 @@ impl View {
         !matches!(self, Self::Shaded)
     }
 }
-
-crate::named_enum!(View, "view");
 
 /// Colours of mip levels -1 (magnified) to 5, linear.
 const LEVEL_COLORS: [Rgb; 7] = [

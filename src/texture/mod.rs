@@ -92,28 +92,50 @@ impl Texture {
 }
 
 /// Which texel the nearest lookup picks.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    Default,
+    PartialEq,
+    Eq,
+    Hash,
+    Serialize,
+    Deserialize,
+    strum::VariantArray,
+    strum::IntoStaticStr,
+    strum::EnumString,
+    strum::EnumMessage,
+    strum::Display,
+)]
+#[strum(
+    serialize_all = "kebab-case",
+    parse_err_ty = String,
+    parse_err_fn = crate::names::unknown::<Lookup>
+)]
 pub enum Lookup {
     /// The lecture's `column = (int)((hres - 1) u)`: stretches the image by hres / (hres - 1) and
     /// reaches the last column only at u == 1 exactly. What the book renders.
+    #[strum(
+        message = "The lecture's column = (int)((hres - 1) u): stretches the image by hres / (hres - 1)."
+    )]
     Lecture,
     /// Texel-centred: `column = min(floor(u hres), hres - 1)`; every texel covers an equal
     /// share of [0, 1].
     #[default]
+    #[strum(message = "column = min(floor(u hres), hres - 1): every texel covers an equal share.")]
     Centred,
 }
 
-impl Lookup {
-    /// Both lookups.
-    pub const ALL: [Self; 2] = [Self::Lecture, Self::Centred];
+impl crate::names::Named for Lookup {
+    const WHAT: &'static str = "lookup";
+}
 
+impl Lookup {
     /// The name used on the command line and in menus.
     #[must_use]
-    pub const fn name(self) -> &'static str {
-        match self {
-            Self::Lecture => "lecture",
-            Self::Centred => "centred",
-        }
+    pub fn name(self) -> &'static str {
+        self.into()
     }
 
     /// The texel index along an axis of `n` texels for a coordinate already wrapped to [0, 1]
@@ -132,32 +154,52 @@ impl Lookup {
 }
 
 /// What happens outside [0, 1].
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    Default,
+    PartialEq,
+    Eq,
+    Hash,
+    Serialize,
+    Deserialize,
+    strum::VariantArray,
+    strum::IntoStaticStr,
+    strum::EnumString,
+    strum::EnumMessage,
+    strum::Display,
+)]
+#[strum(
+    serialize_all = "kebab-case",
+    parse_err_ty = String,
+    parse_err_fn = crate::names::unknown::<Wrap>
+)]
 pub enum Wrap {
     /// Tile the texture.
     #[default]
+    #[strum(message = "Tiles the texture outside [0, 1].")]
     Repeat,
     /// Extend the edge texels.
+    #[strum(message = "Extends the edge texels outside [0, 1].")]
     Clamp,
     /// Tile with every other copy mirrored, so edges meet seamlessly.
+    #[strum(message = "Tiles with every other copy mirrored, so the edges meet seamlessly.")]
     Mirror,
     /// Black outside the texture.
+    #[strum(message = "Black outside [0, 1], to show where the mapping leaves the texture.")]
     Black,
 }
 
-impl Wrap {
-    /// Every wrap mode, in menu order.
-    pub const ALL: [Self; 4] = [Self::Repeat, Self::Clamp, Self::Mirror, Self::Black];
+impl crate::names::Named for Wrap {
+    const WHAT: &'static str = "wrap mode";
+}
 
+impl Wrap {
     /// The name used on the command line and in menus.
     #[must_use]
-    pub const fn name(self) -> &'static str {
-        match self {
-            Self::Repeat => "repeat",
-            Self::Clamp => "clamp",
-            Self::Mirror => "mirror",
-            Self::Black => "black",
-        }
+    pub fn name(self) -> &'static str {
+        self.into()
     }
 
     /// A continuous coordinate brought into [0, 1], or `None` outside under [`Wrap::Black`].
@@ -210,61 +252,67 @@ impl Wrap {
 /// On the procedural checker, which has no texels, `Nearest`, `Bilinear` and `Bicubic` all
 /// point-sample, and `Trilinear` and `Ewa` use the closed-form box filter of the checker over
 /// the footprint's bounding box (pbrt's analytically filtered checkerboard).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    Default,
+    PartialEq,
+    Eq,
+    Hash,
+    Serialize,
+    Deserialize,
+    strum::VariantArray,
+    strum::IntoStaticStr,
+    strum::EnumString,
+    strum::EnumMessage,
+    strum::Display,
+)]
+#[strum(
+    serialize_all = "kebab-case",
+    parse_err_ty = String,
+    parse_err_fn = crate::names::unknown::<Filter>
+)]
 pub enum Filter {
     /// One texel, chosen by the [`Lookup`].
     #[default]
+    #[strum(message = "One texel per sample: blocky when magnified, aliases when minified.")]
     Nearest,
     /// The four nearest texel centres, weighted by distance.
+    #[strum(message = "Blends the four nearest texels: smooth up close, still aliases far away.")]
     Bilinear,
     /// Catmull-Rom bicubic over the 4 x 4 nearest texel centres (sharper magnification).
+    #[strum(message = "Catmull-Rom over 4 x 4 texels: sharper than bilinear up close.")]
     Bicubic,
     /// Trilinear mip-mapping: bilinear in the two mip levels around the pixel's footprint size,
     /// blended (isotropic: blurs footprints that are long and thin).
+    #[strum(
+        message = "Mip-mapping: averages as many texels as the pixel covers, but isotropically (blurs at grazing angles)."
+    )]
     Trilinear,
     /// Elliptically weighted average over the mip pyramid: follows long, thin footprints (a
     /// plane seen at a grazing angle) up to the texture's `max_anisotropy`.
+    #[strum(
+        message = "Elliptical weighted average: follows the pixel's stretched footprint; sharp and alias-free."
+    )]
     Ewa,
 }
 
-impl Filter {
-    /// Every filter, in menu order.
-    pub const ALL: [Self; 5] = [
-        Self::Nearest,
-        Self::Bilinear,
-        Self::Bicubic,
-        Self::Trilinear,
-        Self::Ewa,
-    ];
+impl crate::names::Named for Filter {
+    const WHAT: &'static str = "filter";
+}
 
+impl Filter {
     /// The name used on the command line and in menus.
     #[must_use]
-    pub const fn name(self) -> &'static str {
-        match self {
-            Self::Nearest => "nearest",
-            Self::Bilinear => "bilinear",
-            Self::Bicubic => "bicubic",
-            Self::Trilinear => "trilinear",
-            Self::Ewa => "ewa",
-        }
+    pub fn name(self) -> &'static str {
+        self.into()
     }
 
     /// One sentence on what the filter does, for tooltips.
     #[must_use]
-    pub const fn description(self) -> &'static str {
-        match self {
-            Self::Nearest => "One texel per sample: blocky when magnified, aliases when minified.",
-            Self::Bilinear => {
-                "Blends the four nearest texels: smooth up close, still aliases far away."
-            }
-            Self::Bicubic => "Catmull-Rom over 4 x 4 texels: sharper than bilinear up close.",
-            Self::Trilinear => {
-                "Mip-mapping: averages as many texels as the pixel covers, but isotropically (blurs at grazing angles)."
-            }
-            Self::Ewa => {
-                "Elliptical weighted average: follows the pixel's stretched footprint; sharp and alias-free."
-            }
-        }
+    pub fn description(self) -> &'static str {
+        crate::names::Named::tip(self)
     }
 
     /// Whether this filter needs the pixel's footprint in texture space (ray differentials).
@@ -279,10 +327,6 @@ impl Filter {
         matches!(self, Self::Trilinear | Self::Ewa)
     }
 }
-
-crate::named_enum!(Lookup, "lookup");
-crate::named_enum!(Wrap, "wrap mode");
-crate::named_enum!(Filter, "filter");
 
 /// An image read through a mapping with a filter and wrap mode.
 #[derive(Clone, Debug)]

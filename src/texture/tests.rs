@@ -2,6 +2,7 @@
 
 use super::*;
 use crate::math::srgb8_to_linear;
+use strum::VariantArray;
 
 /// A 4 x 2 image whose texel (column c, row-from-bottom r) has red = c and green = r.
 fn ramp() -> ImageData {
@@ -65,7 +66,7 @@ fn wrap_modes() {
     assert_eq!(Wrap::Mirror.index(4, 4), Some(3));
     assert_eq!(Wrap::Mirror.index(9, 4), Some(1));
     assert_eq!(Wrap::Black.index(4, 4), None);
-    for w in Wrap::ALL {
+    for &w in Wrap::VARIANTS {
         assert!(w.coord(f32::NAN).is_some_and(|t| (0.0..=1.0).contains(&t)));
         for i in [-9, -1, 0, 3, 4, 1000] {
             assert!(w.index(i, 4).is_none_or(|k| k < 4));
@@ -94,7 +95,7 @@ fn bilinear_hits_texel_centres_and_blends_between() {
 fn one_by_one_and_one_by_n_images() {
     let one = ImageData::from_fn(1, 1, "1x1", |_, _| Rgb(0.5, 0.25, 1.0));
     for uv in [Vec2::ZERO, Vec2::ONE, Vec2::new(7.3, -2.1)] {
-        for l in Lookup::ALL {
+        for &l in Lookup::VARIANTS {
             assert_eq!(
                 one.nearest(uv, l, Wrap::Repeat, Wrap::Mirror),
                 Rgb(0.5, 0.25, 1.0)
@@ -154,7 +155,7 @@ fn uv_grid_labels_its_corners() {
 #[test]
 fn the_square_is_closed_under_every_wrap() {
     // u = 0 and u = 1 are inside: no mode moves them, and 1 reaches the last texel.
-    for w in Wrap::ALL {
+    for &w in Wrap::VARIANTS {
         assert_eq!(w.coord(0.0f32), Some(0.0), "{w}");
         assert_eq!(w.coord(1.0f32), Some(1.0), "{w}");
         assert_eq!(w.coord(1.0f64), Some(1.0), "{w}");
@@ -175,8 +176,8 @@ fn the_square_is_closed_under_every_wrap() {
     // The nearest lookup at u = v = 1 reads the top-right texel under both lookups and every
     // mode (it read the first column and the bottom row under repeat).
     let img = ramp();
-    for w in Wrap::ALL {
-        for lookup in Lookup::ALL {
+    for &w in Wrap::VARIANTS {
+        for &lookup in Lookup::VARIANTS {
             assert_eq!(
                 img.nearest(Vec2::ONE, lookup, w, w),
                 Rgb(3.0, 1.0, 0.0),
@@ -204,13 +205,13 @@ fn wrap_and_lookup_agree_in_f32_and_f64() {
             2 => (rng.next_f32() * 8.0).round() - 4.0, // whole numbers: the closed ends
             _ => 1.0 - rng.next_f32() * 1e-6,
         };
-        for w in Wrap::ALL {
+        for &w in Wrap::VARIANTS {
             let (a, b) = (w.coord(t), w.coord(f64::from(t)));
             assert_eq!(a.is_some(), b.is_some(), "{w} {t}");
             let (Some(a), Some(b)) = (a, b) else { continue };
             assert!((f64::from(a) - b).abs() <= 1e-6, "{w} {t}: {a} {b}");
             for n in [1, 4, 1023, 2048] {
-                for lookup in Lookup::ALL {
+                for &lookup in Lookup::VARIANTS {
                     let (i32_, i64_) = (lookup.index(a, n), lookup.index(b, n));
                     assert!(i32_.abs_diff(i64_) <= 1, "{w} {lookup} {t} {n}");
                     differ += usize::from(i32_ != i64_);

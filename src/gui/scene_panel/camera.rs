@@ -1,0 +1,39 @@
+//! The camera editor: the projection and its angles, the eye and the point looked at.
+
+use crate::gui::widgets::{enum_combo, number, vec3};
+use crate::scene::{ProjectionDesc, SceneDesc};
+
+/// The camera settings. Returns whether any changed.
+pub(super) fn camera_ui(ui: &mut egui::Ui, desc: &mut SceneDesc) -> bool {
+    let mut changed = false;
+    ui.heading("Camera");
+    let c = &mut desc.camera;
+    let mut kind = c.projection.kind();
+    if enum_combo(ui, "Camera", &mut kind) {
+        c.projection = kind.default_desc();
+        changed = true;
+    }
+    match &mut c.projection {
+        ProjectionDesc::Pinhole { fov } => {
+            changed |= number(ui, "field of view (deg)", fov, 1.0..=179.0, 0.2);
+        }
+        ProjectionDesc::Fisheye { fov } => {
+            changed |= number(ui, "field of view (deg)", fov, 1.0..=360.0, 0.5);
+        }
+        ProjectionDesc::Spherical { h_fov, v_fov } => {
+            changed |= number(ui, "horizontal fov (deg)", h_fov, 1.0..=360.0, 0.5);
+            changed |= number(ui, "vertical fov (deg)", v_fov, 1.0..=180.0, 0.5);
+        }
+    }
+    let mut eye = c.eye;
+    if vec3(ui, "eye", &mut eye, 0.02) && eye != c.look_at {
+        c.eye = eye;
+        changed = true;
+    }
+    let mut at = c.look_at;
+    if vec3(ui, "look at", &mut at, 0.02) && at != c.eye {
+        c.look_at = at;
+        changed = true;
+    }
+    changed
+}

@@ -1,0 +1,234 @@
+//! The texture editor: the kind, the mapping, and the chosen texture's settings (an image's
+//! path, filter, lookup, wrap and scale; a checker's squares and colours), with the list of
+//! images in `assets/`.
+
+use super::ScenePanel;
+use crate::gui::widgets::{colour, enum_combo, number};
+use crate::scene::{TextureDesc, relative_asset_path};
+use crate::texture::MAX_ANISOTROPY_LIMIT;
+use std::path::{Path, PathBuf};
+
+/// Image files the texture list offers.
+const IMAGE_EXTENSIONS: [&str; 9] = [
+    "png", "jpg", "jpeg", "hdr", "exr", "tif", "tiff", "ppm", "pgm",
+];
+
+/// The folders the image list is read from: `assets/` beside the preset's folder and in the
+/// working directory.
+fn asset_dirs(preset: &Path) -> Vec<PathBuf> {
+    let mut v = Vec::new();
+    if let Some(dir) = preset.parent() {
+        v.push(dir.join("../assets"));
+        v.push(dir.join("assets"));
+    }
+    v.push(PathBuf::from("assets"));
+    v
+}
+
+fn list_images(preset: &Path) -> Vec<PathBuf> {
+    let mut out: Vec<PathBuf> = Vec::new();
+    for dir in asset_dirs(preset) {
+        let Ok(rd) = std::fs::read_dir(&dir) else {
+            continue;
+        };
+        for e in rd.flatten() {
+            let p = e.path();
+            let ok = p
+                .extension()
+                .and_then(|e| e.to_str())
+                .is_some_and(|e| IMAGE_EXTENSIONS.contains(&e.to_ascii_lowercase().as_str()));
+            let canon = std::fs::canonicalize(&p).unwrap_or_else(|_| p.clone());
+            if ok
+                && !out
+                    .iter()
+                    .any(|q| std::fs::canonicalize(q).unwrap_or_else(|_| q.clone()) == canon)
+            {
+                out.push(p);
+            }
+        }
+    }
+    out.sort_by_key(|p| p.file_name().map(std::ffi::OsStr::to_owned));
+    out
+}
+
+impl ScenePanel {
+    pub(super) fn texture_ui(
+        &mut self,
+        ui: &mut egui::Ui,
+        tex: &mut TextureDesc,
+        preset: &Path,
+    ) -> bool {
+        let mut changed = false;
+        let mut kind = tex.kind();
+        if enum_combo(ui, "Texture", &mut kind) {
+            *tex = tex.converted(kind);
+            if let TextureDesc::Image { path, .. } = tex
+                && let Some(first) = self.assets(preset).first()
+            {
+                // A new image texture starts on the first image in assets/.
+                let dir = preset.parent().unwrap_or(Path::new("."));
+                *path = relative_asset_path(first, dir);
+            }
+            self.path_text = None;
+            changed = true;
+        }
+        if let Some(current) = tex.mapping() {
+            let mut m = current;
+            if enum_combo(ui, "Mapping", &mut m) {
+                tex.set_mapping(m);
+                changed = true;
+            }
+        }
+        match tex {
+            TextureDesc::Constant(c) => changed |= colour(ui, "colour", c),
+            TextureDesc::Image {
+                path,
+                filter,
+                lookup,
+                wrap,
+                scale,
+                srgb,
+                max_anisotropy,
+                ..
+            } => {
+                changed |= self.image_path_ui(ui, path, preset);
+                changed |= enum_combo(ui, "Filter", filter);
+                changed |= anisotropy(ui, max_anisotropy);
+                changed |= enum_combo(ui, "Lookup", lookup);
+                changed |= enum_combo(ui, "Wrap", wrap);
+                changed |= number(ui, "scale", scale, 0.0..=1e4, 0.01);
+                changed |= ui
+                    .checkbox(srgb, "sRGB file")
+                    .on_hover_text(
+                        "8- and 16-bit files hold sRGB-encoded values (almost always true)",
+                    )
+                    .changed();
+            }
+            TextureDesc::Checker {
+                squares,
+                colors,
+                filter,
+                ..
+            } => {
+                changed |= enum_combo(ui, "Filter", filter);
+                changed |= number(ui, "squares along u", &mut squares.0, 0.01..=1e6, 0.1);
+                changed |= number(ui, "squares along v", &mut squares.1, 0.01..=1e6, 0.1);
+                changed |= colour(ui, "colour 1", &mut colors.0);
+                changed |= colour(ui, "colour 2", &mut colors.1);
+            }
+            TextureDesc::MeshMaterial {
+                filter,
+                lookup,
+                wrap,
+                max_anisotropy,
+                ..
+            } => {
+                changed |= enum_combo(ui, "Filter", filter);
+                changed |= anisotropy(ui, max_anisotropy);
+                changed |= enum_combo(ui, "Lookup", lookup);
+                changed |= enum_combo(ui, "Wrap", wrap);
+            }
+            TextureDesc::UvGrid {
+                filter,
+                wrap,
+                max_anisotropy,
+                ..
+            } => {
+                changed |= enum_combo(ui, "Filter", filter);
+                changed |= anisotropy(ui, max_anisotropy);
+                changed |= enum_combo(ui, "Wrap", wrap);
+            }
+        }
+        changed
+    }
+
+    fn assets(&mut self, preset: &Path) -> &[PathBuf] {
+        self.assets.get_or_insert_with(|| list_images(preset))
+    }
+
+    fn image_path_ui(&mut self, ui: &mut egui::Ui, path: &mut String, preset: &Path) -> bool {
+        let mut changed = false;
+        let key = self.selected;
+        let dir = preset.parent().unwrap_or(Path::new(".")).to_path_buf();
+        let assets = self.assets(preset).to_vec();
+        if self.path_text.as_ref().is_none_or(|(k, _)| *k != key) {
+            self.path_text = Some((key, path.clone()));
+        }
+        let Some((_, text)) = &mut self.path_text else {
+            return false;
+        };
+        ui.horizontal(|ui| {
+            let l = ui.label("image");
+            let r = ui
+                .add(egui::TextEdit::singleline(text).desired_width(150.0))
+                .labelled_by(l.id)
+                .on_hover_text(
+                    "Path relative to the preset's folder; Enter loads it. \
+                     You can also drop an image on the window.",
+                );
+            let enter = r.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
+            if (ui
+                .button("Load")
+                .on_hover_text("Load the image at this path")
+                .clicked()
+                || enter)
+                && *text != *path
+            {
+                path.clone_from(text);
+                changed = true;
+            }
+        });
+        ui.horizontal(|ui| {
+            let l = ui.label("from assets/");
+            let shown = Path::new(path.as_str())
+                .file_name()
+                .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+            egui::ComboBox::from_id_salt("assets")
+                .selected_text(shown)
+                .show_ui(ui, |ui| {
+                    for a in &assets {
+                        let name = a
+                            .file_name()
+                            .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+                        if ui.selectable_label(false, name).clicked() {
+                            *path = relative_asset_path(a, &dir);
+                            changed = true;
+                        }
+                    }
+                })
+                .response
+                .labelled_by(l.id)
+                .on_hover_text("The images in assets/");
+            if ui
+                .button("Rescan")
+                .on_hover_text("Read the assets folder again")
+                .clicked()
+            {
+                self.assets = None;
+            }
+        });
+        if changed {
+            self.path_text = None;
+        }
+        changed
+    }
+}
+
+/// The largest footprint elongation the EWA and trilinear filters follow before they blur.
+fn anisotropy(ui: &mut egui::Ui, value: &mut f32) -> bool {
+    ui.horizontal(|ui| {
+        let l = ui.label("max anisotropy");
+        ui.add(
+            egui::DragValue::new(value)
+                .range(1.0..=MAX_ANISOTROPY_LIMIT)
+                .speed(0.1),
+        )
+        .labelled_by(l.id)
+        .on_hover_text(
+            "How elongated a pixel's footprint may be before the filter blurs it instead \
+             (EWA and trilinear)",
+        )
+        .changed()
+    })
+    .inner
+}

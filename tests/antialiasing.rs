@@ -6,41 +6,33 @@
 //! channel, against references rendered with bilinear filtering, box pixels and 256 jittered
 //! samples per pixel, at low resolution so each test runs in seconds.
 
+mod common;
+
+use common::{build_with, render_on, root, sized};
 use std::path::{Path, PathBuf};
 use texplore::mapping::MAX_FOOTPRINT;
 use texplore::math::{Vec2, linear_to_srgb};
-use texplore::render::{Film, render_blocking};
+use texplore::render::Film;
 use texplore::sampler::PixelSampler;
 use texplore::scene::{
-    AdaptiveDesc, AssetCache, Overrides, SceneDesc, apply_overrides, build_scene, load_preset,
-    parse_preset,
+    AdaptiveDesc, AssetCache, Overrides, SceneDesc, build_scene, load_preset, parse_preset,
 };
 use texplore::texture::{Filter, ImageData, View, save_png};
 
 fn preset(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("presets/{name}.ron"))
+    root().join(format!("presets/{name}.ron"))
 }
 
 fn render_desc(desc: &SceneDesc, path: &Path, o: Overrides, threads: usize) -> Film {
-    let mut desc = desc.clone();
-    apply_overrides(&mut desc, o);
-    let scene = build_scene(&desc, path, &mut AssetCache::new()).unwrap();
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .unwrap();
-    pool.install(|| render_blocking(&scene, |_| {}))
+    render_on(&build_with(desc, path, o, &mut AssetCache::new()), threads)
 }
 
 fn overrides(w: u32, h: u32, spp: u32, filter: Filter, sampler: PixelSampler) -> Overrides {
     Overrides {
-        width: Some(w),
-        height: Some(h),
-        spp: Some(spp),
         filter: Some(filter),
         sampler: Some(sampler),
         no_adaptive: true,
-        ..Overrides::default()
+        ..sized(w, h, spp)
     }
 }
 
@@ -241,17 +233,18 @@ fn screen_space_derivatives_match_finite_differences_of_real_hits() {
     // seams, clamped footprints and grazing views.
     for (name, mapping_check) in [("earth", 0), ("cylinder", 1), ("checker-plane", 2)] {
         let path = preset(name);
-        let mut desc = load_preset(&path).unwrap();
-        apply_overrides(
-            &mut desc,
-            Overrides {
-                width: Some(200),
-                height: Some(150),
-                filter: Some(Filter::Ewa),
-                ..Overrides::default()
-            },
+        let o = Overrides {
+            width: Some(200),
+            height: Some(150),
+            filter: Some(Filter::Ewa),
+            ..Overrides::default()
+        };
+        let scene = build_with(
+            &load_preset(&path).unwrap(),
+            &path,
+            o,
+            &mut AssetCache::new(),
         );
-        let scene = build_scene(&desc, &path, &mut AssetCache::new()).unwrap();
         assert!(scene.needs_differentials);
         let mut checked = 0;
         for y in (10..140).step_by(7) {
@@ -464,7 +457,7 @@ fn presets_name_ewa_plainly_and_refuse_bad_anisotropy() {
     let scene = build_scene(&desc, &path, &mut AssetCache::new()).unwrap();
     assert!(scene.needs_differentials);
     let desc = parse_preset(&text(", max_anisotropy: 16"), &path).unwrap();
-    assert!(build_scene(&desc, &path, &mut AssetCache::new()).is_ok());
+    build_scene(&desc, &path, &mut AssetCache::new()).expect("max_anisotropy 16 is accepted");
     let desc = parse_preset(&text(", max_anisotropy: 0"), &path).unwrap();
     let e = build_scene(&desc, &path, &mut AssetCache::new())
         .unwrap_err()

@@ -2,18 +2,17 @@
 //! every PLY encoding and spelling loads the same mesh, polygons triangulate, rays through
 //! shared edges never slip through, and bad files name the file and the element.
 
+mod common;
+
+use common::{failure, parse_json, render_on, root, texplore};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use texplore::geometry::{Mesh, MeshData, Shape};
 use texplore::math::{Ray, Vec2, Vec3, Vec3A, srgb8_to_linear};
 use texplore::meshio::{PlyFormat, load_mesh, read_ply_from, torus, write_ply};
-use texplore::render::{Film, render_blocking};
+use texplore::render::Film;
 use texplore::scene::{AssetCache, Scene, build_scene, parse_preset};
 use texplore::texture::save_png;
-
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
 
 fn scene(text: &str, preset: &Path) -> texplore::Result<Scene> {
     let desc = parse_preset(text, preset)?;
@@ -21,11 +20,7 @@ fn scene(text: &str, preset: &Path) -> texplore::Result<Scene> {
 }
 
 fn render(scene: &Scene) -> Film {
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(2)
-        .build()
-        .unwrap();
-    pool.install(|| render_blocking(scene, |_| {}))
+    render_on(scene, 2)
 }
 
 /// A 4 x 4 image whose texels all differ: (column, file row) -> colour bytes.
@@ -352,17 +347,11 @@ fn rays_through_shared_edges_and_vertices_never_miss() {
 /// `texplore mesh-info --json` reports what the file holds.
 #[test]
 fn mesh_info_json() {
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_texplore"))
-        .current_dir(root())
-        .args(["mesh-info", "assets/two-triangles.ply", "--json"])
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let v = parse_json(&texplore(&[
+        "mesh-info",
+        "assets/two-triangles.ply",
+        "--json",
+    ]));
     assert_eq!(v["vertices"], 4);
     assert_eq!(v["triangles"], 2);
     assert_eq!(v["has_uv"], true);
@@ -372,13 +361,7 @@ fn mesh_info_json() {
     assert_eq!(v["degenerate"], 0);
     assert_eq!(v["degenerate_uv"], 0);
     // A bad file: one line naming it.
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_texplore"))
-        .current_dir(root())
-        .args(["mesh-info", "presets/earth.ron"])
-        .output()
-        .unwrap();
-    assert!(!out.status.success());
-    let e = String::from_utf8_lossy(&out.stderr);
+    let e = failure(&texplore(&["mesh-info", "presets/earth.ron"]));
     assert!(
         e.contains("presets/earth.ron") && e.contains(".ply and .obj"),
         "{e}"

@@ -8,7 +8,7 @@
 
 mod common;
 
-use common::{build_with, render_on, root, sized};
+use common::{build_with, failure, render_on, root, sized, success, texplore};
 use std::path::{Path, PathBuf};
 use texplore::mapping::MAX_FOOTPRINT;
 use texplore::math::{Vec2, linear_to_srgb};
@@ -379,11 +379,7 @@ fn render_command_takes_the_antialiasing_options() {
             "-q",
         ];
         args.extend_from_slice(extra);
-        std::process::Command::new(env!("CARGO_BIN_EXE_texplore"))
-            .current_dir(env!("CARGO_MANIFEST_DIR"))
-            .args(&args)
-            .output()
-            .unwrap()
+        texplore(&args)
     };
     let o = run(&[
         "--filter",
@@ -399,7 +395,7 @@ fn render_command_takes_the_antialiasing_options() {
         "-o",
         out.to_str().unwrap(),
     ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    success(&o);
     let img = image::open(&out).unwrap().to_rgb8();
     assert_eq!(img.dimensions(), (32, 24));
     // The preset saved in the PNG carries the options.
@@ -413,15 +409,14 @@ fn render_command_takes_the_antialiasing_options() {
         })
     );
     // Bad values are refused with the option named.
-    let o = run(&["--adaptive", "lots", "-o", out.to_str().unwrap()]);
-    assert!(!o.status.success());
-    assert!(String::from_utf8_lossy(&o.stderr).contains("MAX_SPP"));
-    let o = run(&["--max-aniso", "0.5", "-o", out.to_str().unwrap()]);
-    assert!(!o.status.success());
-    assert!(String::from_utf8_lossy(&o.stderr).contains("max_anisotropy"));
-    let o = run(&["--view", "depth", "-o", out.to_str().unwrap()]);
-    assert!(!o.status.success());
-    assert!(String::from_utf8_lossy(&o.stderr).contains("texel-grid"));
+    for (bad, named) in [
+        (["--adaptive", "lots"], "MAX_SPP"),
+        (["--max-aniso", "0.5"], "max_anisotropy"),
+        (["--view", "depth"], "texel-grid"),
+    ] {
+        let e = failure(&run(&[bad[0], bad[1], "-o", out.to_str().unwrap()]));
+        assert!(e.contains(named), "{bad:?}: {e}");
+    }
 }
 
 #[test]

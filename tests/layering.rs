@@ -4,6 +4,10 @@
 //! leave a module (`crate::x`, `crate::{x, y}`, `super::` chains that climb to the crate root,
 //! `$crate::x` in macros) and fails naming the file and line of every import that runs against
 //! [`LAYERS`]. ARCHITECTURE.md states the same order.
+//!
+//! Unit-test modules (`#[cfg(test)] mod x { .. }` and `#[cfg(test)] mod x;` with their files)
+//! are not part of the library's layering: a low module's tests may use higher modules (to
+//! check, say, that every enum of the crate round-trips through its name).
 
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
@@ -11,9 +15,10 @@ use std::path::{Path, PathBuf};
 /// The layers, lowest first. A module may use modules of lower layers only: not those of its own
 /// layer (peers stay independent) and never those above.
 const LAYERS: &[&[&str]] = &[
-    // Foundations every layer may use: the error type, the `named_enum!` helpers, the atomic
-    // file writer.
-    &["error", "names", "output"],
+    // Foundations every layer may use: the error type, then the `named_enum!` helpers and the
+    // atomic file writer (which returns the error type).
+    &["error"],
+    &["names", "output"],
     &["math"],
     &["geometry"],
     // Mesh files produce `geometry::MeshData`.
@@ -226,20 +231,42 @@ fn first_segments(toks: &[(Tok, usize)], i: usize) -> Vec<(String, usize)> {
     }
 }
 
-/// Every use of another top-level module in one file.
-fn edges_of(file: &str, rel: &Path, src: &str, top_modules: &BTreeSet<String>) -> Vec<Edge> {
+/// Whether tokens `i..` are the attribute `#[cfg(test)]`.
+fn is_cfg_test(toks: &[(Tok, usize)], i: usize) -> bool {
+    let want = [
+        Tok::Other('#'),
+        Tok::Other('['),
+        Tok::Ident("cfg".into()),
+        Tok::Other('('),
+        Tok::Ident("test".into()),
+        Tok::Other(')'),
+        Tok::Other(']'),
+    ];
+    toks.len() >= i + want.len() && toks[i..i + want.len()].iter().map(|t| &t.0).eq(want.iter())
+}
+
+/// One file's imports of other top-level modules (outside its unit-test modules), and the
+/// names of the test-only module files it declares (`#[cfg(test)] mod x;`).
+fn edges_of(
+    file: &str,
+    rel: &Path,
+    src: &str,
+    top_modules: &BTreeSet<String>,
+) -> (Vec<Edge>, Vec<String>) {
     let toks = tokenize(src);
     let file_path = module_path(rel);
     let Some(from) = file_path.first().cloned() else {
-        return Vec::new(); // lib.rs: the module list
+        return (Vec::new(), Vec::new()); // lib.rs: the module list
     };
-    // Inline modules (`mod tests { .. }`): (name, brace depth inside them).
-    let mut inline: Vec<(String, usize)> = Vec::new();
+    // Inline modules (`mod tests { .. }`): (name, brace depth inside them, test-only).
+    let mut inline: Vec<(String, usize, bool)> = Vec::new();
+    let mut test_files = Vec::new();
+    let mut cfg_test = false;
     let mut depth = 0usize;
     let mut out = Vec::new();
-    let mut push = |targets: Vec<(String, usize)>| {
+    let mut push = |targets: Vec<(String, usize)>, in_test: bool| {
         for (to, line) in targets {
-            if top_modules.contains(&to) && to != from {
+            if top_modules.contains(&to) && to != from && !in_test {
                 out.push(Edge {
                     file: file.to_string(),
                     line,
@@ -251,25 +278,37 @@ fn edges_of(file: &str, rel: &Path, src: &str, top_modules: &BTreeSet<String>) -
     };
     let mut i = 0;
     while i < toks.len() {
+        let in_test = inline.iter().any(|m| m.2);
+        if is_cfg_test(&toks, i) {
+            cfg_test = true;
+            i += 7;
+            continue;
+        }
+        // `#[cfg(test)]` waits for a `mod`; another item's `;`, `{` or `}` drops it.
+        if matches!(&toks[i].0, Tok::Open | Tok::Close | Tok::Other(';')) {
+            cfg_test = false;
+        }
         match &toks[i].0 {
             Tok::Open => depth += 1,
             Tok::Close => {
-                if inline.last().is_some_and(|(_, d)| *d == depth) {
+                if inline.last().is_some_and(|m| m.1 == depth) {
                     inline.pop();
                 }
                 depth = depth.saturating_sub(1);
             }
-            Tok::Ident(kw) if kw == "mod" => {
-                if let (Some((Tok::Ident(name), _)), Some((Tok::Open, _))) =
-                    (toks.get(i + 1), toks.get(i + 2))
-                {
-                    inline.push((name.clone(), depth + 1));
+            Tok::Ident(kw) if kw == "mod" => match (toks.get(i + 1), toks.get(i + 2)) {
+                (Some((Tok::Ident(name), _)), Some((Tok::Open, _))) => {
+                    inline.push((name.clone(), depth + 1, cfg_test || in_test));
                 }
-            }
+                (Some((Tok::Ident(name), _)), Some((Tok::Other(';'), _))) if cfg_test => {
+                    test_files.push(name.clone());
+                }
+                _ => {}
+            },
             Tok::Ident(kw)
                 if kw == "crate" && toks.get(i + 1).map(|t| &t.0) == Some(&Tok::PathSep) =>
             {
-                push(first_segments(&toks, i + 2));
+                push(first_segments(&toks, i + 2), in_test);
                 i += 2;
                 continue;
             }
@@ -282,7 +321,7 @@ fn edges_of(file: &str, rel: &Path, src: &str, top_modules: &BTreeSet<String>) -
                     ) =>
             {
                 let mut here: Vec<String> = file_path.clone();
-                here.extend(inline.iter().map(|(n, _)| n.clone()));
+                here.extend(inline.iter().map(|m| m.0.clone()));
                 let mut j = i;
                 while matches!(&toks.get(j).map(|t| &t.0), Some(Tok::Ident(s)) if s == "super")
                     && toks.get(j + 1).map(|t| &t.0) == Some(&Tok::PathSep)
@@ -291,7 +330,7 @@ fn edges_of(file: &str, rel: &Path, src: &str, top_modules: &BTreeSet<String>) -
                     j += 2;
                 }
                 if here.is_empty() {
-                    push(first_segments(&toks, j));
+                    push(first_segments(&toks, j), in_test);
                 }
                 i = j;
                 continue;
@@ -300,7 +339,7 @@ fn edges_of(file: &str, rel: &Path, src: &str, top_modules: &BTreeSet<String>) -
         }
         i += 1;
     }
-    out
+    (out, test_files)
 }
 
 fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
@@ -329,6 +368,8 @@ fn crate_edges(root: &Path) -> (Vec<Edge>, BTreeSet<String>) {
         .filter(|m| m != "main")
         .collect();
     let mut edges = Vec::new();
+    // Files of `#[cfg(test)] mod x;` declarations: `dir/x.rs` and everything under `dir/x/`.
+    let mut test_only: Vec<PathBuf> = Vec::new();
     for p in &files {
         let rel = p.strip_prefix(root).expect("under the root");
         if rel == Path::new("src/main.rs") {
@@ -336,8 +377,24 @@ fn crate_edges(root: &Path) -> (Vec<Edge>, BTreeSet<String>) {
         }
         let text = std::fs::read_to_string(p).unwrap_or_else(|e| panic!("{}: {e}", p.display()));
         let file = rel.to_string_lossy().replace('\\', "/");
-        edges.extend(edges_of(&file, rel, &text, &top_modules));
+        let (found, test_children) = edges_of(&file, rel, &text, &top_modules);
+        let stem = rel.file_stem().unwrap_or_default();
+        let dir = if stem == "mod" || stem == "lib" {
+            rel.parent().unwrap_or(rel).to_path_buf()
+        } else {
+            rel.with_extension("")
+        };
+        for child in test_children {
+            test_only.push(dir.join(format!("{child}.rs")));
+            test_only.push(dir.join(child));
+        }
+        edges.extend(found.into_iter().map(|e| (rel.to_path_buf(), e)));
     }
+    let edges = edges
+        .into_iter()
+        .filter(|(rel, _)| !test_only.iter().any(|t| rel.starts_with(t)))
+        .map(|(_, e)| e)
+        .collect();
     (edges, top_modules)
 }
 
@@ -406,6 +463,7 @@ fn edges_in(rel: &str, src: &str) -> Vec<(String, usize)> {
         .map(String::from)
         .collect();
     edges_of(rel, Path::new(rel), src, &modules)
+        .0
         .into_iter()
         .map(|e| (e.to, e.line))
         .collect()
@@ -445,6 +503,32 @@ mod tests {
         ),
         vec![("texture".to_string(), 1)]
     );
+}
+
+#[test]
+fn unit_test_modules_are_outside_the_layering() {
+    let src = r#"
+#[cfg(test)]
+mod tests {
+    use crate::report::Metrics;
+    mod deeper { use crate::scene::Scene; }
+}
+#[cfg(test)]
+pub(crate) mod more;
+mod helpers { use crate::render::Film; }
+#[cfg(test)]
+fn only_modules_are_exempt() -> crate::report::Metrics { todo!() }
+mod plain;
+"#;
+    let modules: BTreeSet<String> = ["scene", "render", "report"]
+        .into_iter()
+        .map(String::from)
+        .collect();
+    let rel = "src/math/color.rs";
+    let (edges, test_files) = edges_of(rel, Path::new(rel), src, &modules);
+    let found: Vec<_> = edges.iter().map(|e| (e.to.as_str(), e.line)).collect();
+    assert_eq!(found, vec![("render", 9), ("report", 11)]);
+    assert_eq!(test_files, vec!["more".to_string()]);
 }
 
 #[test]

@@ -260,6 +260,75 @@ fn bad_plys_name_the_file_and_element() {
     }
 }
 
+/// Binary PLYs with every scalar type, in both byte orders, read the values written; a file cut
+/// inside a value names the byte where that value starts.
+#[test]
+fn binary_plys_read_every_scalar_type_in_both_byte_orders() {
+    let header = |order: &str| {
+        format!(
+            "ply\nformat binary_{order}_endian 1.0\nelement vertex 3\nproperty double x\nproperty float y\nproperty short z\nproperty uchar u\nproperty char v\nproperty ushort a\nproperty int b\nproperty uint c\nelement face 1\nproperty list ushort int vertex_indices\nend_header\n"
+        )
+    };
+    let vertices: [(f64, f32, i16, u8, i8); 3] = [
+        (1.5, -2.25, -300, 200, -5),
+        (-1e10, 3.0e-3, 32767, 0, 127),
+        (0.125, 7.0, -32768, 255, -128),
+    ];
+    for big in [false, true] {
+        let mut bytes = header(if big { "big" } else { "little" }).into_bytes();
+        let header_len = bytes.len();
+        macro_rules! put {
+            ($v:expr) => {
+                if big {
+                    bytes.extend_from_slice(&$v.to_be_bytes())
+                } else {
+                    bytes.extend_from_slice(&$v.to_le_bytes())
+                }
+            };
+        }
+        for (x, y, z, u, v) in vertices {
+            put!(x);
+            put!(y);
+            put!(z);
+            put!(u);
+            put!(v);
+            put!(60_000u16);
+            put!(-70_000i32);
+            put!(3_000_000_000u32);
+        }
+        put!(3u16);
+        for i in [2i32, 0, 1] {
+            put!(i);
+        }
+        let m = read_ply_from(&mut bytes.as_slice(), Path::new("t.ply")).unwrap();
+        let order = if big { "big" } else { "little" };
+        assert_eq!(m.format, format!("ply binary_{order}_endian"));
+        let expect: Vec<Vec3> = vertices
+            .iter()
+            .map(|&(x, y, z, _, _)| Vec3::new(x as f32, y, f32::from(z)))
+            .collect();
+        assert_eq!(m.positions, expect, "{order}");
+        let uvs: Vec<Vec2> = vertices
+            .iter()
+            .map(|&(.., u, v)| Vec2::new(f32::from(u), f32::from(v)))
+            .collect();
+        assert_eq!(m.uvs, uvs, "{order}");
+        assert_eq!(m.triangles, vec![[2, 0, 1]]);
+        // Cut two bytes into the first vertex's y: the error names the byte where y starts.
+        let cut = &bytes[..header_len + 8 + 2];
+        let e = read_ply_from(&mut &cut[..], Path::new("t.ply"))
+            .unwrap_err()
+            .to_string();
+        assert_eq!(
+            e,
+            format!(
+                "t.ply: byte {} (vertex 0): the file ends early (truncated?)",
+                header_len + 8
+            )
+        );
+    }
+}
+
 /// Rays aimed at shared edges and vertices of closed meshes never slip through: the watertight
 /// test sees a shared edge identically from both triangles. Each ray comes from a direction
 /// that sees every triangle around its target from the front (so the target is no silhouette

@@ -102,20 +102,6 @@ pub fn render_snapshot(
     Ok((img.width, img.height, img.rgb()))
 }
 
-/// The presets in `dir` (`*.ron`), sorted by name.
-///
-/// # Errors
-/// The directory cannot be read.
-pub fn list_presets(dir: &Path) -> Result<Vec<PathBuf>> {
-    let mut v: Vec<PathBuf> = std::fs::read_dir(dir)
-        .map_err(|e| Error::io(dir, e))?
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.extension().is_some_and(|e| e == "ron"))
-        .collect();
-    v.sort();
-    Ok(v)
-}
-
 /// Checks (or with `update`, rewrites) the golden image of one preset.
 ///
 /// # Errors

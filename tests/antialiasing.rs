@@ -6,42 +6,34 @@
 //! channel, against references rendered with bilinear filtering, box pixels and 256 jittered
 //! samples per pixel, at low resolution so each test runs in seconds.
 
+mod common;
+
+use common::{build_with, failure, render_on, root, sized, success, texplore};
 use std::path::{Path, PathBuf};
 use strum::VariantArray;
 use texplore::mapping::MAX_FOOTPRINT;
 use texplore::math::{Vec2, linear_to_srgb};
-use texplore::render::{Film, render_blocking};
+use texplore::render::Film;
 use texplore::sampler::PixelSampler;
 use texplore::scene::{
-    AdaptiveDesc, AssetCache, Overrides, SceneDesc, apply_overrides, build_scene, load_preset,
-    parse_preset,
+    AdaptiveDesc, AssetCache, Overrides, SceneDesc, build_scene, load_preset, parse_preset,
 };
 use texplore::texture::{Filter, ImageData, View, save_png};
 
 fn preset(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("presets/{name}.ron"))
+    root().join(format!("presets/{name}.ron"))
 }
 
 fn render_desc(desc: &SceneDesc, path: &Path, o: Overrides, threads: usize) -> Film {
-    let mut desc = desc.clone();
-    apply_overrides(&mut desc, o);
-    let scene = build_scene(&desc, path, &mut AssetCache::new()).unwrap();
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .unwrap();
-    pool.install(|| render_blocking(&scene, |_| {}))
+    render_on(&build_with(desc, path, o, &mut AssetCache::new()), threads)
 }
 
 fn overrides(w: u32, h: u32, spp: u32, filter: Filter, sampler: PixelSampler) -> Overrides {
     Overrides {
-        width: Some(w),
-        height: Some(h),
-        spp: Some(spp),
         filter: Some(filter),
         sampler: Some(sampler),
         no_adaptive: true,
-        ..Overrides::default()
+        ..sized(w, h, spp)
     }
 }
 
@@ -242,17 +234,18 @@ fn screen_space_derivatives_match_finite_differences_of_real_hits() {
     // seams, clamped footprints and grazing views.
     for (name, mapping_check) in [("earth", 0), ("cylinder", 1), ("checker-plane", 2)] {
         let path = preset(name);
-        let mut desc = load_preset(&path).unwrap();
-        apply_overrides(
-            &mut desc,
-            Overrides {
-                width: Some(200),
-                height: Some(150),
-                filter: Some(Filter::Ewa),
-                ..Overrides::default()
-            },
+        let o = Overrides {
+            width: Some(200),
+            height: Some(150),
+            filter: Some(Filter::Ewa),
+            ..Overrides::default()
+        };
+        let scene = build_with(
+            &load_preset(&path).unwrap(),
+            &path,
+            o,
+            &mut AssetCache::new(),
         );
-        let scene = build_scene(&desc, &path, &mut AssetCache::new()).unwrap();
         assert!(scene.needs_differentials);
         let mut checked = 0;
         for y in (10..140).step_by(7) {
@@ -387,11 +380,7 @@ fn render_command_takes_the_antialiasing_options() {
             "-q",
         ];
         args.extend_from_slice(extra);
-        std::process::Command::new(env!("CARGO_BIN_EXE_texplore"))
-            .current_dir(env!("CARGO_MANIFEST_DIR"))
-            .args(&args)
-            .output()
-            .unwrap()
+        texplore(&args)
     };
     let o = run(&[
         "--filter",
@@ -407,7 +396,7 @@ fn render_command_takes_the_antialiasing_options() {
         "-o",
         out.to_str().unwrap(),
     ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    success(&o);
     let img = image::open(&out).unwrap().to_rgb8();
     assert_eq!(img.dimensions(), (32, 24));
     // The preset saved in the PNG carries the options.
@@ -421,15 +410,14 @@ fn render_command_takes_the_antialiasing_options() {
         })
     );
     // Bad values are refused with the option named.
-    let o = run(&["--adaptive", "lots", "-o", out.to_str().unwrap()]);
-    assert!(!o.status.success());
-    assert!(String::from_utf8_lossy(&o.stderr).contains("MAX_SPP"));
-    let o = run(&["--max-aniso", "0.5", "-o", out.to_str().unwrap()]);
-    assert!(!o.status.success());
-    assert!(String::from_utf8_lossy(&o.stderr).contains("max_anisotropy"));
-    let o = run(&["--view", "depth", "-o", out.to_str().unwrap()]);
-    assert!(!o.status.success());
-    assert!(String::from_utf8_lossy(&o.stderr).contains("texel-grid"));
+    for (bad, named) in [
+        (["--adaptive", "lots"], "MAX_SPP"),
+        (["--max-aniso", "0.5"], "max_anisotropy"),
+        (["--view", "depth"], "texel-grid"),
+    ] {
+        let e = failure(&run(&[bad[0], bad[1], "-o", out.to_str().unwrap()]));
+        assert!(e.contains(named), "{bad:?}: {e}");
+    }
 }
 
 #[test]
@@ -465,7 +453,7 @@ fn presets_name_ewa_plainly_and_refuse_bad_anisotropy() {
     let scene = build_scene(&desc, &path, &mut AssetCache::new()).unwrap();
     assert!(scene.needs_differentials);
     let desc = parse_preset(&text(", max_anisotropy: 16"), &path).unwrap();
-    assert!(build_scene(&desc, &path, &mut AssetCache::new()).is_ok());
+    build_scene(&desc, &path, &mut AssetCache::new()).expect("max_anisotropy 16 is accepted");
     let desc = parse_preset(&text(", max_anisotropy: 0"), &path).unwrap();
     let e = build_scene(&desc, &path, &mut AssetCache::new())
         .unwrap_err()

@@ -1,24 +1,8 @@
 //! The command line as a user runs it.
 
-use std::process::Command;
+mod common;
 
-fn texplore(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_texplore"))
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .args(args)
-        .output()
-        .unwrap()
-}
-
-fn json(args: &[&str]) -> serde_json::Value {
-    let out = texplore(args);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).unwrap()
-}
+use common::{failure, success, texplore, texplore_json as json};
 
 #[test]
 fn map_prints_the_lecture_values_as_json() {
@@ -62,9 +46,7 @@ fn map_prints_the_lecture_values_as_json() {
 
 #[test]
 fn map_explains_the_formula() {
-    let out = texplore(&["map", "cylindrical", "-1", "0.5", "0"]);
-    let text = String::from_utf8_lossy(&out.stdout);
-    assert!(out.status.success());
+    let text = success(&texplore(&["map", "cylindrical", "-1", "0.5", "0"]));
     assert!(
         text.contains("phi = atan2(x, z)")
             && text.contains("phi += 2 pi")
@@ -77,7 +59,7 @@ fn map_explains_the_formula() {
 fn render_writes_a_png_with_the_preset_inside() {
     let dir = tempfile::tempdir().unwrap();
     let out_png = dir.path().join("e.png");
-    let out = texplore(&[
+    success(&texplore(&[
         "render",
         "presets/earth.ron",
         "-o",
@@ -89,62 +71,49 @@ fn render_writes_a_png_with_the_preset_inside() {
         "--spp",
         "1",
         "-q",
-    ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    ]));
     let img = image::open(&out_png).unwrap();
     assert_eq!((img.width(), img.height()), (40, 30));
     // Rendering the PNG renders the preset embedded in it, with the overrides it was saved with.
     let again = dir.path().join("again.png");
-    let out = texplore(&[
+    success(&texplore(&[
         "render",
         out_png.to_str().unwrap(),
         "-o",
         again.to_str().unwrap(),
         "-q",
-    ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    ]));
     assert_eq!(image::open(&again).unwrap().to_rgb8(), img.to_rgb8());
 }
 
 #[test]
 fn errors_are_one_line_naming_the_file() {
-    let out = texplore(&["render", "presets/does-not-exist.ron", "-o", "/tmp/x.png"]);
-    assert!(!out.status.success());
-    let err = String::from_utf8_lossy(&out.stderr);
+    let err = failure(&texplore(&[
+        "render",
+        "presets/does-not-exist.ron",
+        "-o",
+        "/tmp/x.png",
+    ]));
     assert!(
         err.starts_with("error: presets/does-not-exist.ron"),
         "{err}"
     );
-    let out = texplore(&["map", "sphere", "0", "0", "1"]);
-    assert!(!out.status.success());
-    assert!(String::from_utf8_lossy(&out.stderr).contains("spherical"));
+    let err = failure(&texplore(&["map", "sphere", "0", "0", "1"]));
+    assert!(err.contains("spherical"), "{err}");
 }
 
 #[test]
 fn probe_writes_an_hdr_probe() {
     let dir = tempfile::tempdir().unwrap();
     let p = dir.path().join("p.hdr");
-    let out = texplore(&[
+    success(&texplore(&[
         "probe",
         "assets/courtyard_1024x512.hdr",
         "-o",
         p.to_str().unwrap(),
         "--size",
         "64",
-    ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    ]));
     let img = texplore::texture::load_image(&p, true).unwrap();
     assert_eq!((img.width(), img.height()), (64, 64));
     // Outside the disc is black; the centre is not.

@@ -7,9 +7,12 @@
 //! (see the README's "Robustness" section). Inputs that once broke a parser live in
 //! `tests/fuzz_regressions/` and are replayed on every run.
 
+mod common;
+
+use common::{root, success, texplore};
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use texplore::robustness::{image_bytes, mesh_bytes, preset_bytes, screenshot_bytes};
 use texplore::scene::AssetCache;
 
@@ -18,10 +21,6 @@ fn cases() -> u32 {
         .ok()
         .and_then(|s| s.parse().ok())
         .unwrap_or(1000)
-}
-
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
 
 /// One edit of an input; positions are fractions of the current length.
@@ -257,14 +256,18 @@ fn mutated_images_of_every_format_never_panic() {
 fn mutated_screenshots_never_panic() {
     let dir = tempfile::tempdir().unwrap();
     let png = dir.path().join("shot.png");
-    let status = std::process::Command::new(env!("CARGO_BIN_EXE_texplore"))
-        .args(["render", "presets/checker.ron", "-o"])
-        .arg(&png)
-        .args(["--width", "16", "--height", "12", "--spp", "1"])
-        .current_dir(root())
-        .status()
-        .unwrap();
-    assert!(status.success());
+    success(&texplore(&[
+        "render",
+        "presets/checker.ron",
+        "-o",
+        png.to_str().expect("a UTF-8 temporary path"),
+        "--width",
+        "16",
+        "--height",
+        "12",
+        "--spp",
+        "1",
+    ]));
     let seeds = vec![std::fs::read(&png).unwrap()];
     let target = dir.path().join("fuzzed.png");
     let (mut ok, mut refused) = (0, 0);
@@ -322,14 +325,20 @@ fn mutated_meshes_never_panic() {
 #[test]
 fn fuzz_regressions_stay_fixed() {
     let dir = root().join("tests/fuzz_regressions");
-    let Ok(entries) = std::fs::read_dir(&dir) else {
-        return;
-    };
+    let entries = std::fs::read_dir(&dir).unwrap_or_else(|e| {
+        panic!(
+            "{}: {e} (the regression inputs must be there)",
+            dir.display()
+        )
+    });
     let scratch = tempfile::tempdir().unwrap();
     let mut cache = AssetCache::new();
-    for e in entries.filter_map(Result::ok) {
+    let mut replayed = 0;
+    for e in entries {
+        let e = e.unwrap_or_else(|e| panic!("{}: {e}", dir.display()));
         let name = e.file_name().to_string_lossy().into_owned();
-        let data = std::fs::read(e.path()).unwrap();
+        let data = std::fs::read(e.path()).unwrap_or_else(|err| panic!("{name}: {err}"));
+        replayed += usize::from(name != "README.md");
         if name.starts_with("preset-") {
             let _ = preset_bytes(&data, &root().join("presets/fuzzed.ron"), &mut cache);
         } else if let Some(rest) = name.strip_prefix("image-") {
@@ -346,4 +355,9 @@ fn fuzz_regressions_stay_fixed() {
             panic!("{name}: a regression input must start with a target name");
         }
     }
+    assert!(
+        replayed > 0,
+        "{}: no regression input to replay",
+        dir.display()
+    );
 }

@@ -1,6 +1,9 @@
 //! Numerical hard cases: the singular points and extreme magnitudes where the lecture's code (and
 //! other renderers) produce NaN, divide by zero, lose precision or speckle with shadow acne.
 
+mod common;
+
+use common::{build_with, filtered, parse_json, root, sized, texplore};
 use proptest::prelude::*;
 use std::path::Path;
 use strum::VariantArray;
@@ -8,9 +11,8 @@ use texplore::mapping::{MAX_FOOTPRINT, Mapping};
 use texplore::math::{Ray, Rgb, Vec3A};
 use texplore::render::render_blocking;
 use texplore::scene::{
-    AssetCache, Overrides, SceneDesc, apply_overrides, build_scene, load_preset, parse_preset,
+    AssetCache, Overrides, SceneDesc, build_scene, list_presets, load_preset, parse_preset,
 };
-use texplore::snapshot::list_presets;
 use texplore::texture::{Filter, Lookup, Wrap};
 
 /// Points where mappings are singular or numbers are extreme.
@@ -109,7 +111,7 @@ proptest! {
         z in prop::num::f32::NORMAL | prop::num::f32::SUBNORMAL | prop::num::f32::ZERO,
     ) {
         for &m in Mapping::VARIANTS {
-            prop_assert!(check_mapping_at(m, Vec3A::new(x, y, z)).is_ok(), "{:?}", check_mapping_at(m, Vec3A::new(x, y, z)));
+            check_mapping_at(m, Vec3A::new(x, y, z)).map_err(TestCaseError::fail)?;
         }
     }
 
@@ -118,7 +120,7 @@ proptest! {
     fn mappings_on_the_unit_sphere(theta in 0.0f32..=std::f32::consts::PI, phi in -7.0f32..7.0) {
         let p = Vec3A::new(theta.sin() * phi.sin(), theta.cos(), theta.sin() * phi.cos());
         for &m in Mapping::VARIANTS {
-            prop_assert!(check_mapping_at(m, p).is_ok());
+            check_mapping_at(m, p).map_err(TestCaseError::fail)?;
         }
     }
 }
@@ -344,24 +346,18 @@ fn hdr_values_far_above_one() {
 /// No NaN or Inf reaches the film: every preset, in every filter and every sampler.
 #[test]
 fn every_preset_in_every_mode_renders_finite() {
-    let presets = list_presets(&Path::new(env!("CARGO_MANIFEST_DIR")).join("presets")).unwrap();
+    let presets = list_presets(&root().join("presets")).unwrap();
     let mut cache = AssetCache::new();
     for p in &presets {
+        let desc = load_preset(p).unwrap();
         for &filter in Filter::VARIANTS {
             for &sampler in texplore::sampler::PixelSampler::VARIANTS {
-                let mut desc = load_preset(p).unwrap();
-                apply_overrides(
-                    &mut desc,
-                    Overrides {
-                        width: Some(24),
-                        height: Some(16),
-                        spp: Some(2),
-                        filter: Some(filter),
-                        sampler: Some(sampler),
-                        ..Overrides::default()
-                    },
-                );
-                let scene = build_scene(&desc, p, &mut cache).unwrap();
+                let o = Overrides {
+                    filter: Some(filter),
+                    sampler: Some(sampler),
+                    ..sized(24, 16, 2)
+                };
+                let scene = build_with(&desc, p, o, &mut cache);
                 let film = render_blocking(&scene, |_| {});
                 assert!(film.is_finite(), "{} with {filter}/{sampler}", p.display());
             }
@@ -383,16 +379,9 @@ fn render_image_sphere(img: &image::RgbImage, mapping: &str) -> Vec<(Filter, Wra
               objects: [(shape: Sphere, transform: (scale: (1, 1, 1)), material: Emissive(ce: Image(path: \"t.png\", mapping: {mapping}, wrap: {wrap:?})))])"
         );
         let preset = dir.path().join("p.ron");
+        let desc = parse_preset(&text, &preset).unwrap();
         for &filter in Filter::VARIANTS {
-            let mut desc = parse_preset(&text, &preset).unwrap();
-            apply_overrides(
-                &mut desc,
-                Overrides {
-                    filter: Some(filter),
-                    ..Overrides::default()
-                },
-            );
-            let scene = build_scene(&desc, &preset, &mut cache).unwrap();
+            let scene = build_with(&desc, &preset, filtered(filter), &mut cache);
             let film = render_blocking(&scene, |_| {});
             assert!(film.is_finite(), "{filter}/{wrap}");
             out.push((filter, wrap, film.to_linear()));
@@ -510,17 +499,11 @@ fn obj_face_indices_out_of_range_name_the_line() {
 
 /// What `texplore mesh-info --json FILE` prints (the command must succeed).
 fn mesh_info_json(file: &Path) -> serde_json::Value {
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_texplore"))
-        .args(["mesh-info", "--json"])
-        .arg(file)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).unwrap()
+    parse_json(&texplore(&[
+        "mesh-info",
+        "--json",
+        file.to_str().expect("a UTF-8 temporary path"),
+    ]))
 }
 
 /// Degenerate triangles: collinear corners, a repeated corner, corners at one point, and
@@ -564,15 +547,8 @@ fn degenerate_triangles_load_count_and_render_finite() {
                   objects: [(shape: Mesh(path: \"{file}\"), material: Matte(cd: UvGrid(mapping: Uv)))])"
             );
             let preset = dir.path().join("m.ron");
-            let mut desc = parse_preset(&text, &preset).unwrap();
-            apply_overrides(
-                &mut desc,
-                Overrides {
-                    filter: Some(filter),
-                    ..Overrides::default()
-                },
-            );
-            let scene = build_scene(&desc, &preset, &mut AssetCache::new()).unwrap();
+            let desc = parse_preset(&text, &preset).unwrap();
+            let scene = build_with(&desc, &preset, filtered(filter), &mut AssetCache::new());
             let film = render_blocking(&scene, |_| {});
             assert!(film.is_finite(), "{file} {filter}");
             let seen = film

@@ -1,9 +1,15 @@
 //! Every supported image format loads with the right texels, and bad image files give one
-//! clear error naming the file.
+//! clear error naming the file; what a render shows, saves and is measured on are the same bytes.
 
+mod common;
+
+use common::{build_with, root, sized};
 use std::path::Path;
 use texplore::Error;
-use texplore::math::{Rgb, srgb_to_linear};
+use texplore::math::{DisplayImage, Rgb, quantize8, srgb_to_linear};
+use texplore::render::render_blocking;
+use texplore::report::metrics::EncodedImage;
+use texplore::scene::{AssetCache, load_preset, save_render_png};
 use texplore::texture::load_image;
 
 /// A 3 x 2 test pattern (row 0 on top): distinct colours so a flip or swap shows.
@@ -68,6 +74,46 @@ fn png_tiff_ppm_load_exactly_and_jpeg_closely() {
     assert!(c.0 > 0.8 && c.1 < 0.1 && c.2 < 0.1, "{c:?}");
 }
 
+/// An 8-bit texture encoded back to sRGB bytes is the file's bytes.
+#[test]
+fn an_8_bit_texture_encodes_back_to_its_bytes() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path().join("t.png");
+    rgb8().save(&p).unwrap();
+    let img = load_image(&p, true).unwrap();
+    assert_eq!(img.to_srgb8(), PATTERN.concat());
+}
+
+/// The window's image, the PNG a render saves and the bytes the report measures are one
+/// encoding of the film: exposure applied, clipped, sRGB.
+#[test]
+fn display_png_and_report_bytes_agree() {
+    let path = root().join("presets/earth.ron");
+    let desc = load_preset(&path).unwrap();
+    let scene = build_with(&desc, &path, sized(48, 32, 2), &mut AssetCache::new());
+    let film = render_blocking(&scene, |_| {});
+    let linear = film.to_linear();
+    for exposure in [scene.settings.exposure_scale, 8.0] {
+        let shown = film.to_display(exposure);
+        assert_eq!((shown.width, shown.height), (48, 32));
+        assert!(shown.rgba.chunks_exact(4).all(|p| p[3] == 255));
+        assert!(shown == DisplayImage::from_linear(48, 32, &linear, exposure));
+        let measured = EncodedImage::from_linear(48, 32, &linear, exposure);
+        assert!(measured.srgb8 == shown.rgb(), "exposure {exposure}");
+        // The float values round to the bytes, give or take one for the display table's step.
+        for (f, b) in measured.srgb.iter().zip(&measured.srgb8) {
+            assert!(quantize8(*f).abs_diff(*b) <= 1, "{f} vs {b}");
+        }
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let png = dir.path().join("e.png");
+    let shown = film.to_display(scene.settings.exposure_scale);
+    save_render_png(&png, &shown, &desc, root().join("presets").as_path()).unwrap();
+    let saved = image::open(&png).unwrap().to_rgb8();
+    assert_eq!(saved.dimensions(), (48, 32));
+    assert!(saved.into_raw() == shown.rgb());
+}
+
 #[test]
 fn ascii_ppm_p3_and_16_bit_p6() {
     let dir = tempfile::tempdir().unwrap();
@@ -115,7 +161,7 @@ fn hdr_and_exr_keep_values_above_one() {
 
 #[test]
 fn shipped_assets_load() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets");
+    let root = root().join("assets");
     for (name, w, h) in [
         ("earth_2048x1024.jpg", 2048, 1024),
         ("courtyard_1024x512.hdr", 1024, 512),

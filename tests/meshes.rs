@@ -2,19 +2,18 @@
 //! every PLY encoding and spelling loads the same mesh, polygons triangulate, rays through
 //! shared edges never slip through, and bad files name the file and the element.
 
+mod common;
+
+use common::{failure, parse_json, render_on, root, texplore};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use strum::VariantArray;
 use texplore::geometry::{Mesh, MeshData, Shape};
 use texplore::math::{Ray, Vec2, Vec3, Vec3A, srgb8_to_linear};
 use texplore::meshio::{PlyFormat, load_mesh, read_ply_from, torus, write_ply};
-use texplore::render::{Film, render_blocking};
+use texplore::render::Film;
 use texplore::scene::{AssetCache, Scene, build_scene, parse_preset};
 use texplore::texture::save_png;
-
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
 
 fn scene(text: &str, preset: &Path) -> texplore::Result<Scene> {
     let desc = parse_preset(text, preset)?;
@@ -22,11 +21,7 @@ fn scene(text: &str, preset: &Path) -> texplore::Result<Scene> {
 }
 
 fn render(scene: &Scene) -> Film {
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(2)
-        .build()
-        .unwrap();
-    pool.install(|| render_blocking(scene, |_| {}))
+    render_on(scene, 2)
 }
 
 /// A 4 x 4 image whose texels all differ: (column, file row) -> colour bytes.
@@ -266,6 +261,75 @@ fn bad_plys_name_the_file_and_element() {
     }
 }
 
+/// Binary PLYs with every scalar type, in both byte orders, read the values written; a file cut
+/// inside a value names the byte where that value starts.
+#[test]
+fn binary_plys_read_every_scalar_type_in_both_byte_orders() {
+    let header = |order: &str| {
+        format!(
+            "ply\nformat binary_{order}_endian 1.0\nelement vertex 3\nproperty double x\nproperty float y\nproperty short z\nproperty uchar u\nproperty char v\nproperty ushort a\nproperty int b\nproperty uint c\nelement face 1\nproperty list ushort int vertex_indices\nend_header\n"
+        )
+    };
+    let vertices: [(f64, f32, i16, u8, i8); 3] = [
+        (1.5, -2.25, -300, 200, -5),
+        (-1e10, 3.0e-3, 32767, 0, 127),
+        (0.125, 7.0, -32768, 255, -128),
+    ];
+    for big in [false, true] {
+        let mut bytes = header(if big { "big" } else { "little" }).into_bytes();
+        let header_len = bytes.len();
+        macro_rules! put {
+            ($v:expr) => {
+                if big {
+                    bytes.extend_from_slice(&$v.to_be_bytes())
+                } else {
+                    bytes.extend_from_slice(&$v.to_le_bytes())
+                }
+            };
+        }
+        for (x, y, z, u, v) in vertices {
+            put!(x);
+            put!(y);
+            put!(z);
+            put!(u);
+            put!(v);
+            put!(60_000u16);
+            put!(-70_000i32);
+            put!(3_000_000_000u32);
+        }
+        put!(3u16);
+        for i in [2i32, 0, 1] {
+            put!(i);
+        }
+        let m = read_ply_from(&mut bytes.as_slice(), Path::new("t.ply")).unwrap();
+        let order = if big { "big" } else { "little" };
+        assert_eq!(m.format, format!("ply binary_{order}_endian"));
+        let expect: Vec<Vec3> = vertices
+            .iter()
+            .map(|&(x, y, z, _, _)| Vec3::new(x as f32, y, f32::from(z)))
+            .collect();
+        assert_eq!(m.positions, expect, "{order}");
+        let uvs: Vec<Vec2> = vertices
+            .iter()
+            .map(|&(.., u, v)| Vec2::new(f32::from(u), f32::from(v)))
+            .collect();
+        assert_eq!(m.uvs, uvs, "{order}");
+        assert_eq!(m.triangles, vec![[2, 0, 1]]);
+        // Cut two bytes into the first vertex's y: the error names the byte where y starts.
+        let cut = &bytes[..header_len + 8 + 2];
+        let e = read_ply_from(&mut &cut[..], Path::new("t.ply"))
+            .unwrap_err()
+            .to_string();
+        assert_eq!(
+            e,
+            format!(
+                "t.ply: byte {} (vertex 0): the file ends early (truncated?)",
+                header_len + 8
+            )
+        );
+    }
+}
+
 /// Rays aimed at shared edges and vertices of closed meshes never slip through: the watertight
 /// test sees a shared edge identically from both triangles. Each ray comes from a direction
 /// that sees every triangle around its target from the front (so the target is no silhouette
@@ -353,17 +417,11 @@ fn rays_through_shared_edges_and_vertices_never_miss() {
 /// `texplore mesh-info --json` reports what the file holds.
 #[test]
 fn mesh_info_json() {
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_texplore"))
-        .current_dir(root())
-        .args(["mesh-info", "assets/two-triangles.ply", "--json"])
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let v = parse_json(&texplore(&[
+        "mesh-info",
+        "assets/two-triangles.ply",
+        "--json",
+    ]));
     assert_eq!(v["vertices"], 4);
     assert_eq!(v["triangles"], 2);
     assert_eq!(v["has_uv"], true);
@@ -373,13 +431,7 @@ fn mesh_info_json() {
     assert_eq!(v["degenerate"], 0);
     assert_eq!(v["degenerate_uv"], 0);
     // A bad file: one line naming it.
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_texplore"))
-        .current_dir(root())
-        .args(["mesh-info", "presets/earth.ron"])
-        .output()
-        .unwrap();
-    assert!(!out.status.success());
-    let e = String::from_utf8_lossy(&out.stderr);
+    let e = failure(&texplore(&["mesh-info", "presets/earth.ron"]));
     assert!(
         e.contains("presets/earth.ron") && e.contains(".ply and .obj"),
         "{e}"

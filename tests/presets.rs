@@ -1,35 +1,22 @@
 //! Every preset loads, builds and renders without NaN; renders are deterministic whatever the
 //! thread count; a bad preset names the file and the position where parsing stopped.
 
+mod common;
+
+use common::{build_with, render_on, root, sized};
 use std::path::{Path, PathBuf};
 use texplore::Error;
-use texplore::render::{Film, render_blocking};
-use texplore::scene::{
-    AssetCache, Overrides, apply_overrides, build_scene, load_preset, parse_preset,
-};
-use texplore::snapshot::list_presets;
+use texplore::render::Film;
+use texplore::scene::{AssetCache, build_scene, list_presets, load_preset, parse_preset};
 
 fn presets() -> Vec<PathBuf> {
-    list_presets(&Path::new(env!("CARGO_MANIFEST_DIR")).join("presets")).unwrap()
+    list_presets(&root().join("presets")).unwrap()
 }
 
 fn render(path: &Path, w: u32, h: u32, spp: u32, threads: usize) -> Film {
-    let mut desc = load_preset(path).unwrap();
-    apply_overrides(
-        &mut desc,
-        Overrides {
-            width: Some(w),
-            height: Some(h),
-            spp: Some(spp),
-            ..Overrides::default()
-        },
-    );
-    let scene = build_scene(&desc, path, &mut AssetCache::new()).unwrap();
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .unwrap();
-    pool.install(|| render_blocking(&scene, |_| {}))
+    let desc = load_preset(path).unwrap();
+    let scene = build_with(&desc, path, sized(w, h, spp), &mut AssetCache::new());
+    render_on(&scene, threads)
 }
 
 #[test]
@@ -102,7 +89,7 @@ fn absurd_values_are_refused_with_the_field_named() {
         let result = build_scene(&desc, Path::new("bad.ron"), &mut AssetCache::new());
         if needle.is_empty() {
             // A negative scale mirrors the object: allowed.
-            assert!(result.is_ok());
+            result.unwrap_or_else(|e| panic!("transform {transform} (a mirror) must build: {e}"));
             continue;
         }
         let e = result.unwrap_err().to_string();

@@ -5,8 +5,8 @@
 //! `<preset>.diff.png` are written.
 
 use std::path::Path;
-use texplore::scene::AssetCache;
-use texplore::snapshot::{Outcome, check_preset, list_presets};
+use texplore::scene::{AssetCache, list_presets};
+use texplore::snapshot::{Outcome, check_preset};
 
 #[test]
 fn every_preset_matches_its_golden_image() {

@@ -1,9 +1,7 @@
 //! `texplore snapshot check|update`.
 
-use crate::scene::AssetCache;
-use crate::snapshot::{
-    MAX_BAD_FRACTION, MAX_MEAN_DIFF, Outcome, PIXEL_TOLERANCE, check_preset, list_presets,
-};
+use crate::scene::{AssetCache, list_presets};
+use crate::snapshot::{MAX_BAD_FRACTION, MAX_MEAN_DIFF, Outcome, PIXEL_TOLERANCE, check_preset};
 use anyhow::{Result, bail};
 use clap::ValueEnum;
 use std::path::PathBuf;

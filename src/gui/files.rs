@@ -65,7 +65,7 @@ pub fn config_dir() -> Option<PathBuf> {
 }
 
 fn list_presets() -> Vec<PathBuf> {
-    crate::snapshot::list_presets(Path::new(PRESET_DIR)).unwrap_or_default()
+    crate::scene::list_presets(Path::new(PRESET_DIR)).unwrap_or_default()
 }
 
 fn stem(p: &Path) -> String {

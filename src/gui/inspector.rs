@@ -3,7 +3,7 @@
 //! the footprint and mip level; the texture view marks the texel and draws the footprint.
 
 use crate::inspect::{ImageRead, Inspection};
-use crate::math::{Rgb, Vec2, linear_to_srgb};
+use crate::math::{Rgb, Vec2, linear_to_srgb8};
 use crate::scene::Scene;
 use crate::texture::{ImageData, Lookup};
 use std::sync::Arc;
@@ -45,9 +45,7 @@ impl Default for Inspector {
 }
 
 fn srgb(c: Rgb) -> egui::Color32 {
-    let [r, g, b] = c
-        .to_array()
-        .map(|v| (linear_to_srgb(v.clamp(0.0, 1.0)) * 255.0).round() as u8);
+    let [r, g, b] = c.to_array().map(linear_to_srgb8);
     egui::Color32::from_rgb(r, g, b)
 }
 

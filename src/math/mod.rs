@@ -6,7 +6,10 @@ mod color;
 mod rng;
 
 pub use atan::atan2;
-pub use color::{Rgb, linear_to_srgb, srgb_to_linear, srgb8_table, srgb8_to_linear};
+pub use color::{
+    DisplayImage, Rgb, encode_display, encode_srgb8, linear_to_srgb, linear_to_srgb8, quantize8,
+    srgb_to_linear, srgb8_table, srgb8_to_linear,
+};
 pub use glam::{Affine3A, Mat3, Mat3A, Quat, Vec2, Vec3, Vec3A};
 pub use rng::{SampleRng, hash3};
 

@@ -172,133 +172,183 @@ pub fn read_ply(path: &Path) -> Result<MeshData> {
 /// See [`read_ply`].
 pub fn read_ply_from(r: &mut impl BufRead, path: &Path) -> Result<MeshData> {
     let header = read_header(r, path)?;
+    let layout = Layout::new(&header, path)?;
+    match header.format {
+        PlyFormat::Ascii => read_body(r, &header, &layout, AsciiBody::new(header.lines), path),
+        PlyFormat::BinaryLittleEndian => read_body(
+            r,
+            &header,
+            &layout,
+            BinaryBody::<false>::new(header.bytes),
+            path,
+        ),
+        PlyFormat::BinaryBigEndian => read_body(
+            r,
+            &header,
+            &layout,
+            BinaryBody::<true>::new(header.bytes),
+            path,
+        ),
+    }
+}
+
+/// What the reader takes from the header: the vertex and face elements, where each vertex
+/// property goes and which list holds the face's vertex indices.
+struct Layout {
+    /// Index of the vertex element in `Header::elements`.
+    vertex: usize,
+    /// Per vertex property, where its value goes.
+    slots: Vec<Slot>,
+    /// The (u, v) property names found, if any.
+    uv_names: Option<(&'static str, &'static str)>,
+    has_normals: bool,
+    n_vertices: u64,
+    /// Index of the face element in `Header::elements`.
+    face: usize,
+    /// Index of the face's vertex index list among its properties.
+    face_list: usize,
+}
+
+impl Layout {
+    fn new(header: &Header, path: &Path) -> Result<Self> {
+        let fail = |at: String, message: String| Error::Mesh {
+            path: path.to_path_buf(),
+            at,
+            message,
+        };
+        let find_element = |name: &str| header.elements.iter().position(|e| e.name == name);
+        let vertex = find_element("vertex")
+            .ok_or_else(|| fail("header".into(), "no 'vertex' element".into()))?;
+        let vertex_el = &header.elements[vertex];
+        let find = |name: &str| {
+            vertex_el
+                .props
+                .iter()
+                .position(|p| matches!(p, Property::Scalar { name: n, .. } if n == name))
+        };
+        let mut slots = vec![Slot::Skip; vertex_el.props.len()];
+        for (k, axis) in ["x", "y", "z"].iter().enumerate() {
+            let i = find(axis).ok_or_else(|| {
+                fail(
+                    format!("header line {}", vertex_el.line),
+                    format!("the vertex element has no '{axis}' property"),
+                )
+            })?;
+            slots[i] = Slot::Pos(k);
+        }
+        let uv = UV_NAMES
+            .iter()
+            .find_map(|&(u, v)| Some(((find(u)?, find(v)?), (u, v))));
+        if let Some(((iu, iv), _)) = uv {
+            slots[iu] = Slot::Uv(0);
+            slots[iv] = Slot::Uv(1);
+        }
+        let normal_idx = [find("nx"), find("ny"), find("nz")];
+        let has_normals = normal_idx.iter().all(Option::is_some);
+        if has_normals {
+            for (k, i) in normal_idx.iter().flatten().enumerate() {
+                slots[*i] = Slot::Normal(k);
+            }
+        }
+        let n_vertices = vertex_el.count;
+        if n_vertices > MAX_VERTICES as u64 {
+            return Err(fail(
+                format!("header line {}", vertex_el.line),
+                format!("{n_vertices} vertices is more than texplore reads ({MAX_VERTICES})"),
+            ));
+        }
+        let face = find_element("face")
+            .ok_or_else(|| fail("header".into(), "no 'face' element (a point cloud?)".into()))?;
+        let face_el = &header.elements[face];
+        let face_list = face_el
+            .props
+            .iter()
+            .position(|p| {
+                matches!(p, Property::List { name, .. } if name == "vertex_indices" || name == "vertex_index")
+            })
+            .ok_or_else(|| {
+                fail(
+                    format!("header line {}", face_el.line),
+                    "the face element has no 'vertex_indices' (or 'vertex_index') list".into(),
+                )
+            })?;
+        if let Property::List { item, .. } = &face_el.props[face_list]
+            && !item.is_int()
+        {
+            return Err(fail(
+                format!("header line {}", face_el.line),
+                "vertex indices must be an integer type".into(),
+            ));
+        }
+        if face_el.count > MAX_TRIANGLES as u64 {
+            return Err(fail(
+                format!("header line {}", face_el.line),
+                format!(
+                    "{} faces is more than texplore reads ({MAX_TRIANGLES})",
+                    face_el.count
+                ),
+            ));
+        }
+        Ok(Self {
+            vertex,
+            slots,
+            uv_names: uv.map(|(_, names)| names),
+            has_normals,
+            n_vertices,
+            face,
+            face_list,
+        })
+    }
+}
+
+/// Reads every element of the body, in the header's order, through `body`'s encoding (one
+/// copy of this function per encoding, so the per-value read is not a dispatch).
+fn read_body<B: Body, R: BufRead>(
+    r: &mut R,
+    header: &Header,
+    layout: &Layout,
+    mut body: B,
+    path: &Path,
+) -> Result<MeshData> {
     let fail = |at: String, message: String| Error::Mesh {
         path: path.to_path_buf(),
         at,
         message,
     };
-
-    // The vertex element and where its properties go.
-    let vertex = header
-        .elements
-        .iter()
-        .find(|e| e.name == "vertex")
-        .ok_or_else(|| fail("header".into(), "no 'vertex' element".into()))?;
-    let find = |name: &str| {
-        vertex
-            .props
-            .iter()
-            .position(|p| matches!(p, Property::Scalar { name: n, .. } if n == name))
-    };
-    let mut slots = vec![Slot::Skip; vertex.props.len()];
-    for (k, axis) in ["x", "y", "z"].iter().enumerate() {
-        let i = find(axis).ok_or_else(|| {
-            fail(
-                format!("header line {}", vertex.line),
-                format!("the vertex element has no '{axis}' property"),
-            )
-        })?;
-        slots[i] = Slot::Pos(k);
-    }
-    let uv_names = UV_NAMES
-        .iter()
-        .find_map(|(u, v)| Some(((find(u)?, find(v)?), (*u, *v))));
-    if let Some(((iu, iv), _)) = uv_names {
-        slots[iu] = Slot::Uv(0);
-        slots[iv] = Slot::Uv(1);
-    }
-    let normal_idx = [find("nx"), find("ny"), find("nz")];
-    let has_normals = normal_idx.iter().all(Option::is_some);
-    if has_normals {
-        for (k, i) in normal_idx.iter().flatten().enumerate() {
-            slots[*i] = Slot::Normal(k);
-        }
-    }
-    let n_vertices = vertex.count;
-    if n_vertices > MAX_VERTICES as u64 {
-        return Err(fail(
-            format!("header line {}", vertex.line),
-            format!("{n_vertices} vertices is more than texplore reads ({MAX_VERTICES})"),
-        ));
-    }
-    let face = header
-        .elements
-        .iter()
-        .find(|e| e.name == "face")
-        .ok_or_else(|| fail("header".into(), "no 'face' element (a point cloud?)".into()))?;
-    let face_list = face
-        .props
-        .iter()
-        .position(|p| {
-            matches!(p, Property::List { name, .. } if name == "vertex_indices" || name == "vertex_index")
-        })
-        .ok_or_else(|| {
-            fail(
-                format!("header line {}", face.line),
-                "the face element has no 'vertex_indices' (or 'vertex_index') list".into(),
-            )
-        })?;
-    if let Property::List { item, .. } = &face.props[face_list]
-        && !item.is_int()
-    {
-        return Err(fail(
-            format!("header line {}", face.line),
-            "vertex indices must be an integer type".into(),
-        ));
-    }
-    if face.count > MAX_TRIANGLES as u64 {
-        return Err(fail(
-            format!("header line {}", face.line),
-            format!(
-                "{} faces is more than texplore reads ({MAX_TRIANGLES})",
-                face.count
-            ),
-        ));
-    }
-
     let mut data = MeshData {
         format: format!("ply {}", header.format.name()),
-        uv_names: uv_names.map(|(_, (u, v))| (u.to_string(), v.to_string())),
+        uv_names: layout.uv_names.map(|(u, v)| (u.to_string(), v.to_string())),
         ..MeshData::default()
     };
+    let n_vertices = layout.n_vertices;
     // Never reserve from the header's word alone: a lying count must not allocate.
     let reserve = |n: u64| (n as usize).min(1 << 20);
     data.positions.reserve(reserve(n_vertices));
-    if uv_names.is_some() {
+    if layout.uv_names.is_some() {
         data.uvs.reserve(reserve(n_vertices));
     }
-    if has_normals {
+    if layout.has_normals {
         data.normals.reserve(reserve(n_vertices));
     }
-    data.triangles.reserve(reserve(face.count));
+    data.triangles
+        .reserve(reserve(header.elements[layout.face].count));
 
-    let mut input = match header.format {
-        PlyFormat::Ascii => Input::Ascii(Ascii {
-            line: String::new(),
-            pos: 0,
-            line_no: header.lines,
-        }),
-        PlyFormat::BinaryLittleEndian | PlyFormat::BinaryBigEndian => Input::Binary {
-            offset: header.bytes,
-            big: header.format == PlyFormat::BinaryBigEndian,
-        },
-    };
     let mut corners: Vec<u32> = Vec::with_capacity(16);
-    for el in &header.elements {
-        let is_vertex = std::ptr::eq(el, vertex);
-        let is_face = std::ptr::eq(el, face);
+    for (e, el) in header.elements.iter().enumerate() {
+        let is_vertex = e == layout.vertex;
+        let is_face = e == layout.face;
         for i in 0..el.count {
-            let at = |input: &Input| format!("{} ({} {i})", input.at(), el.name);
+            // Built only on the error paths: where reading stopped, and in which element.
+            let at = |pos: At| format!("{pos} ({} {i})", el.name);
             let mut pos = [0.0f64; 3];
             let mut uv = [0.0f64; 2];
             let mut nrm = [0.0f64; 3];
             for (k, prop) in el.props.iter().enumerate() {
-                let before = input.at();
                 match prop {
                     Property::Scalar { ty, .. } => {
-                        let x = input.read(r, *ty).map_err(|m| fail(at(&input), m))?;
+                        let x = body.read(r, *ty).map_err(|m| fail(at(body.at()), m))?;
                         if is_vertex {
-                            match slots[k] {
+                            match layout.slots[k] {
                                 Slot::Pos(a) => pos[a] = x,
                                 Slot::Uv(a) => uv[a] = x,
                                 Slot::Normal(a) => nrm[a] = x,
@@ -307,83 +357,35 @@ pub fn read_ply_from(r: &mut impl BufRead, path: &Path) -> Result<MeshData> {
                         }
                     }
                     Property::List { count, item, .. } => {
-                        let n = input.read(r, *count).map_err(|m| fail(at(&input), m))?;
+                        let before = body.at();
+                        let n = body.read(r, *count).map_err(|m| fail(at(body.at()), m))?;
                         if !(0.0..=MAX_POLYGON_CORNERS as f64).contains(&n) {
                             return Err(fail(
-                                format!("{before} ({} {i})", el.name),
+                                at(before),
                                 format!(
                                     "a list of {n} items (at most {MAX_POLYGON_CORNERS} are read)"
                                 ),
                             ));
                         }
-                        let take = is_face && k == face_list;
+                        let take = is_face && k == layout.face_list;
                         corners.clear();
                         for _ in 0..n as usize {
-                            let x = input.read(r, *item).map_err(|m| fail(at(&input), m))?;
+                            let x = body.read(r, *item).map_err(|m| fail(at(body.at()), m))?;
                             if take {
-                                if x < 0.0 {
-                                    return Err(fail(
-                                        at(&input),
-                                        format!("vertex index {x} is negative"),
-                                    ));
-                                }
-                                if x >= n_vertices as f64 {
-                                    return Err(fail(
-                                        at(&input),
-                                        format!(
-                                            "vertex index {x} is out of range ({n_vertices} vertices)"
-                                        ),
-                                    ));
-                                }
-                                corners.push(x as u32);
+                                let index = vertex_index(x, n_vertices)
+                                    .map_err(|m| fail(at(body.at()), m))?;
+                                corners.push(index);
                             }
                         }
                         if take {
-                            if corners.len() < 3 {
-                                return Err(fail(
-                                    at(&input),
-                                    format!(
-                                        "a face needs at least 3 vertices, this one has {}",
-                                        corners.len()
-                                    ),
-                                ));
-                            }
-                            for k in 1..corners.len() - 1 {
-                                data.triangles
-                                    .push([corners[0], corners[k], corners[k + 1]]);
-                            }
-                            if data.triangles.len() > MAX_TRIANGLES {
-                                return Err(fail(
-                                    at(&input),
-                                    format!(
-                                        "more than {MAX_TRIANGLES} triangles after triangulation"
-                                    ),
-                                ));
-                            }
+                            push_polygon(&mut data.triangles, &corners)
+                                .map_err(|m| fail(at(body.at()), m))?;
                         }
                     }
                 }
             }
             if is_vertex {
-                let p = Vec3::new(pos[0] as f32, pos[1] as f32, pos[2] as f32);
-                if !p.is_finite() {
-                    return Err(fail(at(&input), format!("position {p} is not finite")));
-                }
-                data.positions.push(p);
-                if uv_names.is_some() {
-                    let t = Vec2::new(uv[0] as f32, uv[1] as f32);
-                    if !t.is_finite() {
-                        return Err(fail(at(&input), format!("(u, v) {t} is not finite")));
-                    }
-                    data.uvs.push(t);
-                }
-                if has_normals {
-                    let n = Vec3::new(nrm[0] as f32, nrm[1] as f32, nrm[2] as f32);
-                    if !n.is_finite() {
-                        return Err(fail(at(&input), format!("normal {n} is not finite")));
-                    }
-                    data.normals.push(n);
-                }
+                push_vertex(&mut data, layout, pos, uv, nrm).map_err(|m| fail(at(body.at()), m))?;
             }
             if is_face {
                 data.faces += 1;
@@ -391,6 +393,69 @@ pub fn read_ply_from(r: &mut impl BufRead, path: &Path) -> Result<MeshData> {
         }
     }
     Ok(data)
+}
+
+/// A face's vertex index, checked against the vertex count.
+fn vertex_index(x: f64, n_vertices: u64) -> std::result::Result<u32, String> {
+    if x < 0.0 {
+        return Err(format!("vertex index {x} is negative"));
+    }
+    if x >= n_vertices as f64 {
+        return Err(format!(
+            "vertex index {x} is out of range ({n_vertices} vertices)"
+        ));
+    }
+    Ok(x as u32)
+}
+
+/// Triangulates a polygon as a fan from its first corner.
+fn push_polygon(triangles: &mut Vec<[u32; 3]>, corners: &[u32]) -> std::result::Result<(), String> {
+    if corners.len() < 3 {
+        return Err(format!(
+            "a face needs at least 3 vertices, this one has {}",
+            corners.len()
+        ));
+    }
+    for k in 1..corners.len() - 1 {
+        triangles.push([corners[0], corners[k], corners[k + 1]]);
+    }
+    if triangles.len() > MAX_TRIANGLES {
+        return Err(format!(
+            "more than {MAX_TRIANGLES} triangles after triangulation"
+        ));
+    }
+    Ok(())
+}
+
+/// Stores one vertex's position, and its (u, v) and normal when the file has them; each must be
+/// finite.
+fn push_vertex(
+    data: &mut MeshData,
+    layout: &Layout,
+    pos: [f64; 3],
+    uv: [f64; 2],
+    nrm: [f64; 3],
+) -> std::result::Result<(), String> {
+    let p = Vec3::new(pos[0] as f32, pos[1] as f32, pos[2] as f32);
+    if !p.is_finite() {
+        return Err(format!("position {p} is not finite"));
+    }
+    data.positions.push(p);
+    if layout.uv_names.is_some() {
+        let t = Vec2::new(uv[0] as f32, uv[1] as f32);
+        if !t.is_finite() {
+            return Err(format!("(u, v) {t} is not finite"));
+        }
+        data.uvs.push(t);
+    }
+    if layout.has_normals {
+        let n = Vec3::new(nrm[0] as f32, nrm[1] as f32, nrm[2] as f32);
+        if !n.is_finite() {
+            return Err(format!("normal {n} is not finite"));
+        }
+        data.normals.push(n);
+    }
+    Ok(())
 }
 
 fn read_header(r: &mut impl BufRead, path: &Path) -> Result<Header> {
@@ -522,100 +587,50 @@ fn read_header(r: &mut impl BufRead, path: &Path) -> Result<Header> {
     }
 }
 
-enum Input {
-    Ascii(Ascii),
-    Binary { offset: u64, big: bool },
+/// Where reading is in the body: a line of an ascii file, a byte of a binary one (from the
+/// file's start).
+#[derive(Clone, Copy, Debug)]
+enum At {
+    Line(usize),
+    Byte(u64),
 }
 
-struct Ascii {
+impl std::fmt::Display for At {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::Line(n) => write!(f, "line {n}"),
+            Self::Byte(n) => write!(f, "byte {n}"),
+        }
+    }
+}
+
+/// A body encoding: values one at a time.
+trait Body {
+    /// Where the next value starts (after a failed read: where it failed).
+    fn at(&self) -> At;
+    /// One value of type `ty` (integers are exact in f64).
+    fn read(&mut self, r: &mut impl BufRead, ty: Scalar) -> std::result::Result<f64, String>;
+}
+
+const TRUNCATED: &str = "the file ends early (truncated?)";
+
+/// Whitespace-separated text, any number of values per line.
+struct AsciiBody {
     line: String,
     pos: usize,
     line_no: usize,
 }
 
-const TRUNCATED: &str = "the file ends early (truncated?)";
-
-impl Input {
-    fn at(&self) -> String {
-        match self {
-            Self::Ascii(a) => format!("line {}", a.line_no),
-            Self::Binary { offset, .. } => format!("byte {offset}"),
+impl AsciiBody {
+    /// A body whose first line follows `header_lines` header lines.
+    const fn new(header_lines: usize) -> Self {
+        Self {
+            line: String::new(),
+            pos: 0,
+            line_no: header_lines,
         }
     }
 
-    /// One value of type `ty` (integers are exact in f64).
-    #[inline]
-    fn read(&mut self, r: &mut impl BufRead, ty: Scalar) -> std::result::Result<f64, String> {
-        match self {
-            Self::Ascii(a) => {
-                let (s, e) = a.token(r)?;
-                let tok = &a.line[s..e];
-                if ty.is_int() {
-                    tok.parse::<i64>()
-                        .map(|v| v as f64)
-                        .map_err(|_| format!("expected an integer, found '{tok}'"))
-                } else {
-                    tok.parse::<f64>()
-                        .map_err(|_| format!("expected a number, found '{tok}'"))
-                }
-            }
-            Self::Binary { offset, big } => {
-                let mut b = [0u8; 8];
-                let n = ty.size();
-                r.read_exact(&mut b[..n]).map_err(|e| {
-                    if e.kind() == std::io::ErrorKind::UnexpectedEof {
-                        TRUNCATED.to_string()
-                    } else {
-                        e.to_string()
-                    }
-                })?;
-                *offset += n as u64;
-                let big = *big;
-                let b2 = [b[0], b[1]];
-                let b4 = [b[0], b[1], b[2], b[3]];
-                let e2 = |le: fn([u8; 2]) -> f64, be: fn([u8; 2]) -> f64| {
-                    if big { be(b2) } else { le(b2) }
-                };
-                let e4 = |le: fn([u8; 4]) -> f64, be: fn([u8; 4]) -> f64| {
-                    if big { be(b4) } else { le(b4) }
-                };
-                Ok(match ty {
-                    Scalar::I8 => f64::from(b[0] as i8),
-                    Scalar::U8 => f64::from(b[0]),
-                    Scalar::I16 => e2(
-                        |a| f64::from(i16::from_le_bytes(a)),
-                        |a| f64::from(i16::from_be_bytes(a)),
-                    ),
-                    Scalar::U16 => e2(
-                        |a| f64::from(u16::from_le_bytes(a)),
-                        |a| f64::from(u16::from_be_bytes(a)),
-                    ),
-                    Scalar::I32 => e4(
-                        |a| f64::from(i32::from_le_bytes(a)),
-                        |a| f64::from(i32::from_be_bytes(a)),
-                    ),
-                    Scalar::U32 => e4(
-                        |a| f64::from(u32::from_le_bytes(a)),
-                        |a| f64::from(u32::from_be_bytes(a)),
-                    ),
-                    Scalar::F32 => e4(
-                        |a| f64::from(f32::from_le_bytes(a)),
-                        |a| f64::from(f32::from_be_bytes(a)),
-                    ),
-                    Scalar::F64 => {
-                        if big {
-                            f64::from_be_bytes(b)
-                        } else {
-                            f64::from_le_bytes(b)
-                        }
-                    }
-                })
-            }
-        }
-    }
-}
-
-impl Ascii {
     /// The next whitespace-separated token, as a range of `self.line`.
     fn token(&mut self, r: &mut impl BufRead) -> std::result::Result<(usize, usize), String> {
         loop {
@@ -646,6 +661,84 @@ impl Ascii {
             }
             self.line_no += 1;
         }
+    }
+}
+
+impl Body for AsciiBody {
+    fn at(&self) -> At {
+        At::Line(self.line_no)
+    }
+
+    #[inline]
+    fn read(&mut self, r: &mut impl BufRead, ty: Scalar) -> std::result::Result<f64, String> {
+        let (s, e) = self.token(r)?;
+        let tok = &self.line[s..e];
+        if ty.is_int() {
+            tok.parse::<i64>()
+                .map(|v| v as f64)
+                .map_err(|_| format!("expected an integer, found '{tok}'"))
+        } else {
+            tok.parse::<f64>()
+                .map_err(|_| format!("expected a number, found '{tok}'"))
+        }
+    }
+}
+
+/// Packed binary values, big-endian when `BIG`.
+struct BinaryBody<const BIG: bool> {
+    offset: u64,
+}
+
+impl<const BIG: bool> BinaryBody<BIG> {
+    /// A body that starts `header_bytes` into the file.
+    const fn new(header_bytes: u64) -> Self {
+        Self {
+            offset: header_bytes,
+        }
+    }
+}
+
+/// `from_be_bytes` or `from_le_bytes` of a scalar type, chosen at compile time.
+macro_rules! from_bytes {
+    ($t:ty, $big:expr, $b:expr) => {{
+        let a = $b[..size_of::<$t>()]
+            .try_into()
+            .expect("a slice of the type's size");
+        if $big {
+            <$t>::from_be_bytes(a)
+        } else {
+            <$t>::from_le_bytes(a)
+        }
+    }};
+}
+
+impl<const BIG: bool> Body for BinaryBody<BIG> {
+    fn at(&self) -> At {
+        At::Byte(self.offset)
+    }
+
+    #[inline]
+    fn read(&mut self, r: &mut impl BufRead, ty: Scalar) -> std::result::Result<f64, String> {
+        let mut b = [0u8; 8];
+        let n = ty.size();
+        r.read_exact(&mut b[..n]).map_err(|e| {
+            if e.kind() == std::io::ErrorKind::UnexpectedEof {
+                TRUNCATED.to_string()
+            } else {
+                e.to_string()
+            }
+        })?;
+        self.offset += n as u64;
+        Ok(match ty {
+            Scalar::I8 => f64::from(b[0] as i8),
+            Scalar::U8 => f64::from(b[0]),
+            Scalar::I16 => f64::from(from_bytes!(i16, BIG, b)),
+            Scalar::U16 => f64::from(from_bytes!(u16, BIG, b)),
+            Scalar::I32 => f64::from(from_bytes!(i32, BIG, b)),
+            Scalar::U32 => f64::from(from_bytes!(u32, BIG, b)),
+            Scalar::F32 => f64::from(from_bytes!(f32, BIG, b)),
+            Scalar::F64 => from_bytes!(f64, BIG, b),
+        })
     }
 }
 

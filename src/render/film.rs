@@ -1,8 +1,8 @@
 //! The film: per-pixel running sums of linear radiance and sample weight, and the conversion to
 //! display bytes.
 
-use crate::math::{Rgb, linear_to_srgb};
-use std::sync::LazyLock;
+use crate::math::Rgb;
+pub use crate::math::{DisplayImage, encode_srgb8};
 
 /// Running sums per pixel: `[r, g, b, weight]`, linear radiance; and, for adaptive sampling,
 /// the sum and the sum of squares of each sample's display-encoded luminance.
@@ -92,16 +92,12 @@ impl Film {
     /// Display-encoded RGBA8 (sRGB), scaled by `exposure_scale` and clipped.
     #[must_use]
     pub fn to_display(&self, exposure_scale: f32) -> DisplayImage {
-        let mut rgba = Vec::with_capacity(self.pixels.len() * 4);
-        for p in &self.pixels {
-            let c = mean(*p) * exposure_scale;
-            rgba.extend_from_slice(&[encode_srgb8(c.0), encode_srgb8(c.1), encode_srgb8(c.2), 255]);
-        }
-        DisplayImage {
-            width: self.width,
-            height: self.height,
-            rgba,
-        }
+        DisplayImage::encode(
+            self.width,
+            self.height,
+            self.pixels.iter().map(|p| mean(*p)),
+            exposure_scale,
+        )
     }
 }
 
@@ -114,73 +110,22 @@ fn mean(p: [f32; 4]) -> Rgb {
     }
 }
 
-/// An 8-bit sRGB RGBA image ready for the screen or a PNG.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct DisplayImage {
-    /// Width in pixels.
-    pub width: u32,
-    /// Height in pixels.
-    pub height: u32,
-    /// RGBA bytes, row-major from the top-left pixel.
-    pub rgba: Vec<u8>,
-}
-
-impl DisplayImage {
-    /// Linear radiance, scaled and encoded.
-    #[must_use]
-    pub fn from_linear(width: u32, height: u32, pixels: &[Rgb], exposure_scale: f32) -> Self {
-        let mut rgba = Vec::with_capacity(pixels.len() * 4);
-        for c in pixels {
-            let c = *c * exposure_scale;
-            rgba.extend_from_slice(&[encode_srgb8(c.0), encode_srgb8(c.1), encode_srgb8(c.2), 255]);
-        }
-        Self {
-            width,
-            height,
-            rgba,
-        }
-    }
-
-    /// The RGB bytes without alpha.
-    #[must_use]
-    pub fn rgb(&self) -> Vec<u8> {
-        self.rgba
-            .chunks_exact(4)
-            .flat_map(|p| [p[0], p[1], p[2]])
-            .collect()
-    }
-}
-
-const ENCODE_STEPS: usize = 1 << 16;
-
-static ENCODE_TABLE: LazyLock<Vec<u8>> = LazyLock::new(|| {
-    (0..ENCODE_STEPS)
-        .map(|i| (linear_to_srgb(i as f32 / (ENCODE_STEPS - 1) as f32) * 255.0).round() as u8)
-        .collect()
-});
-
-/// Linear value to 8-bit sRGB through a 65536-entry table (clips to [0, 1]; NaN to 0).
-#[must_use]
-#[inline]
-pub fn encode_srgb8(v: f32) -> u8 {
-    let v = if v > 0.0 { v.min(1.0) } else { 0.0 }; // also maps NaN to 0
-    ENCODE_TABLE[(v * (ENCODE_STEPS - 1) as f32 + 0.5) as usize]
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
-    fn table_encoding_matches_the_curve_within_one_step() {
-        for i in 0..=1000 {
-            let v = i as f32 / 1000.0;
-            let exact = (linear_to_srgb(v) * 255.0).round() as i32;
-            assert!((i32::from(encode_srgb8(v)) - exact).abs() <= 1, "{v}");
-        }
-        assert_eq!(encode_srgb8(f32::NAN), 0);
-        assert_eq!(encode_srgb8(f32::INFINITY), 255);
-        assert_eq!(encode_srgb8(-3.0), 0);
+    fn display_is_the_mean_encoded_and_black_where_no_sample_landed() {
+        let mut f = Film::new(3, 1);
+        f.pixels_mut()[0] = [0.5, 2.0, 0.1, 2.0];
+        f.pixels_mut()[1] = [f32::NAN, -1.0, 8.0, 1.0];
+        let d = f.to_display(2.0);
+        assert_eq!((d.width, d.height), (3, 1));
+        let e = |v: f32| encode_srgb8(v);
+        assert_eq!(
+            d.rgba,
+            vec![e(0.5), 255, e(0.1), 255, 0, 0, 255, 255, 0, 0, 0, 255]
+        );
     }
 
     #[test]

@@ -4,8 +4,7 @@
 //! clipped to [0, 1] and sRGB-encoded ([`EncodedImage`]). RMSE, PSNR, relative MSE and SSIM use
 //! the float sRGB values; FLIP (LDR-FLIP, NVIDIA's `nv-flip`) takes the 8-bit sRGB bytes.
 
-use crate::math::{Rgb, linear_to_srgb};
-use crate::render::encode_srgb8;
+use crate::math::{DisplayImage, Rgb, linear_to_srgb, quantize8};
 
 /// The small constant in relative MSE's denominator, (t - r)^2 / (r^2 + [`REL_MSE_EPSILON`]),
 /// which keeps black reference pixels from dividing by zero.
@@ -65,14 +64,12 @@ impl EncodedImage {
     #[must_use]
     pub fn from_linear(width: u32, height: u32, linear: &[Rgb], exposure_scale: f32) -> Self {
         assert_eq!(linear.len(), width as usize * height as usize, "image size");
-        let mut srgb = Vec::with_capacity(linear.len() * 3);
-        let mut srgb8 = Vec::with_capacity(linear.len() * 3);
-        for c in linear {
-            for v in (*c * exposure_scale).to_array() {
-                srgb.push(linear_to_srgb(v));
-                srgb8.push(encode_srgb8(v));
-            }
-        }
+        let srgb = linear
+            .iter()
+            .flat_map(|c| (*c * exposure_scale).to_array().map(linear_to_srgb))
+            .collect();
+        // The bytes are the display image's: a PNG of this render holds exactly these.
+        let srgb8 = DisplayImage::from_linear(width, height, linear, exposure_scale).rgb();
         Self {
             width,
             height,
@@ -92,10 +89,7 @@ impl EncodedImage {
             width as usize * height as usize * 3,
             "image size"
         );
-        let srgb8 = srgb
-            .iter()
-            .map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8)
-            .collect();
+        let srgb8 = srgb.iter().map(|v| quantize8(*v)).collect();
         Self {
             width,
             height,

@@ -3,7 +3,7 @@
 
 use super::{SceneDesc, ShapeDesc, TextureDesc};
 use crate::error::{Error, Result};
-use crate::render::DisplayImage;
+use crate::math::DisplayImage;
 use crate::texture::save_png;
 use std::path::{Path, PathBuf};
 

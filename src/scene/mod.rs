@@ -17,12 +17,28 @@ pub use files::{
 };
 
 use crate::camera::Camera;
+use crate::error::{Error, Result};
 use crate::geometry::{LocalHit, Object, Shape};
 use crate::mapping::Mapping;
 use crate::material::{Light, Material};
 use crate::math::{Ray, RayDifferential, Rgb, Vec3A, max_abs};
 use crate::sampler::{PixelFilter, PixelSampler};
 use crate::texture::{TextureContext, View};
+use std::path::{Path, PathBuf};
+
+/// The presets in `dir` (`*.ron`), sorted by name.
+///
+/// # Errors
+/// The directory cannot be read.
+pub fn list_presets(dir: &Path) -> Result<Vec<PathBuf>> {
+    let mut v: Vec<PathBuf> = std::fs::read_dir(dir)
+        .map_err(|e| Error::io(dir, e))?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|e| e == "ron"))
+        .collect();
+    v.sort();
+    Ok(v)
+}
 
 /// Shadow-ray origins are pushed off the surface along its geometric normal by this fraction of
 /// the magnitude of the coordinates involved (hit point and the object's translation): about a

@@ -3,7 +3,7 @@
 
 use super::{Lookup, Wrap};
 use crate::error::{Error, Result};
-use crate::math::{Rgb, Vec2, linear_to_srgb, srgb_to_linear, srgb8_table};
+use crate::math::{Rgb, Vec2, linear_to_srgb8, srgb_to_linear, srgb8_table};
 use std::path::Path;
 
 /// The largest width or height an image may have (decoding refuses anything bigger).
@@ -253,7 +253,7 @@ impl ImageData {
             for col in 0..self.width {
                 let c = self.texel_top(col, row);
                 for ch in c.to_array() {
-                    out.push((linear_to_srgb(ch) * 255.0).round() as u8);
+                    out.push(linear_to_srgb8(ch));
                 }
             }
         }

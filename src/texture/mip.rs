@@ -12,7 +12,7 @@
 //! so periodic mappings filter across their seam at every level.
 
 use super::{ImageData, Texels, Wrap};
-use crate::math::{Rgb, Vec2, linear_to_srgb};
+use crate::math::{Rgb, Vec2, linear_to_srgb8};
 use std::sync::{Arc, LazyLock};
 
 /// The default largest ratio of the footprint's major to minor axis that EWA honours; longer
@@ -305,7 +305,7 @@ fn downsample(img: &ImageData) -> ImageData {
         Texels::Srgb8(_) => Texels::Srgb8(
             dst.iter()
                 .map(|c| {
-                    let e = |v: f32| (linear_to_srgb(v.clamp(0.0, 1.0)) * 255.0).round() as u8;
+                    let e = linear_to_srgb8;
                     [e(c.0), e(c.1), e(c.2), 255]
                 })
                 .collect(),

@@ -1,0 +1,113 @@
+//! Helpers the integration tests share: running the binary, and scenes built from a preset with
+//! overrides. A test file that uses them declares `mod common;`.
+
+// Each test file is its own crate and uses a subset of these.
+#![allow(dead_code)]
+
+use std::path::Path;
+use std::process::{Command, Output};
+use texplore::render::{Film, render_blocking};
+use texplore::scene::{AssetCache, Overrides, Scene, SceneDesc, apply_overrides, build_scene};
+use texplore::texture::Filter;
+
+/// The crate's root (where `presets/` and `assets/` are).
+#[must_use]
+pub fn root() -> &'static Path {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// Runs `texplore` with `args` from the crate's root.
+#[must_use]
+pub fn texplore(args: &[&str]) -> Output {
+    texplore_in(root(), args)
+}
+
+/// Runs `texplore` with `args` from `dir`.
+#[must_use]
+pub fn texplore_in(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_texplore"))
+        .current_dir(dir)
+        .args(args)
+        .output()
+        .unwrap_or_else(|e| panic!("cannot run texplore {args:?}: {e}"))
+}
+
+/// Checks that a run succeeded (showing its stderr if not) and returns its stdout as text.
+pub fn success(out: &Output) -> String {
+    assert!(
+        out.status.success(),
+        "texplore failed ({}): {}",
+        out.status,
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8_lossy(&out.stdout).into_owned()
+}
+
+/// Checks that a run failed (showing its stdout if not) and returns its stderr as text.
+#[must_use]
+pub fn failure(out: &Output) -> String {
+    assert!(
+        !out.status.success(),
+        "texplore succeeded where it should fail: {}",
+        String::from_utf8_lossy(&out.stdout)
+    );
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
+/// Runs `texplore` with `args` from the crate's root, checks success, and parses its stdout as
+/// JSON.
+#[must_use]
+pub fn texplore_json(args: &[&str]) -> serde_json::Value {
+    parse_json(&texplore(args))
+}
+
+/// A successful run's stdout as JSON.
+#[must_use]
+pub fn parse_json(out: &Output) -> serde_json::Value {
+    let text = success(out);
+    serde_json::from_str(&text).unwrap_or_else(|e| panic!("stdout is not JSON ({e}): {text}"))
+}
+
+/// Overrides of the image size and the samples per pixel (the rest from the preset).
+#[must_use]
+pub fn sized(width: u32, height: u32, spp: u32) -> Overrides {
+    Overrides {
+        width: Some(width),
+        height: Some(height),
+        spp: Some(spp),
+        ..Overrides::default()
+    }
+}
+
+/// Overrides of every image texture's filter only.
+#[must_use]
+pub fn filtered(filter: Filter) -> Overrides {
+    Overrides {
+        filter: Some(filter),
+        ..Overrides::default()
+    }
+}
+
+/// `desc` with `overrides` applied, built; asset paths resolve next to `preset` (which also
+/// names the scene in errors).
+#[must_use]
+pub fn build_with(
+    desc: &SceneDesc,
+    preset: &Path,
+    overrides: Overrides,
+    cache: &mut AssetCache,
+) -> Scene {
+    let mut desc = desc.clone();
+    apply_overrides(&mut desc, overrides);
+    build_scene(&desc, preset, cache).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// Renders `scene` to completion on `threads` threads.
+#[must_use]
+pub fn render_on(scene: &Scene, threads: usize) -> Film {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .expect("a thread pool");
+    pool.install(|| render_blocking(scene, |_| {}))
+}

@@ -105,9 +105,6 @@ pub fn build_with(
 /// Renders `scene` to completion on `threads` threads.
 #[must_use]
 pub fn render_on(scene: &Scene, threads: usize) -> Film {
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .expect("a thread pool");
+    let pool = texplore::render::thread_pool(threads).unwrap_or_else(|e| panic!("{e}"));
     pool.install(|| render_blocking(scene, |_| {}))
 }

@@ -195,8 +195,9 @@ pub fn extension(path: &Path) -> String {
 /// # Errors
 /// "cannot write FILE: reason" when the output would be refused.
 pub fn check_output(path: &Path, allowed_exts: &[&str], inputs: &[&Path]) -> Result<()> {
-    check_extension(path, allowed_exts)?;
-    resolve(path, inputs).map(|_| ())
+    // What the path is (a directory, a FIFO, an input) says more than its extension.
+    resolve(path, inputs)?;
+    check_extension(path, allowed_exts)
 }
 
 /// Checks only the extension (see [`check_output`]).

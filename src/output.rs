@@ -318,7 +318,10 @@ mod tests {
         })
         .unwrap_err()
         .to_string();
-        assert_eq!(e, format!("cannot write {}: encoder gave up", out.display()));
+        assert_eq!(
+            e,
+            format!("cannot write {}: encoder gave up", out.display())
+        );
         assert_eq!(std::fs::read(&out).unwrap(), b"kept");
         assert_eq!(names(dir.path()), ["a.txt"]);
     }
@@ -327,7 +330,10 @@ mod tests {
     fn refuses_a_directory_a_missing_folder_and_an_input() {
         let dir = tempfile::tempdir().unwrap();
         let e = write_bytes(dir.path(), &[], b"x").unwrap_err().to_string();
-        assert!(e.starts_with("cannot write ") && e.contains("a directory"), "{e}");
+        assert!(
+            e.starts_with("cannot write ") && e.contains("a directory"),
+            "{e}"
+        );
         let missing = dir.path().join("nope").join("a.txt");
         let e = write_bytes(&missing, &[], b"x").unwrap_err().to_string();
         assert!(e.contains("does not exist"), "{e}");
@@ -380,7 +386,10 @@ mod tests {
         assert_eq!(mode, 0o640);
         std::fs::set_permissions(&real, Permissions::from_mode(0o444)).unwrap();
         let e = write_bytes(&real, &[], b"x").unwrap_err().to_string();
-        assert!(e.ends_with("permission denied (the file is read-only)"), "{e}");
+        assert!(
+            e.ends_with("permission denied (the file is read-only)"),
+            "{e}"
+        );
         assert_eq!(std::fs::read(&real).unwrap(), b"new");
     }
 }

@@ -8,8 +8,8 @@
 
 use crate::error::{Error, Result};
 use crate::mapping::Mapping;
-use crate::output::{check_extension, check_output, extension, write_atomically};
 use crate::math::{PI, Rgb, Vec3A};
+use crate::output::{check_extension, check_output, extension, write_atomically};
 use crate::texture::{ImageData, Wrap, load_image};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -147,10 +147,8 @@ pub fn save_image_checked(img: &ImageData, path: &Path, inputs: &[&Path]) -> Res
         "tif" | "tiff" => image::ImageFormat::Tiff,
         _ => image::ImageFormat::Pnm,
     };
-    write_atomically(path, inputs, |mut out| {
-        image
-            .write_to(&mut out, format)
-            .map_err(std::io::Error::other)
+    write_atomically(path, inputs, |out| {
+        image.write_to(out, format).map_err(std::io::Error::other)
     })
 }
 

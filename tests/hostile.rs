@@ -25,7 +25,17 @@ fn s(p: &Path) -> &str {
 /// `texplore render presets/checker.ron -o OUT` at 16x12, 1 spp (or another preset).
 fn render(preset: &str, out: &Path) -> Output {
     texplore(&[
-        "render", preset, "-o", s(out), "--width", "16", "--height", "12", "--spp", "1", "-q",
+        "render",
+        preset,
+        "-o",
+        s(out),
+        "--width",
+        "16",
+        "--height",
+        "12",
+        "--spp",
+        "1",
+        "-q",
     ])
 }
 
@@ -237,7 +247,17 @@ fn concurrent_renders_to_one_output_leave_one_complete_png() {
         Command::new(env!("CARGO_BIN_EXE_texplore"))
             .current_dir(env!("CARGO_MANIFEST_DIR"))
             .args(["render", "presets/checker.ron", "-o", s(&out)])
-            .args(["--width", w, "--height", h, "--spp", "1", "-q", "--threads", "1"])
+            .args([
+                "--width",
+                w,
+                "--height",
+                h,
+                "--spp",
+                "1",
+                "-q",
+                "--threads",
+                "1",
+            ])
             .spawn()
             .unwrap()
     };

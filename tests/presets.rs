@@ -157,7 +157,10 @@ fn saves_are_atomic_and_a_failed_save_keeps_the_old_file() {
     let mut other = desc.clone();
     other.render.spp += 1;
     let e = texplore::scene::save_preset(&other, &path).unwrap_err();
-    assert!(e.to_string().starts_with("cannot write ") && e.to_string().contains("mine.ron"), "{e}");
+    assert!(
+        e.to_string().starts_with("cannot write ") && e.to_string().contains("mine.ron"),
+        "{e}"
+    );
     assert_eq!(std::fs::read_to_string(&path).unwrap(), first);
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
     // A preset file of absurd size is refused before it is read.

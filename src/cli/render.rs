@@ -4,8 +4,8 @@ use crate::output::check_output;
 use crate::render::render_blocking;
 use crate::sampler::{PixelFilter, PixelSampler};
 use crate::scene::{
-    AdaptiveDesc, AssetCache, DEFAULT_ADAPTIVE_THRESHOLD, Overrides, apply_overrides, build_scene,
-    asset_paths, read_preset_or_png, save_render_png_checked,
+    AdaptiveDesc, AssetCache, DEFAULT_ADAPTIVE_THRESHOLD, Overrides, apply_overrides, asset_paths,
+    build_scene, read_preset_or_png, save_render_png_checked,
 };
 use crate::texture::{Filter, View};
 use anyhow::{Context, Result};

@@ -1,10 +1,10 @@
 //! `texplore report`: speed against error for presets, written as CSV, Markdown and plots.
 
+use crate::output::check_output;
 use crate::report::{
     Mode, ProgressUpdate, ReferenceSettings, ReportConfig, Stage, default_cache_dir, run_scene,
     write_outputs,
 };
-use crate::output::check_output;
 use crate::sampler::PixelSampler;
 use crate::scene::read_preset_or_png;
 use crate::texture::Filter;

@@ -165,7 +165,7 @@ impl Files {
                 {
                     if is_ron {
                         // Never overwrite without asking: the replace prompt confirms.
-                self.overwrite = Some(FileAction::Save(current.to_path_buf()));
+                        self.overwrite = Some(FileAction::Save(current.to_path_buf()));
                     } else {
                         self.dialog = Some((DialogKind::SaveAs, String::new()));
                     }

@@ -124,9 +124,9 @@ impl CachedReference {
         let data: Vec<f32> = pixels.iter().flat_map(|c| c.to_array()).collect();
         let img = image::Rgb32FImage::from_raw(width, height, data)
             .ok_or_else(|| ReportError::io(&self.exr, std::io::Error::other("image size")))?;
-        crate::output::write_atomically(&self.exr, &[], |mut out| {
+        crate::output::write_atomically(&self.exr, &[], |out| {
             image::DynamicImage::ImageRgb32F(img)
-                .write_to(&mut out, image::ImageFormat::OpenExr)
+                .write_to(out, image::ImageFormat::OpenExr)
                 .map_err(std::io::Error::other)
         })?;
         // The key last: a reference is only used once its key matches.

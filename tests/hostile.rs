@@ -182,6 +182,19 @@ fn an_output_that_is_an_input_by_another_spelling_is_refused() {
     let o = render(s(&scene), &other_tex);
     assert_refused(&o, &other_tex, "it is the input");
     assert_eq!(std::fs::read(&tex).unwrap(), tex_before);
+    // A preset saved (the window's Save as) over its own texture.
+    let desc = texplore::scene::load_preset(&scene).unwrap();
+    let e = texplore::scene::save_preset(&desc, &other_tex)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.starts_with(&format!(
+            "cannot write {}: it is the input",
+            other_tex.display()
+        )),
+        "{e}"
+    );
+    assert_eq!(std::fs::read(&tex).unwrap(), tex_before);
     // The probe's panorama.
     let pano = dir.path().join("pano.hdr");
     image::DynamicImage::ImageRgb32F(image::Rgb32FImage::from_pixel(

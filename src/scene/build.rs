@@ -77,12 +77,19 @@ pub fn to_ron(desc: &SceneDesc) -> String {
 }
 
 /// Writes a preset atomically through [`crate::output::write_atomically`] (a temporary file
-/// beside it, renamed over it; never over a directory, device or read-only file).
+/// beside it, renamed over it; never over a directory, device or read-only file, nor over one
+/// of the preset's own images or meshes, whose paths are relative to `path`'s folder).
 ///
 /// # Errors
 /// The file is refused or cannot be written: "cannot write FILE: reason".
 pub fn save_preset(desc: &SceneDesc, path: &Path) -> Result<()> {
-    crate::output::write_bytes(path, &[], to_ron(desc).as_bytes())
+    let folder = path
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let assets = super::files::asset_paths(desc, folder);
+    let inputs: Vec<&Path> = assets.iter().map(PathBuf::as_path).collect();
+    crate::output::write_bytes(path, &inputs, to_ron(desc).as_bytes())
 }
 
 /// Decoded images shared between builds, so an edit in the GUI does not decode the Earth again.

@@ -14,6 +14,14 @@ pub enum Error {
         /// What the OS said (kept out of the error chain: the message already includes it).
         io: std::io::Error,
     },
+    /// An output could not be written, or was refused before writing (see [`crate::output`]).
+    #[error("cannot write {}: {reason}", path.display())]
+    Write {
+        /// The output as the user named it.
+        path: PathBuf,
+        /// Why: "it is a FIFO, not a regular file", "permission denied", ...
+        reason: String,
+    },
     /// An image could not be decoded or was refused by the decode limits.
     #[error("{}: cannot load image: {message}", path.display())]
     Image {

@@ -16,6 +16,7 @@ pub mod material;
 pub mod math;
 pub mod meshio;
 pub mod names;
+pub mod output;
 pub mod probe;
 pub mod render;
 pub mod report;

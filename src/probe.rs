@@ -9,6 +9,7 @@
 use crate::error::{Error, Result};
 use crate::mapping::Mapping;
 use crate::math::{PI, Rgb, Vec3A};
+use crate::output::{check_extension, check_output, extension, write_atomically};
 use crate::texture::{ImageData, Wrap, load_image};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -77,12 +78,16 @@ pub fn panorama_to_probe(panorama: &ImageData, size: u32, format: ProbeFormat) -
     })
 }
 
+/// The extensions a probe can be written as.
+pub const PROBE_EXTS: &[&str] = &["hdr", "exr", "png", "jpg", "jpeg", "tif", "tiff", "ppm"];
+
 /// Reads a panorama, converts it and writes the probe. The output format follows the
 /// extension: `.hdr` or `.exr` keep linear values; `.png`, `.jpg`, `.tif` and `.ppm` are
-/// sRGB-encoded and clip above 1.
+/// sRGB-encoded and clip above 1. The output is checked (extension, not the panorama itself,
+/// not a directory or device) before the panorama is read.
 ///
 /// # Errors
-/// The panorama cannot be read, or the probe cannot be written.
+/// The output is refused, the panorama cannot be read, or the probe cannot be written.
 pub fn make_probe(
     panorama: &Path,
     output: &Path,
@@ -95,56 +100,56 @@ pub fn make_probe(
             format!("--size {size} is out of range (1 to 16384)"),
         ));
     }
+    check_output(output, PROBE_EXTS, &[panorama])?;
     let pano = load_image(panorama, true)?;
     let probe = panorama_to_probe(&pano, size, format);
-    save_image(&probe, output)?;
+    save_image_checked(&probe, output, &[panorama])?;
     Ok(probe)
 }
 
-/// Writes an image, linear for `.hdr`/`.exr`, sRGB 8-bit otherwise, atomically.
+/// Writes an image, linear for `.hdr`/`.exr`, sRGB 8-bit otherwise, atomically, in the
+/// format its extension names (see [`PROBE_EXTS`]).
 ///
 /// # Errors
-/// Unknown extension or a failed write.
+/// Unknown extension, a refused output or a failed write: "cannot write FILE: reason".
 pub fn save_image(img: &ImageData, path: &Path) -> Result<()> {
-    let ext = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .unwrap_or("")
-        .to_ascii_lowercase();
+    save_image_checked(img, path, &[])
+}
+
+/// [`save_image`] that also refuses to write over any of `inputs`.
+///
+/// # Errors
+/// As [`save_image`].
+pub fn save_image_checked(img: &ImageData, path: &Path, inputs: &[&Path]) -> Result<()> {
+    check_extension(path, PROBE_EXTS)?;
+    let ext = extension(path);
     let (w, h) = (img.width(), img.height());
-    let err = |m: String| Error::Image {
-        path: path.to_path_buf(),
-        message: m,
-    };
-    let tmp = path.with_extension(format!("tmp.{ext}"));
-    let result = match ext.as_str() {
-        "hdr" | "exr" => {
-            let mut data = Vec::with_capacity(w as usize * h as usize * 3);
-            for y in 0..h {
-                for x in 0..w {
-                    data.extend_from_slice(&img.texel_top(x, y).to_array());
-                }
+    let image = if matches!(ext.as_str(), "hdr" | "exr") {
+        let mut data = Vec::with_capacity(w as usize * h as usize * 3);
+        for y in 0..h {
+            for x in 0..w {
+                data.extend_from_slice(&img.texel_top(x, y).to_array());
             }
-            let buf =
-                image::Rgb32FImage::from_raw(w, h, data).ok_or_else(|| err("bad buffer".into()))?;
-            image::DynamicImage::ImageRgb32F(buf).save(&tmp)
         }
-        "png" | "jpg" | "jpeg" | "tif" | "tiff" | "ppm" => {
-            let buf = image::RgbImage::from_raw(w, h, img.to_srgb8())
-                .ok_or_else(|| err("bad buffer".into()))?;
-            image::DynamicImage::ImageRgb8(buf).save(&tmp)
-        }
-        _ => {
-            return Err(err(format!(
-                "unknown image extension '.{ext}' (use .hdr, .exr, .png, .jpg, .tif or .ppm)"
-            )));
-        }
+        image::Rgb32FImage::from_raw(w, h, data).map(image::DynamicImage::ImageRgb32F)
+    } else {
+        image::RgbImage::from_raw(w, h, img.to_srgb8()).map(image::DynamicImage::ImageRgb8)
     };
-    if let Err(e) = result {
-        let _ = std::fs::remove_file(&tmp);
-        return Err(err(e.to_string()));
-    }
-    std::fs::rename(&tmp, path).map_err(|e| Error::io(path, e))
+    let image = image.ok_or_else(|| Error::Write {
+        path: path.to_path_buf(),
+        reason: "the pixel buffer does not match the image size".into(),
+    })?;
+    let format = match ext.as_str() {
+        "hdr" => image::ImageFormat::Hdr,
+        "exr" => image::ImageFormat::OpenExr,
+        "png" => image::ImageFormat::Png,
+        "jpg" | "jpeg" => image::ImageFormat::Jpeg,
+        "tif" | "tiff" => image::ImageFormat::Tiff,
+        _ => image::ImageFormat::Pnm,
+    };
+    write_atomically(path, inputs, |out| {
+        image.write_to(out, format).map_err(std::io::Error::other)
+    })
 }
 
 #[cfg(test)]

@@ -137,13 +137,19 @@ fn saves_are_atomic_and_a_failed_save_keeps_the_old_file() {
         .filter(|n| n != "mine.ron")
         .collect();
     assert!(leftovers.is_empty(), "{leftovers:?}");
-    // The temporary file's place is taken by a directory: the write fails before the rename.
-    std::fs::create_dir(dir.path().join("mine.ron.tmp")).unwrap();
+    // The save is refused (the file is read-only): the file is kept, nothing is left beside it.
+    let mut perms = std::fs::metadata(&path).unwrap().permissions();
+    perms.set_readonly(true);
+    std::fs::set_permissions(&path, perms).unwrap();
     let mut other = desc.clone();
     other.render.spp += 1;
     let e = texplore::scene::save_preset(&other, &path).unwrap_err();
-    assert!(e.to_string().contains("mine.ron"), "{e}");
+    assert!(
+        e.to_string().starts_with("cannot write ") && e.to_string().contains("mine.ron"),
+        "{e}"
+    );
     assert_eq!(std::fs::read_to_string(&path).unwrap(), first);
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
     // A preset file of absurd size is refused before it is read.
     let huge = dir.path().join("huge.ron");
     let f = std::fs::File::create(&huge).unwrap();

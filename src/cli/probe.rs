@@ -9,7 +9,8 @@ use std::path::PathBuf;
 pub struct ProbeArgs {
     /// Equirectangular panorama (HDR or LDR; left edge longitude -180, top row the zenith).
     pub panorama: PathBuf,
-    /// Output probe image (.hdr or .exr keep HDR values; .png and .jpg clip).
+    /// Output probe image in the format its extension names (.hdr or .exr keep HDR values;
+    /// .png, .jpg, .tif and .ppm clip); checked before the panorama is read.
     #[arg(short, long)]
     pub output: PathBuf,
     /// Width and height of the probe in pixels.

@@ -1,23 +1,28 @@
 //! `texplore render`.
 
 use crate::names::value_parser;
+use crate::output::check_output;
 use crate::render::render_blocking;
 use crate::sampler::{PixelFilter, PixelSampler};
 use crate::scene::{
-    AdaptiveDesc, AssetCache, DEFAULT_ADAPTIVE_THRESHOLD, Overrides, apply_overrides, build_scene,
-    read_preset_or_png, save_render_png,
+    AdaptiveDesc, AssetCache, DEFAULT_ADAPTIVE_THRESHOLD, Overrides, apply_overrides, asset_paths,
+    build_scene, read_preset_or_png, save_render_png_checked,
 };
 use crate::texture::{Filter, View};
 use anyhow::{Context, Result};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+/// What `render -o` accepts: a render is a PNG, because its preset travels in a PNG text chunk.
+pub const RENDER_EXTS: &[&str] = &["png"];
+
 /// `texplore render`.
 #[derive(Debug, clap::Args)]
 pub struct RenderArgs {
     /// The preset (.ron), or a PNG saved by texplore with its preset inside.
     pub preset: PathBuf,
-    /// Output PNG.
+    /// Output PNG (with the preset inside; other extensions are refused). Never an input of
+    /// the render; a symbolic link is followed.
     #[arg(short, long)]
     pub output: PathBuf,
     /// Image width (overrides the preset).
@@ -68,6 +73,13 @@ pub struct RenderArgs {
 /// The preset, its assets or the output cannot be read or written.
 pub fn run(a: &RenderArgs) -> Result<()> {
     let mut desc = read_preset_or_png(&a.preset)?;
+    // A bad -o fails now, not after the render.
+    let preset_dir = a.preset.parent().unwrap_or(Path::new("."));
+    let assets = asset_paths(&desc, preset_dir);
+    let inputs: Vec<&Path> = std::iter::once(a.preset.as_path())
+        .chain(assets.iter().map(PathBuf::as_path))
+        .collect();
+    check_output(&a.output, RENDER_EXTS, &inputs)?;
     apply_overrides(
         &mut desc,
         Overrides {
@@ -108,9 +120,9 @@ pub fn run(a: &RenderArgs) -> Result<()> {
     let film = pool.install(|| render_blocking(&scene, |n| bar.set_position(u64::from(n))));
     let dt = t0.elapsed();
     bar.finish_and_clear();
-    let preset_dir = a.preset.parent().unwrap_or(Path::new("."));
-    save_render_png(
+    save_render_png_checked(
         &a.output,
+        &[&a.preset],
         &film.to_display(s.exposure_scale),
         &desc,
         preset_dir,

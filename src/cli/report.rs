@@ -1,6 +1,7 @@
 //! `texplore report`: speed against error for presets, written as CSV, Markdown and plots.
 
 use crate::names::value_parser;
+use crate::output::check_output;
 use crate::report::{
     Mode, ProgressUpdate, ReferenceSettings, ReportConfig, Stage, default_cache_dir, run_scene,
     write_outputs,
@@ -88,6 +89,27 @@ fn machine() -> String {
     format!("{cores} logical cores, {cpu}{load}")
 }
 
+/// Refuses, before any work, an output folder that is a file, and a `report.csv` or
+/// `report.md` in it that the writer would refuse (a FIFO, a directory, a read-only file, one of
+/// the presets).
+fn check_output_dir(dir: &Path, presets: &[PathBuf]) -> Result<()> {
+    match std::fs::metadata(dir) {
+        Ok(m) if !m.is_dir() => bail!(
+            "cannot write {}: it is a file, not a folder (-o names the report's folder)",
+            dir.display()
+        ),
+        Ok(_) => {
+            let inputs: Vec<&Path> = presets.iter().map(PathBuf::as_path).collect();
+            for name in ["report.csv", "report.md"] {
+                check_output(&dir.join(name), &[], &inputs)?;
+            }
+        }
+        // A missing folder is created when the files are written.
+        Err(_) => {}
+    }
+    Ok(())
+}
+
 /// Runs the report.
 ///
 /// # Errors
@@ -107,6 +129,7 @@ pub fn run(a: &ReportArgs) -> Result<()> {
     } else {
         a.presets.clone()
     };
+    check_output_dir(&a.output, &presets)?;
     let modes = Mode::parse_list(&a.modes)?;
     if a.spp.is_empty() || a.spp.contains(&0) {
         bail!("--spp needs a list of positive numbers, like 1,4,16");

@@ -54,14 +54,12 @@ pub struct Files {
     current: PathBuf,
 }
 
-/// The user's config folder for texplore: `$XDG_CONFIG_HOME/texplore` or `~/.config/texplore`.
+/// The user's config folder for texplore, from the `dirs` crate: `$XDG_CONFIG_HOME/texplore`
+/// or `~/.config/texplore` on Linux, `~/Library/Application Support/texplore` on macOS,
+/// `%APPDATA%\texplore` on Windows.
 #[must_use]
 pub fn config_dir() -> Option<PathBuf> {
-    let base = std::env::var_os("XDG_CONFIG_HOME")
-        .filter(|s| !s.is_empty())
-        .map(PathBuf::from)
-        .or_else(|| std::env::var_os("HOME").map(|h| PathBuf::from(h).join(".config")))?;
-    Some(base.join("texplore"))
+    dirs::config_dir().map(|d| d.join("texplore"))
 }
 
 fn list_presets() -> Vec<PathBuf> {
@@ -117,10 +115,7 @@ impl Files {
                 let _ = std::fs::create_dir_all(dir);
             }
             if let Ok(text) = ron::to_string(&self.recent) {
-                let tmp = f.with_extension("ron.tmp");
-                if std::fs::write(&tmp, text).is_ok() {
-                    let _ = std::fs::rename(&tmp, f);
-                }
+                let _ = crate::output::write_bytes(f, &[], text.as_bytes());
             }
         }
     }
@@ -170,7 +165,7 @@ impl Files {
                 {
                     if is_ron {
                         // Never overwrite without asking: the replace prompt confirms.
-                self.overwrite = Some(FileAction::Save(current.to_path_buf()));
+                        self.overwrite = Some(FileAction::Save(current.to_path_buf()));
                     } else {
                         self.dialog = Some((DialogKind::SaveAs, String::new()));
                     }
@@ -181,10 +176,14 @@ impl Files {
                 }
                 if ui
                     .button("Save screenshot…")
-                    .on_hover_text("A PNG of the image with the scene inside: open or drop it to restore the scene")
+                    .on_hover_text(concat!(
+                        "A PNG of the image with the scene inside: ",
+                        "open or drop it to restore the scene"
+                    ))
                     .clicked()
                 {
-                    self.dialog = Some((DialogKind::Screenshot, format!("{}-shot.png", stem(current))));
+                    let name = format!("{}-shot.png", stem(current));
+                    self.dialog = Some((DialogKind::Screenshot, name));
                 }
                 ui.menu_button("Recent", |ui| {
                     if self.recent.is_empty() {

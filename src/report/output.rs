@@ -24,8 +24,9 @@ pub fn file_safe(name: &str) -> String {
     }
 }
 
+/// Every report file goes through the one atomic writer (see [`crate::output`]).
 fn write(path: &Path, bytes: &[u8]) -> Result<(), ReportError> {
-    std::fs::write(path, bytes).map_err(|e| ReportError::io(path, e))
+    crate::output::write_bytes(path, &[], bytes).map_err(ReportError::Scene)
 }
 
 fn png(path: &Path, width: u32, height: u32, rgb: &[u8]) -> Result<(), ReportError> {

@@ -63,19 +63,15 @@ pub fn cache_key(desc: &SceneDesc, preset_path: &Path) -> CacheKey {
     CacheKey { text, hash }
 }
 
-/// The default cache directory: `$XDG_CACHE_HOME/texplore/references`, else
-/// `$HOME/.cache/texplore/references` (`%LOCALAPPDATA%` on Windows), else `fallback`.
+/// The default cache directory: the platform's cache folder (from the `dirs` crate:
+/// `$XDG_CACHE_HOME` or `~/.cache` on Linux, `~/Library/Caches` on macOS, `%LOCALAPPDATA%` on
+/// Windows) + `texplore/references`, else `fallback`.
 #[must_use]
 pub fn default_cache_dir(fallback: &Path) -> PathBuf {
-    let from_env = |var: &str, sub: &[&str]| {
-        std::env::var_os(var)
-            .filter(|v| !v.is_empty())
-            .map(|v| sub.iter().fold(PathBuf::from(v), |p, s| p.join(s)))
-    };
-    from_env("XDG_CACHE_HOME", &["texplore", "references"])
-        .or_else(|| from_env("HOME", &[".cache", "texplore", "references"]))
-        .or_else(|| from_env("LOCALAPPDATA", &["texplore", "references"]))
-        .unwrap_or_else(|| fallback.to_path_buf())
+    dirs::cache_dir().map_or_else(
+        || fallback.to_path_buf(),
+        |d| d.join("texplore").join("references"),
+    )
 }
 
 /// The files of one cached reference.
@@ -111,7 +107,8 @@ impl CachedReference {
         Some(img.pixels().map(|p| Rgb::from_array(p.0)).collect())
     }
 
-    /// Stores an image atomically (temporary files renamed into place, key last).
+    /// Stores an image atomically through [`crate::output::write_atomically`] (EXR first, key
+    /// last).
     ///
     /// # Errors
     /// The directory or files cannot be written.
@@ -127,13 +124,14 @@ impl CachedReference {
         let data: Vec<f32> = pixels.iter().flat_map(|c| c.to_array()).collect();
         let img = image::Rgb32FImage::from_raw(width, height, data)
             .ok_or_else(|| ReportError::io(&self.exr, std::io::Error::other("image size")))?;
-        let tmp = self.exr.with_extension("exr.tmp");
-        img.save_with_format(&tmp, image::ImageFormat::OpenExr)
-            .map_err(|e| ReportError::io(&tmp, std::io::Error::other(e.to_string())))?;
-        std::fs::rename(&tmp, &self.exr).map_err(|e| ReportError::io(&self.exr, e))?;
-        let tmp = self.key_file.with_extension("tmp");
-        std::fs::write(&tmp, &key.text).map_err(|e| ReportError::io(&tmp, e))?;
-        std::fs::rename(&tmp, &self.key_file).map_err(|e| ReportError::io(&self.key_file, e))
+        crate::output::write_atomically(&self.exr, &[], |out| {
+            image::DynamicImage::ImageRgb32F(img)
+                .write_to(out, image::ImageFormat::OpenExr)
+                .map_err(std::io::Error::other)
+        })?;
+        // The key last: a reference is only used once its key matches.
+        crate::output::write_bytes(&self.key_file, &[], key.text.as_bytes())?;
+        Ok(())
     }
 }
 

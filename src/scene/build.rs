@@ -76,14 +76,20 @@ pub fn to_ron(desc: &SceneDesc) -> String {
     ron::ser::to_string_pretty(desc, config).unwrap_or_else(|e| format!("// cannot serialise: {e}"))
 }
 
-/// Writes a preset atomically (temporary file, then rename).
+/// Writes a preset atomically through [`crate::output::write_atomically`] (a temporary file
+/// beside it, renamed over it; never over a directory, device or read-only file, nor over one
+/// of the preset's own images or meshes, whose paths are relative to `path`'s folder).
 ///
 /// # Errors
-/// The file cannot be written.
+/// The file is refused or cannot be written: "cannot write FILE: reason".
 pub fn save_preset(desc: &SceneDesc, path: &Path) -> Result<()> {
-    let tmp = path.with_extension("ron.tmp");
-    std::fs::write(&tmp, to_ron(desc)).map_err(|e| Error::io(&tmp, e))?;
-    std::fs::rename(&tmp, path).map_err(|e| Error::io(path, e))
+    let folder = path
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let assets = super::files::asset_paths(desc, folder);
+    let inputs: Vec<&Path> = assets.iter().map(PathBuf::as_path).collect();
+    crate::output::write_bytes(path, &inputs, to_ron(desc).as_bytes())
 }
 
 /// Decoded images shared between builds, so an edit in the GUI does not decode the Earth again.

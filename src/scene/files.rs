@@ -4,7 +4,7 @@
 use super::{SceneDesc, ShapeDesc, TextureDesc};
 use crate::error::{Error, Result};
 use crate::math::DisplayImage;
-use crate::texture::save_png;
+use crate::texture::save_png_checked;
 use std::path::{Path, PathBuf};
 
 /// The PNG text-chunk keyword under which renders and screenshots carry their preset.
@@ -59,12 +59,27 @@ pub fn read_png_preset(path: &Path) -> Result<String> {
 
 /// Writes a display image as an sRGB PNG with `desc` in a text chunk (atomically). `desc`'s
 /// asset paths are relative to `preset_dir`; the embedded copy's are rewritten relative to the
-/// PNG's folder, so opening the PNG from where it was saved finds the assets.
+/// PNG's folder, so opening the PNG from where it was saved finds the assets. The PNG never
+/// replaces one of those assets.
 ///
 /// # Errors
-/// The PNG cannot be written.
+/// The PNG is refused or cannot be written: "cannot write FILE: reason".
 pub fn save_render_png(
     path: &Path,
+    image: &DisplayImage,
+    desc: &SceneDesc,
+    preset_dir: &Path,
+) -> Result<()> {
+    save_render_png_checked(path, &[], image, desc, preset_dir)
+}
+
+/// [`save_render_png`] that also refuses to write over any of `inputs` (the preset file).
+///
+/// # Errors
+/// The PNG is refused or cannot be written: "cannot write FILE: reason".
+pub fn save_render_png_checked(
+    path: &Path,
+    inputs: &[&Path],
     image: &DisplayImage,
     desc: &SceneDesc,
     preset_dir: &Path,
@@ -73,15 +88,38 @@ pub fn save_render_png(
         .parent()
         .filter(|p| !p.as_os_str().is_empty())
         .unwrap_or(Path::new("."));
+    let assets = asset_paths(desc, preset_dir);
+    let all: Vec<&Path> = inputs
+        .iter()
+        .copied()
+        .chain(assets.iter().map(PathBuf::as_path))
+        .collect();
     let mut desc = desc.clone();
     rebase_assets(&mut desc, preset_dir, png_dir);
-    save_png(
+    save_png_checked(
         path,
+        &all,
         image.width,
         image.height,
         &image.rgb(),
         &[(PRESET_CHUNK, &super::to_ron(&desc))],
     )
+}
+
+/// The files `desc` reads (images and meshes), with its asset paths taken relative to
+/// `preset_dir`.
+#[must_use]
+pub fn asset_paths(desc: &SceneDesc, preset_dir: &Path) -> Vec<PathBuf> {
+    let mut out = Vec::new();
+    for o in &desc.objects {
+        if let TextureDesc::Image { path, .. } = o.material.texture() {
+            out.push(preset_dir.join(path));
+        }
+        if let ShapeDesc::Mesh { path, .. } = &o.shape {
+            out.push(preset_dir.join(path));
+        }
+    }
+    out
 }
 
 /// Rewrites every asset path of `desc` from relative-to-`from` to relative-to-`to` (absolute

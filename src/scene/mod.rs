@@ -12,8 +12,8 @@ pub use build::{
 };
 pub use desc::*;
 pub use files::{
-    PRESET_CHUNK, read_png_preset, read_preset_or_png, rebase_assets, relative_asset_path,
-    save_render_png,
+    PRESET_CHUNK, asset_paths, read_png_preset, read_preset_or_png, rebase_assets,
+    relative_asset_path, save_render_png, save_render_png_checked,
 };
 
 use crate::camera::Camera;

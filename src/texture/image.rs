@@ -349,12 +349,11 @@ fn sanitize(p: [f32; 3]) -> [f32; 3] {
     p.map(|v| if v.is_finite() && v >= 0.0 { v } else { 0.0 })
 }
 
-/// Writes RGB8 pixels as a PNG, with optional text chunks (keyword, text), atomically: a
-/// temporary file beside the target is renamed over it, so a failed save never leaves half a
-/// file.
+/// Writes RGB8 pixels as a PNG, with optional text chunks (keyword, text), atomically through
+/// [`crate::output::write_atomically`]: a failed save never leaves half a file.
 ///
 /// # Errors
-/// The file cannot be written.
+/// The file is refused or cannot be written: "cannot write FILE: reason".
 pub fn save_png(
     path: &Path,
     width: u32,
@@ -362,28 +361,33 @@ pub fn save_png(
     rgb: &[u8],
     text: &[(&str, &str)],
 ) -> Result<()> {
-    let tmp = path.with_extension("png.tmp");
-    let write = || -> std::result::Result<(), String> {
-        let file = std::fs::File::create(&tmp).map_err(|e| e.to_string())?;
-        let mut enc = png::Encoder::new(std::io::BufWriter::new(file), width, height);
+    save_png_checked(path, &[], width, height, rgb, text)
+}
+
+/// [`save_png`] that also refuses to write over any of `inputs` (the files the image was made
+/// from).
+///
+/// # Errors
+/// The file is refused or cannot be written: "cannot write FILE: reason".
+pub fn save_png_checked(
+    path: &Path,
+    inputs: &[&Path],
+    width: u32,
+    height: u32,
+    rgb: &[u8],
+    text: &[(&str, &str)],
+) -> Result<()> {
+    crate::output::write_atomically(path, inputs, |out| {
+        let mut enc = png::Encoder::new(out, width, height);
         enc.set_color(png::ColorType::Rgb);
         enc.set_depth(png::BitDepth::Eight);
         enc.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
         for (k, t) in text {
             enc.add_itxt_chunk((*k).to_string(), (*t).to_string())
-                .map_err(|e| e.to_string())?;
+                .map_err(std::io::Error::other)?;
         }
-        let mut w = enc.write_header().map_err(|e| e.to_string())?;
-        w.write_image_data(rgb).map_err(|e| e.to_string())?;
-        w.finish().map_err(|e| e.to_string())?;
-        Ok(())
-    };
-    if let Err(message) = write() {
-        let _ = std::fs::remove_file(&tmp);
-        return Err(Error::Image {
-            path: path.to_path_buf(),
-            message,
-        });
-    }
-    std::fs::rename(&tmp, path).map_err(|e| Error::io(path, e))
+        let mut w = enc.write_header().map_err(std::io::Error::other)?;
+        w.write_image_data(rgb).map_err(std::io::Error::other)?;
+        w.finish().map_err(std::io::Error::other)
+    })
 }

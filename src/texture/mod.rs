@@ -14,6 +14,7 @@ pub use debug::{View, mip_level_color};
 pub use explain::{explain_lookup, explain_wrap};
 pub use image::{
     ImageData, MAX_IMAGE_BYTES, MAX_IMAGE_DIMENSION, TILE, Texels, load_image, save_png,
+    save_png_checked,
 };
 pub use mip::{DEFAULT_MAX_ANISOTROPY, EWA_FOOTPRINT_SCALE, MAX_ANISOTROPY_LIMIT, MipPyramid};
 pub use procedural::{Checker, uv_grid_image};

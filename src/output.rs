@@ -1,0 +1,395 @@
+//! The one writer behind every save (renders, probes, presets, screenshots, report files, the
+//! reference cache, `snapshot update`): the user's files are never lost.
+//!
+//! [`write_atomically`] writes into a temporary file created exclusively, under a random name,
+//! in the output's folder, syncs it and renames it over the output, so a reader (or a second
+//! writer) sees the old file or the new one, never half of one. Before any byte is written it
+//! refuses, with "cannot write FILE: reason":
+//!
+//! - an output that exists and is not a regular file (a directory, FIFO, device, socket);
+//! - an output that is the same file as an input of the command (same device and inode,
+//!   whatever the spelling: `./x/../x.ron`, a hard link, a symbolic link);
+//! - a read-only output (no write permission bit), as `cp` without `-f` does;
+//! - a dangling symbolic link, or a folder that does not exist.
+//!
+//! A symbolic link is followed, as `cp` does: its target is replaced and the link kept. An
+//! existing file keeps its permission bits; a new one gets the usual `0666` less the umask. The
+//! temporary file is removed on every failure.
+//!
+//! [`check_output`] runs the same checks plus the extension, without writing: commands call it
+//! before any work, so a bad `-o` fails in milliseconds.
+
+use crate::error::{Error, Result};
+use std::fs::{Metadata, Permissions};
+use std::io::{self, BufWriter, Seek, Write};
+use std::path::{Path, PathBuf};
+
+/// A writer that can also seek (some image encoders, TIFF and EXR, seek back).
+pub trait WriteSeek: Write + Seek {}
+impl<T: Write + Seek> WriteSeek for T {}
+
+/// Where an output really goes: the path after following a symbolic link, and the existing
+/// file's permissions (`None`: a new file).
+#[derive(Debug)]
+struct Target {
+    path: PathBuf,
+    existing: Option<Permissions>,
+}
+
+/// "cannot write FILE: reason".
+fn refuse(path: &Path, reason: impl Into<String>) -> Error {
+    Error::Write {
+        path: path.to_path_buf(),
+        reason: reason.into(),
+    }
+}
+
+/// An OS error as a short reason: "permission denied", "no space left on device", ...
+fn io_reason(e: &io::Error) -> String {
+    let s = e.to_string();
+    // "Permission denied (os error 13)" -> "permission denied".
+    let s = s.split(" (os error").next().unwrap_or(&s);
+    let mut c = s.chars();
+    c.next().map_or_else(String::new, |f| {
+        f.to_lowercase().collect::<String>() + c.as_str()
+    })
+}
+
+/// What a non-regular file is, for the refusal.
+fn kind_name(m: &Metadata) -> &'static str {
+    if m.is_dir() {
+        return "a directory";
+    }
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        let t = m.file_type();
+        if t.is_fifo() {
+            return "a FIFO";
+        }
+        if t.is_char_device() || t.is_block_device() {
+            return "a device";
+        }
+        if t.is_socket() {
+            return "a socket";
+        }
+    }
+    "something else"
+}
+
+/// Whether two files' metadata describe the same file.
+#[cfg(unix)]
+fn same_file(a: &Metadata, _a_path: &Path, b: &Metadata, _b_path: &Path) -> bool {
+    use std::os::unix::fs::MetadataExt;
+    a.dev() == b.dev() && a.ino() == b.ino()
+}
+
+/// Whether two files' metadata describe the same file (by canonical path where inodes are not
+/// available).
+#[cfg(not(unix))]
+fn same_file(_a: &Metadata, a_path: &Path, _b: &Metadata, b_path: &Path) -> bool {
+    match (std::fs::canonicalize(a_path), std::fs::canonicalize(b_path)) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => false,
+    }
+}
+
+/// Follows a symbolic link and runs every check that needs no writing.
+fn resolve(path: &Path, inputs: &[&Path]) -> Result<Target> {
+    if path.as_os_str().is_empty() {
+        return Err(refuse(path, "the file name is empty"));
+    }
+    let link = match std::fs::symlink_metadata(path) {
+        Ok(m) => Some(m),
+        Err(e) if e.kind() == io::ErrorKind::NotFound => None,
+        Err(e) => return Err(refuse(path, io_reason(&e))),
+    };
+    let target = match &link {
+        Some(m) if m.file_type().is_symlink() => std::fs::canonicalize(path).map_err(|e| {
+            if e.kind() == io::ErrorKind::NotFound {
+                refuse(
+                    path,
+                    "it is a symbolic link to a file that does not exist (not writing through it)",
+                )
+            } else {
+                refuse(path, io_reason(&e))
+            }
+        })?,
+        _ => path.to_path_buf(),
+    };
+    let meta = match &link {
+        Some(m) if !m.file_type().is_symlink() => Some(m.clone()),
+        Some(_) => Some(std::fs::metadata(&target).map_err(|e| refuse(path, io_reason(&e)))?),
+        None => None,
+    };
+    let Some(meta) = meta else {
+        // A new file: its folder must exist.
+        let dir = folder(&target);
+        return match std::fs::metadata(dir) {
+            Ok(d) if d.is_dir() => Ok(Target {
+                path: target,
+                existing: None,
+            }),
+            Ok(_) => Err(refuse(path, format!("{} is not a folder", dir.display()))),
+            Err(e) if e.kind() == io::ErrorKind::NotFound => Err(refuse(
+                path,
+                format!("the folder {} does not exist", dir.display()),
+            )),
+            Err(e) => Err(refuse(path, io_reason(&e))),
+        };
+    };
+    if !meta.is_file() {
+        let what = kind_name(&meta);
+        let reason = if target == path {
+            format!("it is {what}, not a regular file")
+        } else {
+            format!(
+                "it is a symbolic link to {what} ({}), not a regular file",
+                target.display()
+            )
+        };
+        return Err(refuse(path, reason));
+    }
+    for input in inputs {
+        if let Ok(im) = std::fs::metadata(input)
+            && same_file(&meta, &target, &im, input)
+        {
+            return Err(refuse(
+                path,
+                format!(
+                    "it is the input {} (an output never replaces an input)",
+                    input.display()
+                ),
+            ));
+        }
+    }
+    if meta.permissions().readonly() {
+        return Err(refuse(path, "permission denied (the file is read-only)"));
+    }
+    Ok(Target {
+        path: target,
+        existing: Some(meta.permissions()),
+    })
+}
+
+/// The folder a file goes into (`.` for a bare name).
+fn folder(path: &Path) -> &Path {
+    path.parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."))
+}
+
+/// The extension of `path`, lower case (`""` when there is none).
+#[must_use]
+pub fn extension(path: &Path) -> String {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .unwrap_or("")
+        .to_ascii_lowercase()
+}
+
+/// Checks, without writing anything, that `path` could be written by [`write_atomically`]
+/// (see the module documentation) and that its extension is one of `allowed_exts` (lower case,
+/// without the dot; an empty list allows any).
+///
+/// # Errors
+/// "cannot write FILE: reason" when the output would be refused.
+pub fn check_output(path: &Path, allowed_exts: &[&str], inputs: &[&Path]) -> Result<()> {
+    // What the path is (a directory, a FIFO, an input) says more than its extension.
+    resolve(path, inputs)?;
+    check_extension(path, allowed_exts)
+}
+
+/// Checks only the extension (see [`check_output`]).
+///
+/// # Errors
+/// "cannot write FILE: reason" for an extension not in `allowed_exts`.
+pub fn check_extension(path: &Path, allowed_exts: &[&str]) -> Result<()> {
+    if allowed_exts.is_empty() {
+        return Ok(());
+    }
+    let ext = extension(path);
+    if allowed_exts.contains(&ext.as_str()) {
+        return Ok(());
+    }
+    let list = allowed_exts
+        .iter()
+        .map(|e| format!(".{e}"))
+        .collect::<Vec<_>>()
+        .join(", ");
+    let what = if ext.is_empty() {
+        "the file name has no extension".to_string()
+    } else {
+        format!("unknown extension '.{ext}'")
+    };
+    Err(refuse(path, format!("{what} (use {list})")))
+}
+
+/// Writes `path` atomically with the bytes `write` produces (see the module documentation):
+/// nothing is written when `path` is refused, and on any failure the temporary file is removed
+/// and the old file, if any, is left as it was.
+///
+/// # Errors
+/// "cannot write FILE: reason": the output is refused, `write` failed, or the OS refused the
+/// temporary file, the sync or the rename.
+pub fn write_atomically<F>(path: &Path, inputs: &[&Path], write: F) -> Result<()>
+where
+    F: FnOnce(&mut dyn WriteSeek) -> io::Result<()>,
+{
+    let target = resolve(path, inputs)?;
+    let dir = folder(&target.path);
+    let name = target
+        .path
+        .file_name()
+        .map_or_else(|| "out".into(), |n| n.to_string_lossy().into_owned());
+    let prefix = format!(".{name}.");
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(&prefix).suffix(".tmp");
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        // A new file gets what `File::create` would give (0666 less the umask), not 0600.
+        builder.permissions(Permissions::from_mode(0o666));
+    }
+    let mut tmp = builder
+        .tempfile_in(dir)
+        .map_err(|e| refuse(path, io_reason(&e)))?;
+    // From here on, dropping `tmp` on an early return removes the temporary file.
+    {
+        let mut w = BufWriter::new(tmp.as_file_mut());
+        write(&mut w).map_err(|e| refuse(path, io_reason(&e)))?;
+        w.flush().map_err(|e| refuse(path, io_reason(&e)))?;
+    }
+    if let Some(perms) = target.existing {
+        std::fs::set_permissions(tmp.path(), perms).map_err(|e| refuse(path, io_reason(&e)))?;
+    }
+    tmp.as_file()
+        .sync_all()
+        .map_err(|e| refuse(path, io_reason(&e)))?;
+    tmp.persist(&target.path)
+        .map_err(|e| refuse(path, io_reason(&e.error)))?;
+    // Make the rename itself durable (best effort: not every system can sync a folder).
+    #[cfg(unix)]
+    if let Ok(d) = std::fs::File::open(dir) {
+        let _ = d.sync_all();
+    }
+    Ok(())
+}
+
+/// [`write_atomically`] for bytes already in memory.
+///
+/// # Errors
+/// As [`write_atomically`].
+pub fn write_bytes(path: &Path, inputs: &[&Path], bytes: &[u8]) -> Result<()> {
+    write_atomically(path, inputs, |w| w.write_all(bytes))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn names(dir: &Path) -> Vec<String> {
+        let mut v: Vec<String> = std::fs::read_dir(dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        v.sort();
+        v
+    }
+
+    #[test]
+    fn writes_replaces_and_leaves_nothing_beside() {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("a.txt");
+        write_bytes(&out, &[], b"one").unwrap();
+        write_bytes(&out, &[], b"two").unwrap();
+        assert_eq!(std::fs::read(&out).unwrap(), b"two");
+        assert_eq!(names(dir.path()), ["a.txt"]);
+    }
+
+    #[test]
+    fn a_failed_write_keeps_the_old_file_and_removes_the_temporary() {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("a.txt");
+        write_bytes(&out, &[], b"kept").unwrap();
+        let e = write_atomically(&out, &[], |w| {
+            w.write_all(b"half")?;
+            Err(io::Error::other("encoder gave up"))
+        })
+        .unwrap_err()
+        .to_string();
+        assert_eq!(
+            e,
+            format!("cannot write {}: encoder gave up", out.display())
+        );
+        assert_eq!(std::fs::read(&out).unwrap(), b"kept");
+        assert_eq!(names(dir.path()), ["a.txt"]);
+    }
+
+    #[test]
+    fn refuses_a_directory_a_missing_folder_and_an_input() {
+        let dir = tempfile::tempdir().unwrap();
+        let e = write_bytes(dir.path(), &[], b"x").unwrap_err().to_string();
+        assert!(
+            e.starts_with("cannot write ") && e.contains("a directory"),
+            "{e}"
+        );
+        let missing = dir.path().join("nope").join("a.txt");
+        let e = write_bytes(&missing, &[], b"x").unwrap_err().to_string();
+        assert!(e.contains("does not exist"), "{e}");
+        let input = dir.path().join("in.ron");
+        std::fs::write(&input, "keep").unwrap();
+        let other_spelling = dir.path().join(".").join("in.ron");
+        let e = write_bytes(&other_spelling, &[&input], b"x")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("is the input"), "{e}");
+        assert_eq!(std::fs::read(&input).unwrap(), b"keep");
+        assert_eq!(names(dir.path()), ["in.ron"]);
+    }
+
+    #[test]
+    fn extensions_are_checked_case_insensitively() {
+        check_extension(Path::new("a.PNG"), &["png"]).unwrap();
+        let e = check_extension(Path::new("noext"), &["png", "exr"])
+            .unwrap_err()
+            .to_string();
+        assert_eq!(
+            e,
+            "cannot write noext: the file name has no extension (use .png, .exr)"
+        );
+        let e = check_extension(Path::new("a.gif"), &["png"])
+            .unwrap_err()
+            .to_string();
+        assert_eq!(e, "cannot write a.gif: unknown extension '.gif' (use .png)");
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn keeps_the_mode_and_follows_a_symlink() {
+        use std::os::unix::fs::PermissionsExt;
+        let dir = tempfile::tempdir().unwrap();
+        let real = dir.path().join("real.txt");
+        std::fs::write(&real, "old").unwrap();
+        std::fs::set_permissions(&real, Permissions::from_mode(0o640)).unwrap();
+        let link = dir.path().join("link.txt");
+        std::os::unix::fs::symlink(&real, &link).unwrap();
+        write_bytes(&link, &[], b"new").unwrap();
+        assert!(
+            std::fs::symlink_metadata(&link)
+                .unwrap()
+                .file_type()
+                .is_symlink()
+        );
+        assert_eq!(std::fs::read(&real).unwrap(), b"new");
+        let mode = std::fs::metadata(&real).unwrap().permissions().mode() & 0o777;
+        assert_eq!(mode, 0o640);
+        std::fs::set_permissions(&real, Permissions::from_mode(0o444)).unwrap();
+        let e = write_bytes(&real, &[], b"x").unwrap_err().to_string();
+        assert!(
+            e.ends_with("permission denied (the file is read-only)"),
+            "{e}"
+        );
+        assert_eq!(std::fs::read(&real).unwrap(), b"new");
+    }
+}

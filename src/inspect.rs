@@ -1,14 +1,12 @@
-//! What the renderer did at one pixel (the window's inspector), and antialiasing modes with
-//! their error against a reference (the window's A/B split).
+//! What the renderer did at one pixel (the window's inspector). The window's A/B split uses
+//! the report's antialiasing [`Mode`](crate::report::Mode) and RMSE
+//! ([`crate::report::metrics::rmse`]).
 //!
 //! Everything here is computed by the library; the GUI only displays it.
 
 use crate::geometry::Shape;
 use crate::mapping::{Mapping, TexCoord, explain_mapping};
 use crate::math::{Rgb, Vec2, Vec3A};
-use crate::render::Film;
-use crate::sampler::PixelSampler;
-use crate::scene::{Overrides, SceneDesc, apply_overrides};
 use crate::texture::{Filter, ImageData, Lookup, Texture, Wrap, explain_lookup};
 use crate::{material::Material, scene::Scene};
 use std::sync::Arc;
@@ -234,63 +232,10 @@ fn shape_label(shape: &Shape, part: u32) -> String {
     }
 }
 
-/// One antialiasing mode: a pixel sampler, samples per pixel and optionally a texture filter
-/// for every image texture.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct AaMode {
-    /// Where samples go in a pixel.
-    pub sampler: PixelSampler,
-    /// Samples per pixel.
-    pub spp: u32,
-    /// Filter for every image texture (`None`: the preset's).
-    pub filter: Option<Filter>,
-}
-
-impl AaMode {
-    /// A short label, e.g. "jittered 4 spp, bilinear".
-    #[must_use]
-    pub fn label(&self) -> String {
-        match self.filter {
-            Some(f) => format!("{} {} spp, {}", self.sampler.name(), self.spp, f.name()),
-            None => format!("{} {} spp", self.sampler.name(), self.spp),
-        }
-    }
-
-    /// `desc` rendered in this mode.
-    #[must_use]
-    pub fn apply(&self, desc: &SceneDesc) -> SceneDesc {
-        let mut d = desc.clone();
-        apply_overrides(
-            &mut d,
-            Overrides {
-                spp: Some(self.spp),
-                sampler: Some(self.sampler),
-                filter: self.filter,
-                ..Overrides::default()
-            },
-        );
-        d
-    }
-}
-
-/// RMSE between two films as the report measures it ([`crate::report::metrics`]): on the
-/// display-encoded values (exposure applied, clipped, sRGB curve). `None` if the sizes differ.
-#[must_use]
-pub fn rmse(a: &Film, b: &Film, exposure_scale: f32) -> Option<f32> {
-    use crate::report::metrics::{EncodedImage, mse};
-    if a.width() != b.width() || a.height() != b.height() {
-        return None;
-    }
-    let encode =
-        |f: &Film| EncodedImage::from_linear(f.width(), f.height(), &f.to_linear(), exposure_scale);
-    Some(mse(&encode(b).srgb, &encode(a).srgb).sqrt() as f32)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::render::render_blocking;
-    use crate::scene::{AssetCache, build_scene, load_preset};
+    use crate::scene::{AssetCache, SceneDesc, build_scene, load_preset};
     use std::path::Path;
 
     fn earth() -> (SceneDesc, std::path::PathBuf) {
@@ -338,26 +283,5 @@ mod tests {
         let (desc, path) = earth();
         let scene = build_scene(&desc, &path, &mut AssetCache::new()).expect("build");
         assert!(scene.inspect(Vec2::new(0.5, 0.5)).is_none());
-    }
-
-    #[test]
-    fn more_samples_have_less_error_and_a_film_none_against_itself() {
-        let (desc, path) = earth();
-        let mut cache = AssetCache::new();
-        let mut render = |spp| {
-            let mode = AaMode {
-                sampler: PixelSampler::Jittered,
-                spp,
-                filter: None,
-            };
-            let scene = build_scene(&mode.apply(&desc), &path, &mut cache).expect("build");
-            render_blocking(&scene, |_| {})
-        };
-        let (one, sixteen, reference) = (render(1), render(16), render(64));
-        let e1 = rmse(&one, &reference, 1.0).expect("same size");
-        let e16 = rmse(&sixteen, &reference, 1.0).expect("same size");
-        assert!(e1 > e16 && e16 > 0.0, "{e1} {e16}");
-        assert_eq!(rmse(&reference, &reference, 1.0), Some(0.0));
-        assert_eq!(rmse(&one, &Film::new(3, 3), 1.0), None);
     }
 }

@@ -47,7 +47,12 @@ fn display(film: &Film) -> Vec<f32> {
 
 /// RMSE on display values, as the report and the window's A/B split measure it.
 fn rmse(a: &Film, b: &Film) -> f64 {
-    f64::from(texplore::inspect::rmse(a, b, 1.0).expect("same size"))
+    use texplore::report::metrics::{EncodedImage, rmse};
+    rmse(
+        &EncodedImage::from_film(a, 1.0),
+        &EncodedImage::from_film(b, 1.0),
+    )
+    .expect("same size")
 }
 
 /// RMSE of 1-spp nearest and 1-spp EWA renders against a 256-spp bilinear reference.

@@ -123,7 +123,7 @@ fn a_tiny_report_writes_every_file_and_reuses_its_reference() {
         assert!(md.contains(needle), "report.md lacks {needle:?}:\n{md}");
     }
     let svg = std::fs::read_to_string(out.join("earth/error_vs_time.svg")).unwrap();
-    assert!(svg.starts_with("<svg") && svg.contains(">nearest/jittered</text>"));
+    assert!(svg.starts_with("<svg") && svg.contains(">\nnearest/jittered\n</text>"));
     let png = image::open(out.join("earth/error_vs_time.png")).unwrap();
     assert_eq!((png.width(), png.height()), (1000, 600));
     for mode in ["nearest_jittered", "bilinear_jittered"] {
@@ -280,4 +280,66 @@ fn bad_modes_are_refused_with_the_valid_names() {
     assert!(!out.status.success());
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("wobbly") && err.contains("jittered"), "{err}");
+}
+
+/// The report's numbers do not change: a fixed small run's CSV against the one saved in
+/// `tests/report_expected.csv` (written by `texplore report` with these arguments before the
+/// CSV writer moved to the `csv` crate). Every column but the timings must match exactly; the
+/// timings (and the Pareto flags they decide) vary from run to run, so they must only parse.
+#[test]
+fn the_csv_matches_the_saved_report() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("out");
+    let run = Command::new(env!("CARGO_BIN_EXE_texplore"))
+        .current_dir(root())
+        .args([
+            "report",
+            "presets/earth.ron",
+            "presets/checker.ron",
+            "--modes",
+            "nearest/jittered,ewa/regular+adaptive",
+            "--spp",
+            "1,4",
+            "--reference-spp",
+            "32",
+            "--width",
+            "40",
+            "--height",
+            "30",
+            "--repeat",
+            "1",
+            "--threads",
+            "2",
+            "--no-cache",
+            "--quiet",
+            "-o",
+        ])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let (header, rows) = csv_rows(&out.join("report.csv"));
+    let (saved_header, saved) = csv_rows(&root().join("tests/report_expected.csv"));
+    assert_eq!(header, saved_header);
+    assert_eq!(header, CSV_COLUMNS.map(String::from).to_vec());
+    assert_eq!(rows.len(), saved.len());
+    let timing = ["time_ms_median", "time_ms_min", "samples_per_s"];
+    for (row, want) in rows.iter().zip(&saved) {
+        for (k, name) in header.iter().enumerate() {
+            if timing.contains(&name.as_str()) {
+                let v: f64 = row[k]
+                    .parse()
+                    .unwrap_or_else(|e| panic!("{name} = {:?}: {e}", row[k]));
+                assert!(v > 0.0 && v.is_finite(), "{name} = {v}");
+            } else if name == "pareto" {
+                assert!(row[k] == "0" || row[k] == "1", "pareto = {:?}", row[k]);
+            } else {
+                assert_eq!(row[k], want[k], "{name} of {}", want[..4].join(","));
+            }
+        }
+    }
 }

@@ -2,8 +2,8 @@
 //! with its time and its error against a high-spp reference) and the speed/error plot.
 
 use super::live::LiveImage;
-use crate::inspect::{AaMode, rmse};
 use crate::render::{Generation, RenderJob, RenderOptions};
+use crate::report::metrics::{EncodedImage, rmse};
 use crate::report::{Mode, ProgressUpdate, ReferenceSettings, ReportConfig, Row, run_scene};
 use crate::sampler::PixelSampler;
 use crate::scene::{AssetCache, Scene, SceneDesc, build_scene};
@@ -13,17 +13,17 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc::{Receiver, channel};
 use std::time::Duration;
-use strum::VariantArray;
 
 /// Samples per pixel of the reference both sides are measured against.
 pub const REFERENCE_SPP: u32 = 256;
 
-/// The reference: many well-stratified samples with the preset's filters.
-const REFERENCE: AaMode = AaMode {
-    sampler: PixelSampler::MultiJittered,
-    spp: REFERENCE_SPP,
-    filter: None,
-};
+/// The reference of the split and of the speed panel: the report's, at [`REFERENCE_SPP`].
+fn reference() -> ReferenceSettings {
+    ReferenceSettings {
+        spp: REFERENCE_SPP,
+        ..ReferenceSettings::default()
+    }
+}
 
 /// Two antialiasing modes of the same scene, rendered one after the other (so each time is
 /// measured on an idle machine), then the reference.
@@ -32,12 +32,14 @@ pub struct AbSplit {
     pub enabled: bool,
     /// Where the divider is, as a fraction of the image width.
     pub split: f32,
-    /// The modes left (A) and right (B).
-    pub modes: [AaMode; 2],
+    /// The modes left (A) and right (B), as the report names them.
+    pub modes: [Mode; 2],
+    /// Samples per pixel left (A) and right (B).
+    pub spp: [u32; 2],
     jobs: [Option<RenderJob>; 3],
     waiting: [Option<Arc<Scene>>; 3],
     live: [LiveImage; 2],
-    errors: [Option<f32>; 2],
+    errors: [Option<f64>; 2],
     /// The display exposure of the reference, so errors are measured on what is displayed.
     exposure_scale: f32,
     generation: Generation,
@@ -51,17 +53,10 @@ impl Default for AbSplit {
             enabled: false,
             split: 0.5,
             modes: [
-                AaMode {
-                    sampler: PixelSampler::Regular,
-                    spp: 1,
-                    filter: Some(Filter::Nearest),
-                },
-                AaMode {
-                    sampler: PixelSampler::MultiJittered,
-                    spp: 16,
-                    filter: Some(Filter::Bilinear),
-                },
+                Mode::new(Filter::Nearest, PixelSampler::Regular),
+                Mode::new(Filter::Bilinear, PixelSampler::MultiJittered),
             ],
+            spp: [1, 16],
             jobs: [None, None, None],
             waiting: [None, None, None],
             live: [LiveImage::new("ab-a"), LiveImage::new("ab-b")],
@@ -85,9 +80,13 @@ impl AbSplit {
     ) {
         self.stop();
         self.generation = generation.clone();
-        let modes = [self.modes[0], self.modes[1], REFERENCE];
-        for (slot, mode) in modes.iter().enumerate() {
-            match build_scene(&mode.apply(desc), path, cache) {
+        let descs = [
+            self.modes[0].apply(desc, self.spp[0]),
+            self.modes[1].apply(desc, self.spp[1]),
+            reference().desc(desc, None, None),
+        ];
+        for (slot, d) in descs.iter().enumerate() {
+            match build_scene(d, path, cache) {
                 Ok(scene) => self.waiting[slot] = Some(Arc::new(scene)),
                 Err(e) => {
                     self.message = Some(e.to_string());
@@ -144,7 +143,8 @@ impl AbSplit {
             for side in 0..2 {
                 let film = self.jobs[side].as_ref().and_then(RenderJob::film);
                 if let (Some(f), Some(r)) = (film, &reference) {
-                    self.errors[side] = rmse(&f, r, self.exposure_scale);
+                    let encode = |f| EncodedImage::from_film(f, self.exposure_scale);
+                    self.errors[side] = rmse(&encode(r), &encode(&f));
                 }
             }
         }
@@ -184,7 +184,7 @@ impl AbSplit {
     #[must_use]
     pub fn caption(&self, side: usize) -> String {
         let name = ["A", "B"].get(side).copied().unwrap_or("?");
-        let mut s = format!("{name}: {}", self.modes[side].label());
+        let mut s = format!("{name}: {} {} spp", self.modes[side].name(), self.spp[side]);
         match self.time(side) {
             Some(t) => s.push_str(&format!(" · {:.0} ms", t.as_secs_f64() * 1e3)),
             None => s.push_str(" · rendering"),
@@ -204,7 +204,13 @@ impl AbSplit {
         let stage = if self.errors[0].is_some() {
             "done".to_owned()
         } else if self.jobs[2].is_some() {
-            format!("rendering the reference ({REFERENCE_SPP} spp, multi-jittered) for the error")
+            let r = reference();
+            format!(
+                "rendering the reference ({} spp, {}, {}) for the error",
+                r.spp,
+                r.filter.name(),
+                r.sampler.name()
+            )
         } else if self.jobs[1].is_some() {
             "rendering B".to_owned()
         } else {
@@ -220,35 +226,18 @@ impl AbSplit {
         for side in 0..2 {
             let name = ["A", "B"][side];
             ui.horizontal(|ui| {
-                let m = &mut self.modes[side];
+                let (m, spp) = (&mut self.modes[side], &mut self.spp[side]);
                 let mut changed =
                     super::widgets::enum_combo(ui, &format!("{name} sampler"), &mut m.sampler);
                 changed |= ui
                     .horizontal(|ui| {
                         let l = ui.label(format!("{name} spp"));
-                        ui.add(egui::DragValue::new(&mut m.spp).range(1..=1024))
+                        ui.add(egui::DragValue::new(spp).range(1..=1024))
                             .labelled_by(l.id)
                             .changed()
                     })
                     .inner;
-                let l = ui.label(format!("{name} filter"));
-                let text = m.filter.map_or("as in the scene", Filter::name);
-                egui::ComboBox::from_id_salt(format!("{name} filter"))
-                    .selected_text(text)
-                    .show_ui(ui, |ui| {
-                        changed |= ui
-                            .selectable_value(&mut m.filter, None, "as in the scene")
-                            .on_hover_text("Each texture keeps its own filter")
-                            .changed();
-                        for &f in Filter::VARIANTS {
-                            changed |= ui
-                                .selectable_value(&mut m.filter, Some(f), f.name())
-                                .on_hover_text(f.description())
-                                .changed();
-                        }
-                    })
-                    .response
-                    .labelled_by(l.id);
+                changed |= super::widgets::enum_combo(ui, &format!("{name} filter"), &mut m.filter);
                 self.restart_wanted |= changed;
             });
         }
@@ -296,10 +285,7 @@ impl SpeedPanel {
             time_budget: Duration::from_millis(500),
             width: Some(SPEED_SIZE.0),
             height: Some(SPEED_SIZE.1),
-            reference: ReferenceSettings {
-                spp: REFERENCE_SPP,
-                ..ReferenceSettings::default()
-            },
+            reference: reference(),
             heatmap_spp: None,
         };
         let spawned = std::thread::Builder::new()

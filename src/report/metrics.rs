@@ -5,6 +5,7 @@
 //! the float sRGB values; FLIP (LDR-FLIP, NVIDIA's `nv-flip`) takes the 8-bit sRGB bytes.
 
 use crate::math::{DisplayImage, Rgb, linear_to_srgb, quantize8};
+use crate::render::Film;
 
 /// The small constant in relative MSE's denominator, (t - r)^2 / (r^2 + [`REL_MSE_EPSILON`]),
 /// which keeps black reference pixels from dividing by zero.
@@ -76,6 +77,17 @@ impl EncodedImage {
             srgb,
             srgb8,
         }
+    }
+
+    /// A film's mean radiance encoded for display (see [`EncodedImage::from_linear`]).
+    #[must_use]
+    pub fn from_film(film: &Film, exposure_scale: f32) -> Self {
+        Self::from_linear(
+            film.width(),
+            film.height(),
+            &film.to_linear(),
+            exposure_scale,
+        )
     }
 
     /// An image from sRGB floats in [0, 1] (3 per pixel); the bytes are rounded from them.
@@ -151,6 +163,14 @@ pub fn compare(reference: &EncodedImage, test: &EncodedImage) -> (Metrics, Vec<f
         flip,
     };
     (metrics, flip_map)
+}
+
+/// RMSE of `test` against `reference` (the report's RMSE column), or `None` if the sizes
+/// differ.
+#[must_use]
+pub fn rmse(reference: &EncodedImage, test: &EncodedImage) -> Option<f64> {
+    ((reference.width, reference.height) == (test.width, test.height))
+        .then(|| mse(&reference.srgb, &test.srgb).sqrt())
 }
 
 /// Mean squared difference of two equally long slices.
@@ -376,5 +396,35 @@ mod tests {
         assert!((img.srgb[0] - 1.0).abs() < 1e-6, "{}", img.srgb[0]);
         assert_eq!(img.srgb8[..3], [255, 255, 0]);
         assert!((img.srgb[3]).abs() < 1e-7);
+    }
+
+    /// The window's A/B split measures its sides with `rmse` on films: more samples of a mode
+    /// come closer to a high-spp render, a film has none against itself, and films of
+    /// different sizes are not compared.
+    #[test]
+    fn film_rmse_falls_with_samples_and_is_zero_against_itself() {
+        use crate::render::render_blocking;
+        use crate::report::Mode;
+        use crate::sampler::PixelSampler;
+        use crate::scene::{AssetCache, build_scene, load_preset};
+        use crate::texture::Filter;
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("presets/earth.ron");
+        let mut desc = load_preset(&path).expect("earth preset");
+        desc.render.width = 64;
+        desc.render.height = 48;
+        let mut cache = AssetCache::new();
+        let mode = Mode::new(Filter::Bilinear, PixelSampler::Jittered);
+        let mut render = |spp| {
+            let scene = build_scene(&mode.apply(&desc, spp), &path, &mut cache).expect("build");
+            EncodedImage::from_film(&render_blocking(&scene, |_| {}), 1.0)
+        };
+        let (one, sixteen, reference) = (render(1), render(16), render(64));
+        let e1 = rmse(&reference, &one).expect("same size");
+        let e16 = rmse(&reference, &sixteen).expect("same size");
+        assert!(e1 > e16 && e16 > 0.0, "{e1} {e16}");
+        assert_eq!(rmse(&reference, &reference), Some(0.0));
+        assert_eq!(rmse(&one, &constant(3, 3, 0.5)), None);
+        // The same number the report writes for the pair.
+        assert_eq!(compare(&reference, &one).0.rmse, e1);
     }
 }

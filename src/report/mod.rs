@@ -83,6 +83,32 @@ impl Mode {
         format!("{}/{}{adaptive}", self.filter.name(), self.sampler.name())
     }
 
+    /// The settings that render a scene in this mode at `spp` samples per pixel: every image
+    /// texture's filter and the pixel sampler replaced, adaptive sampling (up to
+    /// [`ADAPTIVE_FACTOR`] x `spp`) only in an adaptive mode, whatever the preset says.
+    #[must_use]
+    pub fn overrides(self, spp: u32) -> Overrides {
+        Overrides {
+            spp: Some(spp),
+            filter: Some(self.filter),
+            sampler: Some(self.sampler),
+            adaptive: self.adaptive.then(|| crate::scene::AdaptiveDesc {
+                max_spp: (spp * ADAPTIVE_FACTOR).max(ADAPTIVE_MIN_MAX_SPP),
+                threshold: crate::scene::DEFAULT_ADAPTIVE_THRESHOLD,
+            }),
+            no_adaptive: !self.adaptive,
+            ..Overrides::default()
+        }
+    }
+
+    /// `desc` rendered in this mode at `spp` samples per pixel (see [`Mode::overrides`]).
+    #[must_use]
+    pub fn apply(self, desc: &SceneDesc, spp: u32) -> SceneDesc {
+        let mut d = desc.clone();
+        apply_overrides(&mut d, self.overrides(spp));
+        d
+    }
+
     /// A non-adaptive mode.
     #[must_use]
     pub const fn new(filter: Filter, sampler: PixelSampler) -> Self {
@@ -212,6 +238,24 @@ impl Default for ReferenceSettings {
 }
 
 impl ReferenceSettings {
+    /// `scene` as the reference renders it: its filter and sampler at its spp, non-adaptive,
+    /// with the seed moved by [`REFERENCE_SEED_OFFSET`]; `width` and `height` override the
+    /// preset's size.
+    #[must_use]
+    pub fn desc(&self, scene: &SceneDesc, width: Option<u32>, height: Option<u32>) -> SceneDesc {
+        let mut d = scene.clone();
+        apply_overrides(
+            &mut d,
+            Overrides {
+                width,
+                height,
+                seed: Some(scene.render.seed.wrapping_add(REFERENCE_SEED_OFFSET)),
+                ..Mode::new(self.filter, self.sampler).overrides(self.spp)
+            },
+        );
+        d
+    }
+
     /// One line for reports.
     #[must_use]
     pub fn describe(&self) -> String {
@@ -369,48 +413,19 @@ pub fn run_scene(
     progress: &mut dyn FnMut(&ProgressUpdate<'_>),
     cancel: &AtomicBool,
 ) -> Result<SceneReport, ReportError> {
-    if config.spp.is_empty() || config.spp.contains(&0) {
-        return Err(ReportError::Invalid(
-            "the spp list must be non-empty and every value at least 1".into(),
-        ));
-    }
-    if config.modes.is_empty() {
-        return Err(ReportError::Invalid("no modes given".into()));
-    }
+    validate(config)?;
     let mut assets = AssetCache::new();
-    let sized = |mode: Mode, spp: u32, seed| {
-        let mut d = scene.clone();
-        apply_overrides(
-            &mut d,
-            Overrides {
-                width: config.width,
-                height: config.height,
-                spp: Some(spp),
-                seed,
-                filter: Some(mode.filter),
-                sampler: Some(mode.sampler),
-                // Only adaptive modes sample adaptively, whatever the preset says.
-                adaptive: mode.adaptive.then(|| crate::scene::AdaptiveDesc {
-                    max_spp: (spp * ADAPTIVE_FACTOR).max(ADAPTIVE_MIN_MAX_SPP),
-                    threshold: crate::scene::DEFAULT_ADAPTIVE_THRESHOLD,
-                }),
-                no_adaptive: !mode.adaptive,
-                ..Overrides::default()
-            },
-        );
-        d
-    };
     let r = &config.reference;
-    let ref_desc = sized(
-        Mode::new(r.filter, r.sampler),
-        r.spp,
-        Some(scene.render.seed.wrapping_add(REFERENCE_SEED_OFFSET)),
-    );
+    let ref_desc = r.desc(scene, config.width, config.height);
     let (width, height) = (ref_desc.render.width, ref_desc.render.height);
     let pixels = u64::from(width) * u64::from(height);
-    let repeat = config.repeat.max(1) as u64;
     let spp_sum: u64 = config.spp.iter().map(|s| u64::from(*s)).sum();
-    let mut total = pixels * spp_sum * (1 + repeat) * config.modes.len() as u64;
+    let repeat = config.repeat.max(1) as u64;
+    let mut tally = Tally {
+        done: 0,
+        total: pixels * spp_sum * (1 + repeat) * config.modes.len() as u64,
+        progress,
+    };
 
     // The reference: from the cache, or rendered now (and stored).
     let key = cache_key(&ref_desc, preset_path);
@@ -418,26 +433,13 @@ pub fn run_scene(
         .cache_dir
         .as_ref()
         .map(|dir| CachedReference::new(dir, &key));
-    let mut done = 0u64;
     let t0 = Instant::now();
     let (reference_linear, reference_cached) =
         match cached.as_ref().and_then(|c| c.load(&key, width, height)) {
             Some(img) => (img, true),
             None => {
-                total += pixels * u64::from(r.spp);
                 let ref_scene = build_scene(&ref_desc, preset_path, &mut assets)?;
-                let mut film = Film::new(width, height);
-                for sample in 0..r.spp {
-                    pass(&ref_scene, &mut film, sample, cancel)?;
-                    done += pixels;
-                    progress(&ProgressUpdate {
-                        done,
-                        total,
-                        stage: Stage::Reference,
-                        row: None,
-                    });
-                }
-                let img = film.to_linear();
+                let img = render_reference(&ref_scene, r.spp, &mut tally, cancel)?;
                 if let Some(c) = &cached {
                     c.store(&key, width, height, &img)?;
                 }
@@ -450,41 +452,21 @@ pub fn run_scene(
         t0.elapsed()
     };
     let exposure = scene.render.exposure.exp2();
-    let reference = EncodedImage::from_linear(width, height, &reference_linear, exposure);
+    let target = Target {
+        name,
+        config,
+        reference: EncodedImage::from_linear(width, height, &reference_linear, exposure),
+        exposure,
+        cancel,
+    };
 
-    let threads = rayon::current_num_threads();
     let mut rows = Vec::new();
     let mut error_maps = Vec::new();
     for &mode in &config.modes {
         for &spp in &config.spp {
-            let desc = sized(mode, spp, None);
+            let desc = sized(scene, config, mode, spp);
             let built = build_scene(&desc, preset_path, &mut assets)?;
-            let stage = Stage::Mode(mode, spp);
-            let cell = pixels * u64::from(spp);
-            let mut report = |done: u64| {
-                progress(&ProgressUpdate {
-                    done,
-                    total,
-                    stage: stage.clone(),
-                    row: None,
-                });
-            };
-            // Warm-up run: its image is the one measured (renders are deterministic).
-            let (film, warm) = render_timed(&built, spp, cancel)?;
-            done += cell;
-            report(done);
-            let runs = timed_runs(warm, config.repeat.max(1), config.time_budget);
-            let mut times = Vec::with_capacity(runs);
-            for _ in 0..runs {
-                times.push(render_timed(&built, spp, cancel)?.1);
-                done += cell;
-                report(done);
-            }
-            // Skipped runs count as done, so the ETA stays honest.
-            done += cell * (repeat - runs as u64);
-            times.sort();
-            let test = EncodedImage::from_linear(width, height, &film.to_linear(), exposure);
-            let (metrics, flip_map) = compare(&reference, &test);
+            let (row, flip_map) = target.measure(&built, mode, spp, &mut tally)?;
             if config.heatmap_spp == Some(spp) {
                 error_maps.push(ErrorMap {
                     mode,
@@ -494,25 +476,8 @@ pub fn run_scene(
                     error: flip_map,
                 });
             }
-            rows.push(Row {
-                scene: name.to_string(),
-                mode,
-                samples: film.total_samples(),
-                spp,
-                width,
-                height,
-                threads,
-                runs,
-                time: times[times.len() / 2],
-                time_min: times[0],
-                metrics,
-            });
-            progress(&ProgressUpdate {
-                done,
-                total,
-                stage: Stage::Mode(mode, spp),
-                row: rows.last(),
-            });
+            rows.push(row);
+            tally.tell(Stage::Mode(mode, spp), rows.last());
         }
     }
     Ok(SceneReport {
@@ -524,6 +489,129 @@ pub fn run_scene(
         reference_time,
         error_maps,
     })
+}
+
+/// Refuses an empty spp list, a zero spp, or no modes.
+fn validate(config: &ReportConfig) -> Result<(), ReportError> {
+    if config.spp.is_empty() || config.spp.contains(&0) {
+        return Err(ReportError::Invalid(
+            "the spp list must be non-empty and every value at least 1".into(),
+        ));
+    }
+    if config.modes.is_empty() {
+        return Err(ReportError::Invalid("no modes given".into()));
+    }
+    Ok(())
+}
+
+/// `scene` as measured in `mode` at `spp`, at the configured size.
+fn sized(scene: &SceneDesc, config: &ReportConfig, mode: Mode, spp: u32) -> SceneDesc {
+    let mut d = scene.clone();
+    apply_overrides(
+        &mut d,
+        Overrides {
+            width: config.width,
+            height: config.height,
+            ..mode.overrides(spp)
+        },
+    );
+    d
+}
+
+/// Progress counted in camera samples, told to the caller's callback.
+struct Tally<'p> {
+    done: u64,
+    total: u64,
+    progress: &'p mut dyn FnMut(&ProgressUpdate<'_>),
+}
+
+impl Tally<'_> {
+    /// Tells the callback where the run is.
+    fn tell(&mut self, stage: Stage, row: Option<&Row>) {
+        (self.progress)(&ProgressUpdate {
+            done: self.done,
+            total: self.total,
+            stage,
+            row,
+        });
+    }
+}
+
+/// The reference rendered pass by pass (its samples join the planned total), as linear
+/// radiance.
+fn render_reference(
+    scene: &crate::scene::Scene,
+    spp: u32,
+    tally: &mut Tally<'_>,
+    cancel: &AtomicBool,
+) -> Result<Vec<crate::math::Rgb>, ReportError> {
+    let (width, height) = (scene.settings.width, scene.settings.height);
+    let pixels = u64::from(width) * u64::from(height);
+    tally.total += pixels * u64::from(spp);
+    let mut film = Film::new(width, height);
+    for sample in 0..spp {
+        pass(scene, &mut film, sample, cancel)?;
+        tally.done += pixels;
+        tally.tell(Stage::Reference, None);
+    }
+    Ok(film.to_linear())
+}
+
+/// What every render of a run is measured against, and how.
+struct Target<'a> {
+    /// The scene's name, for the rows.
+    name: &'a str,
+    config: &'a ReportConfig,
+    /// The reference, display-encoded.
+    reference: EncodedImage,
+    /// The scene's exposure as a scale.
+    exposure: f32,
+    cancel: &'a AtomicBool,
+}
+
+impl Target<'_> {
+    /// One (mode, spp): a warm-up render (the image measured; renders are deterministic),
+    /// then the timed runs that fit the budget. Returns the row and FLIP's error map.
+    fn measure(
+        &self,
+        built: &crate::scene::Scene,
+        mode: Mode,
+        spp: u32,
+        tally: &mut Tally<'_>,
+    ) -> Result<(Row, Vec<f32>), ReportError> {
+        let (width, height) = (self.reference.width, self.reference.height);
+        let cell = u64::from(width) * u64::from(height) * u64::from(spp);
+        let repeat = self.config.repeat.max(1);
+        let (film, warm) = render_timed(built, spp, self.cancel)?;
+        tally.done += cell;
+        tally.tell(Stage::Mode(mode, spp), None);
+        let runs = timed_runs(warm, repeat, self.config.time_budget);
+        let mut times = Vec::with_capacity(runs);
+        for _ in 0..runs {
+            times.push(render_timed(built, spp, self.cancel)?.1);
+            tally.done += cell;
+            tally.tell(Stage::Mode(mode, spp), None);
+        }
+        // Skipped runs count as done, so the ETA stays honest.
+        tally.done += cell * (repeat - runs) as u64;
+        times.sort();
+        let test = EncodedImage::from_linear(width, height, &film.to_linear(), self.exposure);
+        let (metrics, flip_map) = compare(&self.reference, &test);
+        let row = Row {
+            scene: self.name.to_string(),
+            mode,
+            samples: film.total_samples(),
+            spp,
+            width,
+            height,
+            threads: rayon::current_num_threads(),
+            runs,
+            time: times[times.len() / 2],
+            time_min: times[0],
+            metrics,
+        };
+        Ok((row, flip_map))
+    }
 }
 
 /// How many timed runs fit: `repeat`, or fewer when the warm-up shows they would take longer

@@ -33,6 +33,11 @@ fn png(path: &Path, width: u32, height: u32, rgb: &[u8]) -> Result<(), ReportErr
     crate::texture::save_png(path, width, height, rgb, &[]).map_err(ReportError::Scene)
 }
 
+/// A plot that could not be drawn, naming the file it was for.
+fn plotting(path: &Path, e: &plot::PlotError) -> ReportError {
+    ReportError::Invalid(format!("{}: {e}", path.display()))
+}
+
 /// Writes every file of `reports` into `dir` (created if missing) and returns their paths.
 /// `header` opens `report.md` (the command line, the machine, the load).
 ///
@@ -46,7 +51,9 @@ pub fn write_outputs(
     std::fs::create_dir_all(dir).map_err(|e| ReportError::io(dir, e))?;
     let mut written = Vec::new();
     let csv = dir.join("report.csv");
-    write(&csv, table::csv(reports).as_bytes())?;
+    let text =
+        table::csv(reports).map_err(|e| ReportError::Invalid(format!("{}: {e}", csv.display())))?;
+    write(&csv, text.as_bytes())?;
     written.push(csv);
     let mut md = format!("# Speed against error\n\n{header}\n");
     for rep in reports {
@@ -55,14 +62,13 @@ pub fn write_outputs(
         std::fs::create_dir_all(&sub).map_err(|e| ReportError::io(&sub, e))?;
         let chart = plot::error_vs_time(rep);
         let svg = sub.join("error_vs_time.svg");
-        write(&svg, chart.to_svg().as_bytes())?;
-        let png_path = sub.join("error_vs_time.png");
-        png(
-            &png_path,
-            plot::CHART_WIDTH,
-            plot::CHART_HEIGHT,
-            &chart.to_rgb(),
+        write(
+            &svg,
+            chart.to_svg().map_err(|e| plotting(&svg, &e))?.as_bytes(),
         )?;
+        let png_path = sub.join("error_vs_time.png");
+        let rgb = chart.to_rgb().map_err(|e| plotting(&png_path, &e))?;
+        png(&png_path, plot::CHART_WIDTH, plot::CHART_HEIGHT, &rgb)?;
         let mut files = table::SceneFiles {
             plot_svg: Some(format!("{name}/error_vs_time.svg")),
             plot_png: Some(format!("{name}/error_vs_time.png")),
@@ -78,7 +84,7 @@ pub fn write_outputs(
                 map.spp
             );
             let path = sub.join(&file);
-            let (w, h, rgb) = plot::heat_map(map);
+            let (w, h, rgb) = plot::heat_map(map).map_err(|e| plotting(&path, &e))?;
             png(&path, w, h, &rgb)?;
             files
                 .heat_maps

@@ -1,11 +1,14 @@
-//! Plots without a plotting crate: a log-log chart laid out once as a list of drawing commands,
-//! written as SVG text or rasterised to RGB pixels (anti-aliased lines and discs; text through
-//! `ab_glyph` with egui's bundled Ubuntu Light, so no system font library is involved), and
-//! error heat maps with a colour bar.
+//! The report's plots: the log-log chart of RMSE against time drawn by `plotters` (its SVG and
+//! bitmap backends; text through `ab_glyph` with egui's bundled Ubuntu Light registered as
+//! the sans-serif family, so no system font library is involved, and laid out glyph by glyph
+//! in the bitmap, see `Bitmap`), and error heat maps with a colour bar.
 
 use super::{ErrorMap, SceneReport, table};
-use ab_glyph::{Font, FontRef, PxScale, ScaleFont};
-use std::fmt::Write as _;
+use ab_glyph::{Font as _, FontRef, PxScale, ScaleFont as _};
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
+use plotters_backend::{BackendColor, BackendCoord, BackendTextStyle, DrawingErrorKind};
 use std::sync::LazyLock;
 
 /// An RGB colour as bytes.
@@ -27,51 +30,193 @@ pub const PALETTE: [Colour; 12] = [
     [255, 215, 0],
 ];
 
-/// Where text sits relative to its anchor point.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Anchor {
-    /// Anchor at the left end of the baseline.
-    Start,
-    /// Anchor at the middle of the baseline.
-    Middle,
-    /// Anchor at the right end of the baseline.
-    End,
+/// A plot that could not be drawn.
+#[derive(Debug, thiserror::Error)]
+#[error("cannot draw the plot: {0}")]
+pub struct PlotError(String);
+
+/// The font family every text of the plots uses.
+const FAMILY: &str = "sans-serif";
+/// The colour of text and the frame.
+const INK: RGBColor = RGBColor(40, 40, 40);
+
+/// Registers the bundled font as [`FAMILY`] once; the error, if the font cannot be read.
+fn font() -> Result<(), PlotError> {
+    static REGISTERED: LazyLock<Result<(), String>> = LazyLock::new(|| {
+        plotters::style::register_font(
+            FAMILY,
+            FontStyle::Normal,
+            epaint_default_fonts::UBUNTU_LIGHT,
+        )
+        .map_err(|_| "egui's bundled Ubuntu Light font could not be read".to_owned())
+    });
+    REGISTERED.clone().map_err(PlotError)
 }
 
-/// One drawing command in pixel coordinates (y down).
-#[derive(Clone, Debug, PartialEq)]
-pub enum Cmd {
-    /// A polyline.
-    Line {
-        /// Vertices.
-        points: Vec<(f64, f64)>,
-        /// Colour.
-        colour: Colour,
-        /// Stroke width in pixels.
-        width: f64,
-    },
-    /// A filled disc.
-    Disc {
-        /// Centre.
-        centre: (f64, f64),
-        /// Radius in pixels.
-        radius: f64,
-        /// Colour.
-        colour: Colour,
-    },
-    /// Text; `vertical` turns it 90 degrees counter-clockwise about the anchor.
-    Text {
-        /// Anchor point on the baseline.
-        at: (f64, f64),
-        /// The text.
-        text: String,
-        /// Size in pixels.
-        size: f64,
-        /// Horizontal alignment.
-        anchor: Anchor,
-        /// Rotated to read bottom to top.
-        vertical: bool,
-    },
+fn text_style(size: u32) -> TextStyle<'static> {
+    TextStyle::from((FAMILY, size).into_font()).color(&INK)
+}
+
+fn rgb(c: Colour) -> RGBColor {
+    RGBColor(c[0], c[1], c[2])
+}
+
+static UBUNTU: LazyLock<Option<FontRef<'static>>> =
+    LazyLock::new(|| FontRef::try_from_slice(epaint_default_fonts::UBUNTU_LIGHT).ok());
+
+/// plotters' bitmap backend with the text drawn here: plotters 0.3.7's `ab_glyph` text ignores
+/// each glyph's side bearing and rounds every glyph's baseline on its own, so letters wander by
+/// a pixel (a colon touches the next word, descenders float). Lines, markers and fills are the
+/// bitmap backend's own; the SVG's text is the viewer's.
+struct Bitmap<'a>(BitMapBackend<'a>);
+
+type BitmapError = DrawingErrorKind<<BitMapBackend<'static> as DrawingBackend>::ErrorType>;
+
+/// `text` laid out along a baseline from x = 0 at `size` pixels: the glyphs and the width.
+fn layout(font: &FontRef<'static>, size: f32, text: &str) -> (Vec<ab_glyph::Glyph>, f32) {
+    let scaled = font.as_scaled(PxScale::from(size));
+    let (mut glyphs, mut x, mut prev) = (Vec::new(), 0.0f32, None);
+    for ch in text.chars() {
+        let id = scaled.glyph_id(ch);
+        if let Some(p) = prev {
+            x += scaled.kern(p, id);
+        }
+        glyphs.push(id.with_scale_and_position(scaled.scale(), ab_glyph::point(x, 0.0)));
+        x += scaled.h_advance(id);
+        prev = Some(id);
+    }
+    (glyphs, x)
+}
+
+impl DrawingBackend for Bitmap<'_> {
+    type ErrorType = <BitMapBackend<'static> as DrawingBackend>::ErrorType;
+
+    fn get_size(&self) -> (u32, u32) {
+        self.0.get_size()
+    }
+    fn ensure_prepared(&mut self) -> Result<(), BitmapError> {
+        self.0.ensure_prepared()
+    }
+    fn present(&mut self) -> Result<(), BitmapError> {
+        self.0.present()
+    }
+    fn draw_pixel(&mut self, point: BackendCoord, color: BackendColor) -> Result<(), BitmapError> {
+        self.0.draw_pixel(point, color)
+    }
+    fn draw_line<S: plotters_backend::BackendStyle>(
+        &mut self,
+        from: BackendCoord,
+        to: BackendCoord,
+        style: &S,
+    ) -> Result<(), BitmapError> {
+        self.0.draw_line(from, to, style)
+    }
+    fn draw_rect<S: plotters_backend::BackendStyle>(
+        &mut self,
+        upper_left: BackendCoord,
+        bottom_right: BackendCoord,
+        style: &S,
+        fill: bool,
+    ) -> Result<(), BitmapError> {
+        self.0.draw_rect(upper_left, bottom_right, style, fill)
+    }
+    fn draw_path<S: plotters_backend::BackendStyle, I: IntoIterator<Item = BackendCoord>>(
+        &mut self,
+        path: I,
+        style: &S,
+    ) -> Result<(), BitmapError> {
+        self.0.draw_path(path, style)
+    }
+    fn draw_circle<S: plotters_backend::BackendStyle>(
+        &mut self,
+        center: BackendCoord,
+        radius: u32,
+        style: &S,
+        fill: bool,
+    ) -> Result<(), BitmapError> {
+        self.0.draw_circle(center, radius, style, fill)
+    }
+    fn fill_polygon<S: plotters_backend::BackendStyle, I: IntoIterator<Item = BackendCoord>>(
+        &mut self,
+        vert: I,
+        style: &S,
+    ) -> Result<(), BitmapError> {
+        self.0.fill_polygon(vert, style)
+    }
+    fn blit_bitmap(
+        &mut self,
+        pos: BackendCoord,
+        size: (u32, u32),
+        src: &[u8],
+    ) -> Result<(), BitmapError> {
+        self.0.blit_bitmap(pos, size, src)
+    }
+
+    /// The advance width and the line height (ascent to descent).
+    fn estimate_text_size<T: BackendTextStyle>(
+        &self,
+        text: &str,
+        style: &T,
+    ) -> Result<(u32, u32), BitmapError> {
+        let Some(font) = UBUNTU.as_ref() else {
+            return self.0.estimate_text_size(text, style);
+        };
+        let size = style.size() as f32;
+        let (_, width) = layout(font, size, text);
+        Ok((width.ceil() as u32, size.ceil() as u32))
+    }
+
+    /// Each glyph at its own bearing on one baseline, anchored and turned as plotters asks.
+    fn draw_text<T: BackendTextStyle>(
+        &mut self,
+        text: &str,
+        style: &T,
+        pos: BackendCoord,
+    ) -> Result<(), BitmapError> {
+        let Some(font) = UBUNTU.as_ref() else {
+            return self.0.draw_text(text, style, pos);
+        };
+        let colour = style.color();
+        let size = style.size() as f32;
+        let (glyphs, width) = layout(font, size, text);
+        let ascent = font.as_scaled(PxScale::from(size)).ascent();
+        // The box is `width` x `size` with the baseline `ascent` below its top.
+        let dx = match style.anchor().h_pos {
+            HPos::Left => 0.0,
+            HPos::Center => -width / 2.0,
+            HPos::Right => -width,
+        };
+        let dy = ascent
+            + match style.anchor().v_pos {
+                VPos::Top => 0.0,
+                VPos::Center => -size / 2.0,
+                VPos::Bottom => -size,
+            };
+        let turn = style.transform();
+        let (w, h) = self.get_size();
+        for g in glyphs {
+            let Some(outlined) = font.outline_glyph(g) else {
+                continue;
+            };
+            let b = outlined.px_bounds();
+            let mut coverage = Vec::new();
+            outlined.draw(|gx, gy, a| coverage.push((gx, gy, a)));
+            for (gx, gy, a) in coverage {
+                let x = (b.min.x + gx as f32 + dx).floor() as i32;
+                let y = (b.min.y + gy as f32 + dy).floor() as i32;
+                let (x, y) = turn.transform(x, y);
+                let (x, y) = (pos.0 + x, pos.1 + y);
+                if a > 0.0 && x >= 0 && y >= 0 && x < w as i32 && y < h as i32 {
+                    let c = BackendColor {
+                        alpha: colour.alpha * f64::from(a.min(1.0)),
+                        rgb: colour.rgb,
+                    };
+                    self.0.draw_pixel((x, y), c)?;
+                }
+            }
+        }
+        Ok(())
+    }
 }
 
 /// A series of (x, y) points with a label.
@@ -102,6 +247,8 @@ pub struct LogLogChart {
 pub const CHART_WIDTH: u32 = 1000;
 /// Height of the rendered chart in pixels.
 pub const CHART_HEIGHT: u32 = 600;
+/// Width of the plot area, left of the legend.
+const PLOT_WIDTH: u32 = 760;
 
 /// Decade bounds [10^lo, 10^hi] covering positive values `v` (at least one decade).
 fn decades(v: impl Iterator<Item = f64>) -> (i32, i32) {
@@ -117,426 +264,139 @@ fn decades(v: impl Iterator<Item = f64>) -> (i32, i32) {
     (a, if b > a { b } else { a + 1 })
 }
 
-fn decade_label(k: i32) -> String {
-    if (-3..=4).contains(&k) {
-        let v = 10f64.powi(k);
-        if k >= 0 {
-            format!("{v:.0}")
-        } else {
-            format!("{v:.prec$}", prec = (-k) as usize)
-        }
+/// A tick's label: plain decimals with one significant digit's precision for the usual range
+/// (`0.003`, `20`, `1000`), `1e-7` style beyond it.
+fn tick_label(v: f64) -> String {
+    if !(v.is_finite() && v > 0.0) {
+        return String::new();
+    }
+    let k = v.log10().floor() as i32;
+    if (-4..=5).contains(&k) {
+        let prec = (-k).max(0) as usize;
+        format!("{v:.prec$}")
     } else {
-        format!("1e{k}")
+        let mantissa = v / 10f64.powi(k);
+        if (mantissa - 1.0).abs() < 1e-9 {
+            format!("1e{k}")
+        } else {
+            format!("{mantissa:.0}e{k}")
+        }
     }
 }
 
 impl LogLogChart {
-    /// The chart as drawing commands on a [`CHART_WIDTH`] x [`CHART_HEIGHT`] canvas.
-    #[must_use]
-    pub fn layout(&self) -> Vec<Cmd> {
-        let (left, top, right, bottom) = (80.0, 40.0, 740.0, 540.0);
-        let all = || self.series.iter().flat_map(|s| s.points.iter().copied());
+    /// The points of a series that a log-log plot can show.
+    fn visible(s: &Series) -> Vec<(f64, f64)> {
+        s.points
+            .iter()
+            .copied()
+            .filter(|p| p.0 > 0.0 && p.1 > 0.0 && p.0.is_finite() && p.1.is_finite())
+            .collect()
+    }
+
+    /// Draws the chart on `root` ([`CHART_WIDTH`] x [`CHART_HEIGHT`]): the log-log plot on
+    /// the left, the legend on the right.
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+    ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+        root.fill(&WHITE)?;
+        let (plot_area, legend) = root.split_horizontally(PLOT_WIDTH);
+        let all = || self.series.iter().flat_map(Self::visible);
         let (x0, x1) = decades(all().map(|p| p.0));
         let (y0, y1) = decades(all().map(|p| p.1).chain(self.y_marks.iter().map(|m| m.0)));
-        let sx = |x: f64| left + (x.log10() - f64::from(x0)) / f64::from(x1 - x0) * (right - left);
-        let sy =
-            |y: f64| bottom - (y.log10() - f64::from(y0)) / f64::from(y1 - y0) * (bottom - top);
-        let grid = [225, 225, 225];
-        let minor = [242, 242, 242];
-        let ink = [40, 40, 40];
-        let text = |at, text: &str, size, anchor, vertical| Cmd::Text {
-            at,
-            text: text.to_string(),
-            size,
-            anchor,
-            vertical,
-        };
-        let mut c = Vec::new();
-        // Grid: minor lines at 2..9 x 10^k, major at decades with labels.
-        for k in x0..x1 {
-            for m in 2..10 {
-                let x = sx(f64::from(m) * 10f64.powi(k));
-                c.push(line(vec![(x, top), (x, bottom)], minor, 1.0));
-            }
-        }
-        for k in y0..y1 {
-            for m in 2..10 {
-                let y = sy(f64::from(m) * 10f64.powi(k));
-                c.push(line(vec![(left, y), (right, y)], minor, 1.0));
-            }
-        }
-        for k in x0..=x1 {
-            let x = sx(10f64.powi(k));
-            c.push(line(vec![(x, top), (x, bottom)], grid, 1.0));
-            c.push(text(
-                (x, bottom + 18.0),
-                &decade_label(k),
-                13.0,
-                Anchor::Middle,
-                false,
-            ));
-        }
-        for k in y0..=y1 {
-            let y = sy(10f64.powi(k));
-            c.push(line(vec![(left, y), (right, y)], grid, 1.0));
-            c.push(text(
-                (left - 6.0, y + 4.0),
-                &decade_label(k),
-                13.0,
-                Anchor::End,
-                false,
-            ));
-        }
+        // A hair below the lowest decade, so rounding cannot drop its tick and label.
+        let (xr, yr) = (
+            10f64.powi(x0) * (1.0 - 1e-9)..10f64.powi(x1),
+            10f64.powi(y0) * (1.0 - 1e-9)..10f64.powi(y1),
+        );
+        let mut chart = ChartBuilder::on(&plot_area)
+            .caption(
+                &self.title,
+                text_style(16).pos(Pos::new(HPos::Center, VPos::Top)),
+            )
+            .margin(12)
+            .x_label_area_size(48)
+            .y_label_area_size(64)
+            .build_cartesian_2d(xr.clone().log_scale(), yr.log_scale())?;
+        chart
+            .configure_mesh()
+            .x_desc(&self.x_label)
+            .y_desc(&self.y_label)
+            .x_label_formatter(&|v| tick_label(*v))
+            .y_label_formatter(&|v| tick_label(*v))
+            .label_style(text_style(13))
+            .axis_desc_style(text_style(14))
+            .bold_line_style(RGBColor(215, 215, 215))
+            .light_line_style(RGBColor(242, 242, 242))
+            .axis_style(INK)
+            .draw()?;
+        // The equal-quality targets: grey lines, labelled at the right end.
+        let grey = RGBColor(150, 150, 150);
         for (y, label) in &self.y_marks {
-            let py = sy(*y);
-            c.push(line(vec![(left, py), (right, py)], [150, 150, 150], 1.0));
-            c.push(text(
-                (right - 4.0, py - 4.0),
-                label,
-                12.0,
-                Anchor::End,
-                false,
-            ));
+            chart.draw_series(LineSeries::new([(xr.start, *y), (xr.end, *y)], grey))?;
+            chart.draw_series(std::iter::once(Text::new(
+                label.clone(),
+                (xr.end, *y),
+                text_style(12).pos(Pos::new(HPos::Right, VPos::Bottom)),
+            )))?;
         }
-        // Frame, title and axis labels.
-        c.push(line(
-            vec![
-                (left, top),
-                (right, top),
-                (right, bottom),
-                (left, bottom),
-                (left, top),
-            ],
-            ink,
-            1.0,
-        ));
-        c.push(text(
-            ((left + right) / 2.0, 24.0),
-            &self.title,
-            16.0,
-            Anchor::Middle,
-            false,
-        ));
-        c.push(text(
-            ((left + right) / 2.0, bottom + 44.0),
-            &self.x_label,
-            14.0,
-            Anchor::Middle,
-            false,
-        ));
-        c.push(text(
-            (24.0, (top + bottom) / 2.0),
-            &self.y_label,
-            14.0,
-            Anchor::Middle,
-            true,
-        ));
-        // Series and legend.
-        let (lx, mut ly) = (right + 20.0, top + 10.0);
         for (i, s) in self.series.iter().enumerate() {
-            let colour = PALETTE[i % PALETTE.len()];
-            let pts: Vec<(f64, f64)> = s
-                .points
-                .iter()
-                .filter(|p| p.0 > 0.0 && p.1 > 0.0 && p.0.is_finite() && p.1.is_finite())
-                .map(|p| (sx(p.0), sy(p.1)))
-                .collect();
-            if pts.len() > 1 {
-                c.push(line(pts.clone(), colour, 2.0));
-            }
-            for p in pts {
-                c.push(Cmd::Disc {
-                    centre: p,
-                    radius: 3.5,
-                    colour,
-                });
-            }
-            c.push(line(
-                vec![(lx, ly - 4.0), (lx + 24.0, ly - 4.0)],
-                colour,
-                2.0,
-            ));
-            c.push(Cmd::Disc {
-                centre: (lx + 12.0, ly - 4.0),
-                radius: 3.5,
-                colour,
-            });
-            c.push(text((lx + 30.0, ly), &s.label, 13.0, Anchor::Start, false));
-            ly += 20.0;
+            let colour = rgb(PALETTE[i % PALETTE.len()]);
+            let pts = Self::visible(s);
+            chart.draw_series(LineSeries::new(pts.clone(), colour.stroke_width(2)))?;
+            chart.draw_series(pts.into_iter().map(|p| Circle::new(p, 4, colour.filled())))?;
         }
-        c
+        // The legend: a stroke with a dot in the series' colour, then its label.
+        let top = 40;
+        for (i, s) in self.series.iter().enumerate() {
+            let colour = rgb(PALETTE[i % PALETTE.len()]);
+            let y = top + 20 * i as i32;
+            legend.draw(&PathElement::new(
+                [(12, y), (36, y)],
+                colour.stroke_width(2),
+            ))?;
+            legend.draw(&Circle::new((24, y), 4, colour.filled()))?;
+            legend.draw(&Text::new(
+                s.label.clone(),
+                (42, y),
+                text_style(13).pos(Pos::new(HPos::Left, VPos::Center)),
+            ))?;
+        }
+        root.present()
     }
 
     /// The chart as an SVG document.
-    #[must_use]
-    pub fn to_svg(&self) -> String {
-        svg(&self.layout(), CHART_WIDTH, CHART_HEIGHT)
+    ///
+    /// # Errors
+    /// The bundled font cannot be read, or plotters fails.
+    pub fn to_svg(&self) -> Result<String, PlotError> {
+        font()?;
+        let mut s = String::new();
+        {
+            let root =
+                SVGBackend::with_string(&mut s, (CHART_WIDTH, CHART_HEIGHT)).into_drawing_area();
+            self.draw(&root).map_err(|e| PlotError(e.to_string()))?;
+        }
+        Ok(s)
     }
 
     /// The chart as RGB pixels, row-major.
-    #[must_use]
-    pub fn to_rgb(&self) -> Vec<u8> {
-        let mut canvas = Canvas::new(CHART_WIDTH, CHART_HEIGHT, [255, 255, 255]);
-        for cmd in &self.layout() {
-            canvas.draw(cmd);
+    ///
+    /// # Errors
+    /// The bundled font cannot be read, or plotters fails.
+    pub fn to_rgb(&self) -> Result<Vec<u8>, PlotError> {
+        font()?;
+        let mut rgb = vec![255u8; CHART_WIDTH as usize * CHART_HEIGHT as usize * 3];
+        {
+            let root = Bitmap(BitMapBackend::with_buffer(
+                &mut rgb,
+                (CHART_WIDTH, CHART_HEIGHT),
+            ))
+            .into_drawing_area();
+            self.draw(&root).map_err(|e| PlotError(e.to_string()))?;
         }
-        canvas.rgb
-    }
-}
-
-fn line(points: Vec<(f64, f64)>, colour: Colour, width: f64) -> Cmd {
-    Cmd::Line {
-        points,
-        colour,
-        width,
-    }
-}
-
-fn hex(c: Colour) -> String {
-    format!("#{:02x}{:02x}{:02x}", c[0], c[1], c[2])
-}
-
-fn xml_escape(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
-}
-
-/// Drawing commands as an SVG document of `width` x `height`.
-#[must_use]
-pub fn svg(cmds: &[Cmd], width: u32, height: u32) -> String {
-    let mut s = format!(
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{width}\" height=\"{height}\" viewBox=\"0 0 {width} {height}\" font-family=\"Ubuntu, DejaVu Sans, Arial, sans-serif\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
-    );
-    for c in cmds {
-        match c {
-            Cmd::Line {
-                points,
-                colour,
-                width,
-            } => {
-                let pts: Vec<String> = points
-                    .iter()
-                    .map(|(x, y)| format!("{x:.2},{y:.2}"))
-                    .collect();
-                let _ = writeln!(
-                    s,
-                    "<polyline points=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{width}\" stroke-linejoin=\"round\"/>",
-                    pts.join(" "),
-                    hex(*colour)
-                );
-            }
-            Cmd::Disc {
-                centre,
-                radius,
-                colour,
-            } => {
-                let _ = writeln!(
-                    s,
-                    "<circle cx=\"{:.2}\" cy=\"{:.2}\" r=\"{radius}\" fill=\"{}\"/>",
-                    centre.0,
-                    centre.1,
-                    hex(*colour)
-                );
-            }
-            Cmd::Text {
-                at,
-                text,
-                size,
-                anchor,
-                vertical,
-            } => {
-                let a = match anchor {
-                    Anchor::Start => "start",
-                    Anchor::Middle => "middle",
-                    Anchor::End => "end",
-                };
-                let rot = if *vertical {
-                    format!(" transform=\"rotate(-90 {:.2} {:.2})\"", at.0, at.1)
-                } else {
-                    String::new()
-                };
-                let _ = writeln!(
-                    s,
-                    "<text x=\"{:.2}\" y=\"{:.2}\" font-size=\"{size}\" text-anchor=\"{a}\" fill=\"#282828\"{rot}>{}</text>",
-                    at.0,
-                    at.1,
-                    xml_escape(text)
-                );
-            }
-        }
-    }
-    s.push_str("</svg>\n");
-    s
-}
-
-static FONT: LazyLock<Option<FontRef<'static>>> =
-    LazyLock::new(|| FontRef::try_from_slice(epaint_default_fonts::UBUNTU_LIGHT).ok());
-
-/// An RGB raster that draws [`Cmd`]s with anti-aliasing.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Canvas {
-    /// Width in pixels.
-    pub width: u32,
-    /// Height in pixels.
-    pub height: u32,
-    /// RGB bytes, row-major.
-    pub rgb: Vec<u8>,
-}
-
-impl Canvas {
-    /// A canvas filled with `background`.
-    #[must_use]
-    pub fn new(width: u32, height: u32, background: Colour) -> Self {
-        Self {
-            width,
-            height,
-            rgb: background
-                .iter()
-                .copied()
-                .cycle()
-                .take(width as usize * height as usize * 3)
-                .collect(),
-        }
-    }
-
-    /// Mixes `colour` into pixel (x, y) with coverage `a` in [0, 1].
-    pub fn blend(&mut self, x: i64, y: i64, colour: Colour, a: f64) {
-        if x < 0 || y < 0 || x >= i64::from(self.width) || y >= i64::from(self.height) || a <= 0.0 {
-            return;
-        }
-        let a = a.min(1.0);
-        let i = (y as usize * self.width as usize + x as usize) * 3;
-        for (k, c) in colour.iter().enumerate() {
-            let old = f64::from(self.rgb[i + k]);
-            self.rgb[i + k] = (old + (f64::from(*c) - old) * a).round() as u8;
-        }
-    }
-
-    /// Sets pixel (x, y).
-    pub fn set(&mut self, x: u32, y: u32, colour: Colour) {
-        if x < self.width && y < self.height {
-            let i = (y as usize * self.width as usize + x as usize) * 3;
-            self.rgb[i..i + 3].copy_from_slice(&colour);
-        }
-    }
-
-    /// Coverage of a shape given by its signed distance `d` (pixels, negative inside).
-    fn cover_by_distance(&mut self, bbox: [f64; 4], colour: Colour, d: impl Fn(f64, f64) -> f64) {
-        let [x0, y0, x1, y1] = bbox;
-        for y in (y0.floor() as i64).max(0)..=(y1.ceil() as i64).min(i64::from(self.height) - 1) {
-            for x in (x0.floor() as i64).max(0)..=(x1.ceil() as i64).min(i64::from(self.width) - 1)
-            {
-                let a = 0.5 - d(x as f64 + 0.5, y as f64 + 0.5);
-                self.blend(x, y, colour, a.clamp(0.0, 1.0));
-            }
-        }
-    }
-
-    /// Draws one command.
-    pub fn draw(&mut self, cmd: &Cmd) {
-        match cmd {
-            Cmd::Line {
-                points,
-                colour,
-                width,
-            } => {
-                // Each segment as a capsule; joins overlap a little, which at these widths
-                // only darkens the corner pixel slightly.
-                let r = width / 2.0;
-                for seg in points.windows(2) {
-                    let ((ax, ay), (bx, by)) = (seg[0], seg[1]);
-                    let bbox = [
-                        ax.min(bx) - r - 1.0,
-                        ay.min(by) - r - 1.0,
-                        ax.max(bx) + r + 1.0,
-                        ay.max(by) + r + 1.0,
-                    ];
-                    let (dx, dy) = (bx - ax, by - ay);
-                    let len2 = (dx * dx + dy * dy).max(1e-12);
-                    self.cover_by_distance(bbox, *colour, |px, py| {
-                        let t = (((px - ax) * dx + (py - ay) * dy) / len2).clamp(0.0, 1.0);
-                        let (qx, qy) = (ax + t * dx - px, ay + t * dy - py);
-                        (qx * qx + qy * qy).sqrt() - r
-                    });
-                }
-            }
-            Cmd::Disc {
-                centre,
-                radius,
-                colour,
-            } => {
-                let (cx, cy) = *centre;
-                let bbox = [
-                    cx - radius - 1.0,
-                    cy - radius - 1.0,
-                    cx + radius + 1.0,
-                    cy + radius + 1.0,
-                ];
-                self.cover_by_distance(bbox, *colour, |px, py| {
-                    ((px - cx).powi(2) + (py - cy).powi(2)).sqrt() - radius
-                });
-            }
-            Cmd::Text {
-                at,
-                text,
-                size,
-                anchor,
-                vertical,
-            } => self.text(*at, text, *size, *anchor, *vertical, [40, 40, 40]),
-        }
-    }
-
-    /// Draws text with its baseline through `at`.
-    pub fn text(
-        &mut self,
-        at: (f64, f64),
-        text: &str,
-        size: f64,
-        anchor: Anchor,
-        vertical: bool,
-        colour: Colour,
-    ) {
-        let Some(font) = FONT.as_ref() else {
-            return;
-        };
-        let scaled = font.as_scaled(PxScale::from(size as f32));
-        // Lay out along the baseline from x = 0.
-        let mut glyphs = Vec::new();
-        let mut x = 0.0f32;
-        let mut prev = None;
-        for ch in text.chars() {
-            let id = scaled.glyph_id(ch);
-            if let Some(p) = prev {
-                x += scaled.kern(p, id);
-            }
-            glyphs.push(id.with_scale_and_position(scaled.scale(), ab_glyph::point(x, 0.0)));
-            x += scaled.h_advance(id);
-            prev = Some(id);
-        }
-        let shift = f64::from(match anchor {
-            Anchor::Start => 0.0,
-            Anchor::Middle => x / 2.0,
-            Anchor::End => x,
-        });
-        for g in glyphs {
-            let Some(outlined) = font.outline_glyph(g) else {
-                continue;
-            };
-            let b = outlined.px_bounds();
-            outlined.draw(|gx, gy, a| {
-                // (u, v): position along and across the baseline.
-                let u = f64::from(b.min.x) + f64::from(gx) - shift;
-                let v = f64::from(b.min.y) + f64::from(gy);
-                let (px, py) = if vertical {
-                    (at.0 + v, at.1 - u)
-                } else {
-                    (at.0 + u, at.1 + v)
-                };
-                self.blend(px.floor() as i64, py.floor() as i64, colour, f64::from(a));
-            });
-        }
+        Ok(rgb)
     }
 }
 
@@ -583,18 +443,25 @@ pub fn magma() -> Vec<Colour> {
 }
 
 /// An error map colour-mapped with magma over [0, 1], with a labelled colour bar underneath:
-/// (width, height, RGB bytes).
-#[must_use]
-pub fn heat_map(map: &ErrorMap) -> (u32, u32, Vec<u8>) {
+/// (width, height, RGB bytes). The map and the bar are copied texel for texel (a chart
+/// library would only resample them); plotters writes the labels.
+///
+/// # Errors
+/// The bundled font cannot be read, or plotters fails.
+pub fn heat_map(map: &ErrorMap) -> Result<(u32, u32, Vec<u8>), PlotError> {
+    font()?;
     let lut = magma();
     let width = map.width.max(200);
     let height = map.height + LEGEND_HEIGHT;
-    let mut c = Canvas::new(width, height, [255, 255, 255]);
+    let mut rgb = vec![255u8; width as usize * height as usize * 3];
+    let mut set = |x: u32, y: u32, c: Colour| {
+        let i = (y as usize * width as usize + x as usize) * 3;
+        rgb[i..i + 3].copy_from_slice(&c);
+    };
     let colour = |e: f32| lut[((e.clamp(0.0, 1.0) * 255.0).round() as usize).min(lut.len() - 1)];
     for y in 0..map.height {
         for x in 0..map.width {
-            let e = map.error[(y * map.width + x) as usize];
-            c.set(x, y, colour(e));
+            set(x, y, colour(map.error[(y * map.width + x) as usize]));
         }
     }
     // The bar: 8 pixels from 0 to 1 across the width, labelled 0, 0.5 and 1.
@@ -603,79 +470,38 @@ pub fn heat_map(map: &ErrorMap) -> (u32, u32, Vec<u8>) {
     for x in 0..span {
         let e = x as f32 / (span - 1).max(1) as f32;
         for y in bar_top..bar_top + bar_h {
-            c.set(margin + x, y, colour(e));
+            set(margin + x, y, colour(e));
         }
     }
-    let ty = f64::from(bar_top + bar_h + 14);
-    let ink = [40, 40, 40];
-    c.text(
-        (f64::from(margin), ty),
-        "FLIP 0",
-        12.0,
-        Anchor::Start,
-        false,
-        ink,
-    );
-    c.text(
-        (f64::from(width) / 2.0, ty),
-        "0.5",
-        12.0,
-        Anchor::Middle,
-        false,
-        ink,
-    );
-    c.text(
-        (f64::from(width - margin), ty),
-        "1",
-        12.0,
-        Anchor::End,
-        false,
-        ink,
-    );
-    (width, height, c.rgb)
+    {
+        let root =
+            Bitmap(BitMapBackend::with_buffer(&mut rgb, (width, height))).into_drawing_area();
+        let ty = (bar_top + bar_h + 3) as i32;
+        let label = |text: &str, x: u32, h: HPos| {
+            root.draw(&Text::new(
+                text.to_owned(),
+                (x as i32, ty),
+                text_style(12).pos(Pos::new(h, VPos::Top)),
+            ))
+        };
+        label("FLIP 0", margin, HPos::Left)
+            .and_then(|()| label("0.5", width / 2, HPos::Center))
+            .and_then(|()| label("1", width - margin, HPos::Right))
+            .and_then(|()| root.present())
+            .map_err(|e| PlotError(e.to_string()))?;
+    }
+    Ok((width, height, rgb))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    #[test]
-    fn decades_cover_the_data() {
-        assert_eq!(decades([3.0, 250.0].into_iter()), (0, 3));
-        assert_eq!(decades([0.02, 0.05].into_iter()), (-2, -1));
-        assert_eq!(decades([10.0].into_iter()), (1, 2));
-        assert_eq!(decade_label(-2), "0.01");
-        assert_eq!(decade_label(3), "1000");
-        assert_eq!(decade_label(-7), "1e-7");
-    }
-
-    #[test]
-    fn raster_draws_lines_discs_and_text() {
-        let mut c = Canvas::new(60, 40, [255, 255, 255]);
-        c.draw(&line(vec![(5.0, 10.5), (55.0, 10.5)], [255, 0, 0], 2.0));
-        let px = |c: &Canvas, x: usize, y: usize| {
-            let i = (y * 60 + x) * 3;
-            [c.rgb[i], c.rgb[i + 1], c.rgb[i + 2]]
-        };
-        assert_eq!(px(&c, 30, 10), [255, 0, 0]);
-        assert_eq!(px(&c, 30, 20), [255, 255, 255]);
-        c.draw(&Cmd::Disc {
-            centre: (30.0, 30.0),
-            radius: 3.0,
-            colour: [0, 0, 255],
-        });
-        assert_eq!(px(&c, 30, 30), [0, 0, 255]);
-        let before = c.rgb.clone();
-        c.text((2.0, 38.0), "Ag", 12.0, Anchor::Start, false, [0, 0, 0]);
-        assert_ne!(c.rgb, before, "the font must draw something");
-    }
-
-    #[test]
-    fn svg_escapes_text_and_draws_every_series() {
-        let chart = LogLogChart {
+    fn two_series() -> LogLogChart {
+        LogLogChart {
             title: "a <b> & c".into(),
-            x_label: "x".into(),
-            y_label: "y".into(),
+            x_label: "time".into(),
+            y_label: "error".into(),
             series: vec![
                 Series {
                     label: "one".into(),
@@ -686,15 +512,106 @@ mod tests {
                     points: vec![(2.0, 0.2), (20.0, 0.02)],
                 },
             ],
-            y_marks: vec![],
+            y_marks: vec![(0.03, "RMSE 0.03".into())],
+        }
+    }
+
+    #[test]
+    fn decades_cover_the_data_and_ticks_read_plainly() {
+        assert_eq!(decades([3.0, 250.0].into_iter()), (0, 3));
+        assert_eq!(decades([0.02, 0.05].into_iter()), (-2, -1));
+        assert_eq!(decades([10.0].into_iter()), (1, 2));
+        assert_eq!(tick_label(0.01), "0.01");
+        assert_eq!(tick_label(0.003), "0.003");
+        assert_eq!(tick_label(20.0), "20");
+        assert_eq!(tick_label(1000.0), "1000");
+        assert_eq!(tick_label(1e-7), "1e-7");
+        assert_eq!(tick_label(2e-7), "2e-7");
+    }
+
+    fn pixel(rgb: &[u8], width: u32, x: u32, y: u32) -> Colour {
+        let i = (y as usize * width as usize + x as usize) * 3;
+        [rgb[i], rgb[i + 1], rgb[i + 2]]
+    }
+
+    #[test]
+    fn the_raster_chart_has_a_title_and_a_legend_in_the_series_colours() {
+        let rgb = two_series().to_rgb().unwrap();
+        assert_eq!(rgb.len(), (CHART_WIDTH * CHART_HEIGHT * 3) as usize);
+        let count = |x0: u32, x1: u32, y0: u32, y1: u32, c: Colour| {
+            (y0..y1)
+                .flat_map(|y| (x0..x1).map(move |x| (x, y)))
+                .filter(|&(x, y)| pixel(&rgb, CHART_WIDTH, x, y) == c)
+                .count()
         };
-        let s = chart.to_svg();
-        assert!(s.contains("a &lt;b&gt; &amp; c"));
-        assert!(s.contains(">one</text>") && s.contains(">two</text>"));
-        assert!(s.contains(&hex(PALETTE[0])) && s.contains(&hex(PALETTE[1])));
+        // Each legend entry's stroke is drawn in its series' colour.
+        for (i, c) in PALETTE[..2].iter().enumerate() {
+            let y = 40 + 20 * i as u32;
+            assert!(
+                count(PLOT_WIDTH + 12, PLOT_WIDTH + 37, y - 2, y + 3, *c) >= 20,
+                "legend entry {i}"
+            );
+        }
+        // Both lines cross the plot area.
+        for c in &PALETTE[..2] {
+            assert!(count(0, PLOT_WIDTH, 0, CHART_HEIGHT, *c) > 200);
+        }
+        // The title: dark text in the top band, centred over the plot.
+        let dark = (0..30)
+            .flat_map(|y| (200..560).map(move |x| (x, y)))
+            .filter(|&(x, y)| pixel(&rgb, CHART_WIDTH, x, y).iter().all(|v| *v < 160))
+            .count();
+        assert!(dark > 50, "{dark} dark pixels in the title band");
+    }
+
+    #[test]
+    fn the_svg_chart_escapes_text_and_names_every_series() {
+        let s = two_series().to_svg().unwrap();
+        assert!(s.starts_with("<svg"), "{}", &s[..80.min(s.len())]);
+        assert!(s.contains("a &lt;b&gt; &amp; c"), "the title, escaped");
+        for text in ["one", "two", "RMSE 0.03", "time", "error", "0.01"] {
+            assert!(s.contains(&format!(">\n{text}\n</text>")), "{text}");
+        }
+        // The lines and legend markers in the first two palette colours.
+        for c in &PALETTE[..2] {
+            let hex = format!("#{:02X}{:02X}{:02X}", c[0], c[1], c[2]);
+            assert!(s.matches(&hex).count() >= 3, "{hex}");
+        }
+    }
+
+    #[test]
+    fn a_heat_map_is_the_error_in_magma_over_a_labelled_bar() {
+        let map = ErrorMap {
+            mode: crate::report::Mode::new(
+                crate::texture::Filter::Bilinear,
+                crate::sampler::PixelSampler::Jittered,
+            ),
+            spp: 1,
+            width: 4,
+            height: 2,
+            error: vec![0.0, 0.5, 1.0, 2.0, 0.0, 0.0, 0.0, -1.0],
+        };
+        let (w, h, rgb) = heat_map(&map).unwrap();
+        assert_eq!((w, h), (200, 2 + LEGEND_HEIGHT));
+        let lut = magma();
+        assert_eq!(pixel(&rgb, w, 0, 0), lut[0]);
+        assert_eq!(pixel(&rgb, w, 1, 0), lut[128]);
+        assert_eq!(pixel(&rgb, w, 2, 0), lut[255]);
+        assert_eq!(pixel(&rgb, w, 3, 0), lut[255], "clamped to 1");
+        assert_eq!(pixel(&rgb, w, 3, 1), lut[0], "clamped to 0");
         assert_eq!(
-            chart.to_rgb().len(),
-            (CHART_WIDTH * CHART_HEIGHT * 3) as usize
+            pixel(&rgb, w, 5, 0),
+            [255, 255, 255],
+            "white beside the map"
         );
+        // The bar runs from magma(0) to magma(1).
+        assert_eq!(pixel(&rgb, w, 10, 8), lut[0]);
+        assert_eq!(pixel(&rgb, w, 189, 8), lut[255]);
+        // Its labels are drawn beneath it.
+        let dark = (16..h)
+            .flat_map(|y| (0..w).map(move |x| (x, y)))
+            .filter(|&(x, y)| pixel(&rgb, w, x, y).iter().all(|v| *v < 160))
+            .count();
+        assert!(dark > 20, "{dark} dark pixels of label text");
     }
 }

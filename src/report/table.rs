@@ -138,48 +138,109 @@ fn ms(t: Duration) -> String {
     }
 }
 
-fn csv_field(s: &str) -> String {
-    if s.contains([',', '"', '\n']) {
-        format!("\"{}\"", s.replace('"', "\"\""))
-    } else {
-        s.to_string()
+/// A number written with `P` decimals (`inf` and `NaN` as Rust writes them).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Fixed<const P: usize>(pub f64);
+
+impl<const P: usize> serde::Serialize for Fixed<P> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.collect_str(&format_args!("{:.P$}", self.0))
     }
 }
 
-/// `report.csv`: a header of [`CSV_COLUMNS`] and one line per row.
-#[must_use]
-pub fn csv(reports: &[SceneReport]) -> String {
-    let mut out = CSV_COLUMNS.join(",");
-    out.push('\n');
+/// One line of `report.csv`; its fields are [`CSV_COLUMNS`], in order.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct CsvRow<'a> {
+    /// The scene's name.
+    pub scene: &'a str,
+    /// The mode as `--modes` takes it.
+    pub mode: String,
+    /// Its texture filter.
+    pub filter: &'static str,
+    /// Its pixel sampler.
+    pub sampler: &'static str,
+    /// Samples per pixel.
+    pub spp: u32,
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// Rayon worker threads.
+    pub threads: usize,
+    /// Timed runs.
+    pub runs: usize,
+    /// Median time, ms.
+    pub time_ms_median: Fixed<4>,
+    /// Fastest run, ms.
+    pub time_ms_min: Fixed<4>,
+    /// Camera samples per second at the median time.
+    pub samples_per_s: Fixed<0>,
+    /// RMSE of the sRGB values.
+    pub rmse: Fixed<6>,
+    /// PSNR in dB.
+    pub psnr_db: Fixed<3>,
+    /// Relative MSE.
+    pub rel_mse: Fixed<6>,
+    /// Mean SSIM.
+    pub ssim: Fixed<6>,
+    /// Mean FLIP.
+    pub flip: Fixed<6>,
+    /// 1 on the Pareto front of (time, RMSE), else 0.
+    pub pareto: u8,
+}
+
+impl<'a> CsvRow<'a> {
+    /// The line of `row`.
+    #[must_use]
+    pub fn new(row: &'a Row, on_front: bool) -> Self {
+        let ms = |t: Duration| Fixed(t.as_secs_f64() * 1e3);
+        let m = row.metrics;
+        Self {
+            scene: &row.scene,
+            mode: row.mode.name(),
+            filter: row.mode.filter.name(),
+            sampler: row.mode.sampler.name(),
+            spp: row.spp,
+            width: row.width,
+            height: row.height,
+            threads: row.threads,
+            runs: row.runs,
+            time_ms_median: ms(row.time),
+            time_ms_min: ms(row.time_min),
+            samples_per_s: Fixed(row.samples_per_second()),
+            rmse: Fixed(m.rmse),
+            psnr_db: Fixed(m.psnr),
+            rel_mse: Fixed(m.rel_mse),
+            ssim: Fixed(m.ssim),
+            flip: Fixed(m.flip),
+            pareto: u8::from(on_front),
+        }
+    }
+}
+
+/// `report.csv`: a header of [`CSV_COLUMNS`] and one line per row (fields quoted where they
+/// hold a comma, a quote or a line break).
+///
+/// # Errors
+/// Only if serialising fails, which writing to memory does not.
+pub fn csv(reports: &[SceneReport]) -> Result<String, csv::Error> {
+    let mut w = csv::WriterBuilder::new()
+        .terminator(csv::Terminator::Any(b'\n'))
+        .from_writer(Vec::new());
+    if reports.iter().all(|r| r.rows.is_empty()) {
+        w.write_record(CSV_COLUMNS)?;
+    }
     for rep in reports {
         let front = pareto_front(&rep.rows);
         for (r, on_front) in rep.rows.iter().zip(front) {
-            let m = r.metrics;
-            let _ = writeln!(
-                out,
-                "{},{},{},{},{},{},{},{},{},{:.4},{:.4},{:.0},{:.6},{:.3},{:.6},{:.6},{:.6},{}",
-                csv_field(&r.scene),
-                r.mode.name(),
-                r.mode.filter.name(),
-                r.mode.sampler.name(),
-                r.spp,
-                r.width,
-                r.height,
-                r.threads,
-                r.runs,
-                r.time.as_secs_f64() * 1e3,
-                r.time_min.as_secs_f64() * 1e3,
-                r.samples_per_second(),
-                m.rmse,
-                m.psnr,
-                m.rel_mse,
-                m.ssim,
-                m.flip,
-                u8::from(on_front),
-            );
+            w.serialize(CsvRow::new(r, on_front))?;
         }
     }
-    out
+    let bytes = w
+        .into_inner()
+        .map_err(|e| csv::Error::from(e.into_error()))?;
+    // Every field is UTF-8 text: scene names are Rust strings, the rest numbers and names.
+    Ok(String::from_utf8_lossy(&bytes).into_owned())
 }
 
 /// The "how each metric is computed" section.
@@ -392,11 +453,23 @@ mod tests {
             reference_time: Duration::ZERO,
             error_maps: vec![],
         };
-        let text = csv(&[rep]);
+        let text = csv(&[rep]).unwrap();
         let lines: Vec<&str> = text.lines().collect();
         assert_eq!(lines.len(), 3);
-        assert_eq!(lines[0].split(',').count(), CSV_COLUMNS.len());
+        // The serialised struct's fields are the documented columns, in order.
+        assert_eq!(lines[0], CSV_COLUMNS.join(","));
+        assert!(text.ends_with(",1\n") && !text.contains('\r'), "{text:?}");
+        // 10 ms for 100 samples, then the metrics with their fixed decimals.
+        assert!(
+            lines[1].ends_with(
+                ",1,10,10,2,3,10.0000,10.0000,10000,0.050000,0.000,0.000000,0.000000,0.000000,1"
+            ),
+            "{}",
+            lines[1]
+        );
         assert!(lines[1].starts_with("\"a,b\",bilinear/jittered,bilinear,jittered,1,"));
         assert!(lines[2].ends_with(",1"), "{}", lines[2]);
+        // No rows: the header alone.
+        assert_eq!(csv(&[]).unwrap(), format!("{}\n", CSV_COLUMNS.join(",")));
     }
 }

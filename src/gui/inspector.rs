@@ -83,7 +83,7 @@ impl Inspector {
         self.shown.as_ref()
     }
 
-    /// The panel.
+    /// Draws the inspector panel: the pinned or hovered pixel's hit, (u, v) and texel.
     pub fn ui(&mut self, ui: &mut egui::Ui) {
         ui.heading("Inspector");
         if let Some(p) = self.pinned {

@@ -331,7 +331,7 @@ impl Filter {
 /// An image read through a mapping with a filter and wrap mode.
 #[derive(Clone, Debug)]
 pub struct ImageTexture {
-    /// The texels.
+    /// The decoded image, shared with every texture that reads the same file.
     pub image: Arc<ImageData>,
     /// How hit points become (u, v).
     pub mapping: Mapping,

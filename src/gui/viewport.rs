@@ -108,7 +108,8 @@ fn interact(
     response
 }
 
-/// The single-image viewport.
+/// Draws the toolbar and `texture` (an image of `size` pixels) fitted and centred in the space
+/// left, or a spinner until there is one; returns what the pointer did over it.
 pub fn show(
     ui: &mut egui::Ui,
     texture: Option<&egui::TextureHandle>,

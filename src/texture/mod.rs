@@ -423,11 +423,8 @@ impl Wrap {
 pub trait Real:
     Copy + PartialOrd + std::ops::Sub<Output = Self> + std::ops::Mul<Output = Self>
 {
-    /// 0.
     const ZERO: Self;
-    /// 1.
     const ONE: Self;
-    /// 2.
     const TWO: Self;
     /// The largest integer not above `self`.
     #[must_use]

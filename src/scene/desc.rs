@@ -24,14 +24,14 @@ pub struct SceneDesc {
     pub description: String,
     /// Where the eye is and what it sees; required (at least `eye`).
     pub camera: CameraDesc,
-    /// Resolution, samples, seed, exposure.
+    /// Resolution, samples, seed, exposure; every field defaults (see [`RenderDesc`]).
     #[serde(default)]
     pub render: RenderDesc,
     /// Light from every direction, which lit materials scale by their `ka`; default white at
     /// `ls` 1.
     #[serde(default)]
     pub ambient: AmbientDesc,
-    /// Directional and point lights.
+    /// Directional and point lights, each added to the ambient term; default none.
     #[serde(default)]
     pub lights: Vec<LightDesc>,
     /// Required, but may be empty (the render is then all `render.background`). Each ray takes
@@ -42,7 +42,8 @@ pub struct SceneDesc {
     pub snapshot: SnapshotDesc,
 }
 
-/// Camera placement and projection.
+/// Camera placement and projection, in world space with y up. A preset writes
+/// `camera: (eye: (0, 1, 4), look_at: (0, 0.5, 0), projection: Pinhole(fov: 50))`.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CameraDesc {
@@ -209,7 +210,8 @@ impl Default for AmbientDesc {
 pub enum LightDesc {
     /// Light from one direction (the sun).
     Directional {
-        /// Direction from surfaces toward the light (need not be unit length).
+        /// World-space direction from surfaces toward the light (need not be unit length, must not
+        /// be zero).
         direction: Vec3,
         /// Multiplier on `color` (finite, not negative); default 1.
         #[serde(default = "one")]
@@ -251,7 +253,8 @@ fn yes() -> bool {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ObjectDesc {
-    /// A name for menus and messages.
+    /// A name for menus and messages; default empty, which names it by its shape (or mesh
+    /// path) and index.
     #[serde(default, skip_serializing_if = "String::is_empty")]
     pub name: String,
     /// The generic shape or a mesh file.
@@ -397,7 +400,7 @@ fn default_exp() -> f32 {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub enum TextureDesc {
-    /// One colour everywhere.
+    /// One linear RGB colour everywhere: `Constant((0.7, 0.7, 0.7))`.
     Constant(Rgb),
     /// An image file through a mapping.
     Image {

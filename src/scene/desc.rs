@@ -204,7 +204,7 @@ impl Default for AmbientDesc {
 }
 
 /// A light source in `lights: [...]`. Its radiance `ls * color` reaches a surface undimmed
-/// by distance, unless an object that casts shadows is in the way.
+/// by distance, unless `shadows` is on and an object that casts shadows is in the way.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub enum LightDesc {

@@ -331,7 +331,8 @@ impl Filter {
 /// An image read through a mapping with a filter and wrap mode.
 #[derive(Clone, Debug)]
 pub struct ImageTexture {
-    /// The decoded image, shared with every texture that reads the same file.
+    /// The decoded image, shared (through the asset cache) with every texture that reads the
+    /// same file with the same `srgb` setting.
     pub image: Arc<ImageData>,
     /// How hit points become (u, v).
     pub mapping: Mapping,

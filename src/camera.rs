@@ -6,11 +6,11 @@ use crate::math::{Quat, Ray, RayDifferential, Vec2, Vec3, Vec3A};
 /// A camera with its orthonormal frame already computed.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Camera {
-    /// Eye position.
+    /// World-space eye position, where every primary ray starts.
     pub eye: Vec3A,
     /// Right, up and backward axes (u, v, w in the book: w points from the look-at to the eye).
     pub frame: [Vec3A; 3],
-    /// Projection.
+    /// How film positions become directions in the `frame`, angles in radians.
     pub projection: Projection,
     /// Film width in pixels.
     pub width: u32,

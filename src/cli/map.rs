@@ -10,7 +10,7 @@ use glam::DVec3;
 #[derive(Debug, clap::Args)]
 #[command(allow_negative_numbers = true)]
 pub struct MapArgs {
-    /// The mapping.
+    /// Which formula turns the hit point into (u, v).
     #[arg(value_parser = value_parser::<Mapping>())]
     pub mapping: Mapping,
     /// Local hit point x (read as f64: the formulas are worked in f64).
@@ -25,7 +25,7 @@ pub struct MapArgs {
     /// Texture resolution for the column and row (hres vres).
     #[arg(long, num_args = 2, value_names = ["W", "H"], default_values_t = [2048, 1024])]
     pub res: Vec<u32>,
-    /// Texel lookup.
+    /// How u and v become the printed column and row.
     #[arg(long, default_value_t = Lookup::Centred, value_parser = value_parser::<Lookup>())]
     pub lookup: Lookup,
     /// The texture's wrap mode for coordinates outside [0, 1]: repeat, clamp, mirror or black

@@ -37,9 +37,9 @@ const ROBUST_FAR: f32 = 1.0 + 2.0 * (3.0 * f32::EPSILON * 0.5) / (1.0 - 3.0 * f3
 /// An axis-aligned box.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Aabb {
-    /// Smallest corner.
+    /// Smallest x, y and z inside (+infinity in [`Aabb::EMPTY`]).
     pub min: Vec3,
-    /// Largest corner.
+    /// Largest x, y and z inside (-infinity in [`Aabb::EMPTY`]).
     pub max: Vec3,
 }
 
@@ -78,7 +78,8 @@ impl Aabb {
         d.x * d.y + d.y * d.z + d.z * d.x
     }
 
-    /// The centre.
+    /// The midpoint of `min` and `max`: where the BVH build bins a primitive, and the centre of
+    /// a mesh's mapping frame.
     #[must_use]
     #[inline]
     pub fn centre(self) -> Vec3 {

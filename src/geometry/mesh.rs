@@ -71,7 +71,7 @@ pub struct MeshMaterial {
 /// triangulated) with optional per-vertex (u, v) and normals.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct MeshData {
-    /// Vertex positions.
+    /// Vertex positions in the file's coordinates (the object space); `triangles` index them.
     pub positions: Vec<Vec3>,
     /// Per-vertex (u, v); empty when the file has none.
     pub uvs: Vec<Vec2>,
@@ -240,7 +240,8 @@ impl std::fmt::Debug for Mesh {
 pub struct TriangleHit {
     /// Triangle index in BVH order.
     pub triangle: u32,
-    /// Ray parameter.
+    /// Ray parameter of the hit: the point is `origin + t * dir` (a distance only if `dir` is
+    /// unit length).
     pub t: f32,
     /// Barycentric weights of the triangle's three vertices.
     pub bary: Vec3,

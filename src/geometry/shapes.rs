@@ -29,7 +29,7 @@ pub enum Shape {
 /// A mesh instance's shape: the shared mesh (and its BVH) and how this instance shades it.
 #[derive(Clone, Debug)]
 pub struct MeshShape {
-    /// The mesh.
+    /// The triangles and their BVH, loaded once per file and shared by its instances.
     pub mesh: Arc<Mesh>,
     /// Flat or smooth normals.
     pub shading: Shading,

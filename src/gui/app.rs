@@ -25,7 +25,8 @@ pub struct AppOptions {
 
 /// The explorer: the scene being edited, the render job showing it, and the panels.
 pub struct ExplorerApp {
-    /// The scene as edited.
+    /// The scene the panels edit, unsaved edits included; an edit that fails to build is rolled
+    /// back to the last description that built. `None` until a preset opens.
     pub(super) desc: Option<SceneDesc>,
     /// The last description that built (restored when an edit fails).
     good_desc: Option<SceneDesc>,
@@ -61,7 +62,7 @@ impl ExplorerApp {
         Self::with_options(path, AppOptions::default())
     }
 
-    /// Opens a preset with options.
+    /// [`ExplorerApp::open`], keeping the recent-files list where `options` says.
     #[must_use]
     pub fn with_options(path: PathBuf, options: AppOptions) -> Self {
         let mut app = Self {
@@ -114,7 +115,7 @@ impl ExplorerApp {
         }
     }
 
-    /// The scene as edited.
+    /// The scene with the window's edits, saved or not (`None` until a preset opens).
     #[must_use]
     pub fn desc(&self) -> Option<&SceneDesc> {
         self.desc.as_ref()

@@ -13,7 +13,8 @@ const OVERVIEW_MAX: u32 = 4096;
 /// Smallest and largest side of the zoomed texel view, in texels.
 const ZOOM_TEXELS: (u32, u32) = (8, 64);
 
-/// The inspector's state.
+/// The inspector panel: the pixel pinned by a click or under the pointer, what the renderer did
+/// there, and the texture views it draws.
 pub struct Inspector {
     /// Whether the panel is shown.
     pub open: bool,
@@ -83,7 +84,7 @@ impl Inspector {
         self.shown.as_ref()
     }
 
-    /// The panel.
+    /// Draws the inspector panel: the pinned or hovered pixel's hit, (u, v) and texel.
     pub fn ui(&mut self, ui: &mut egui::Ui) {
         ui.heading("Inspector");
         if let Some(p) = self.pinned {

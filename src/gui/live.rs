@@ -11,7 +11,7 @@ pub struct LiveImage {
 }
 
 impl LiveImage {
-    /// No image yet.
+    /// An empty image; `name` names the egui texture the job's first published image creates.
     #[must_use]
     pub fn new(name: &'static str) -> Self {
         Self {

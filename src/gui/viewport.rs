@@ -23,11 +23,11 @@ pub enum ViewEdit {
 /// What the pointer did in the viewport this frame.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct ViewOutput {
-    /// A camera edit.
+    /// The camera edit a drag or the wheel asked for, if any.
     pub edit: Option<ViewEdit>,
-    /// Film position under the pointer.
+    /// Film position under the pointer, in image pixels from the top-left corner (y down).
     pub hover: Option<Vec2>,
-    /// Film position clicked.
+    /// Film position clicked, in the same pixels as `hover`.
     pub click: Option<Vec2>,
     /// The debug view was changed.
     pub view_changed: bool,
@@ -108,7 +108,8 @@ fn interact(
     response
 }
 
-/// The single-image viewport.
+/// Draws the toolbar and `texture` (an image of `size` pixels) fitted and centred in the space
+/// left, or a spinner until there is one; returns what the pointer did over it.
 pub fn show(
     ui: &mut egui::Ui,
     texture: Option<&egui::TextureHandle>,

@@ -8,33 +8,33 @@ use crate::texture::{Texture, TextureContext};
 pub enum Material {
     /// `SV_Matte`: ambient + Lambertian diffuse, both with the textured colour `cd`.
     Matte {
-        /// Ambient reflection coefficient.
+        /// Ambient reflection coefficient (not negative): the term is `ka cd L_ambient`.
         ka: f32,
-        /// Diffuse reflection coefficient.
+        /// Diffuse reflection coefficient (not negative): the BRDF is `kd cd / pi`.
         kd: f32,
-        /// Diffuse colour.
+        /// Linear reflectance, used by both the ambient and the diffuse term.
         cd: Texture,
     },
     /// Matte plus a glossy highlight `ks cs (r . wo)^exp`.
     Phong {
-        /// Ambient reflection coefficient.
+        /// Ambient reflection coefficient, as for [`Material::Matte`].
         ka: f32,
-        /// Diffuse reflection coefficient.
+        /// Diffuse reflection coefficient, as for [`Material::Matte`].
         kd: f32,
-        /// Diffuse colour.
+        /// Linear reflectance of the ambient and diffuse terms (the highlight uses `cs`).
         cd: Texture,
-        /// Specular coefficient.
+        /// Strength of the highlight (not negative).
         ks: f32,
-        /// Specular colour.
+        /// Linear colour of the highlight.
         cs: Rgb,
-        /// Phong exponent.
+        /// Sharpness of the highlight: `(r . wo)^exp`, larger is tighter.
         exp: f32,
     },
     /// `SV_Emissive`: radiance `ls ce`, independent of lights (the environment sphere).
     Emissive {
-        /// Radiance scale.
+        /// Multiplier on `ce` (not negative).
         ls: f32,
-        /// Emitted colour.
+        /// Emitted linear radiance before `ls`.
         ce: Texture,
     },
 }

@@ -9,9 +9,8 @@ use std::sync::LazyLock;
 pub struct Rgb(pub f32, pub f32, pub f32);
 
 impl Rgb {
-    /// Black.
     pub const BLACK: Self = Self(0.0, 0.0, 0.0);
-    /// White.
+    /// `(1, 1, 1)`: full reflectance, and the default colour of lights and the ambient light.
     pub const WHITE: Self = Self(1.0, 1.0, 1.0);
 
     /// A grey of value `v`.
@@ -20,13 +19,13 @@ impl Rgb {
         Self(v, v, v)
     }
 
-    /// The colour as an array.
+    /// `[r, g, b]`.
     #[must_use]
     pub const fn to_array(self) -> [f32; 3] {
         [self.0, self.1, self.2]
     }
 
-    /// From an array.
+    /// From `[r, g, b]`.
     #[must_use]
     pub const fn from_array(a: [f32; 3]) -> Self {
         Self(a[0], a[1], a[2])
@@ -44,7 +43,6 @@ impl Rgb {
         0.2126 * self.0 + 0.7152 * self.1 + 0.0722 * self.2
     }
 
-    /// Largest channel.
     #[must_use]
     pub fn max_channel(self) -> f32 {
         self.0.max(self.1).max(self.2)

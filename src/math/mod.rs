@@ -15,7 +15,7 @@ pub use rng::{SampleRng, hash3};
 
 /// 2 pi, the cylindrical and spherical maps' full turn.
 pub const TAU: f32 = std::f32::consts::TAU;
-/// pi.
+/// pi, the range of the spherical map's polar angle (v = 1 - theta / pi).
 pub const PI: f32 = std::f32::consts::PI;
 /// 1 / pi, the Lambertian normalisation of the lecture's `SV_Lambertian::f`.
 pub const INV_PI: f32 = std::f32::consts::FRAC_1_PI;

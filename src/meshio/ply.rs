@@ -25,7 +25,9 @@ pub const UV_NAMES: [(&str, &str); 4] = [
     ("texture_s", "texture_t"),
 ];
 
-/// PLY encodings.
+/// The body encodings a PLY header's `format` line names, spelt as there (`ascii`,
+/// `binary_little_endian`, `binary_big_endian`); [`read_ply`] reads all three and
+/// [`write_ply`] writes any.
 #[derive(
     Clone,
     Copy,
@@ -44,7 +46,7 @@ pub const UV_NAMES: [(&str, &str); 4] = [
     parse_err_fn = crate::names::unknown::<PlyFormat>
 )]
 pub enum PlyFormat {
-    /// Text.
+    /// Numbers as decimal text, one element per line.
     #[strum(message = "Text: one element per line.")]
     Ascii,
     /// Binary, little-endian.
@@ -746,7 +748,7 @@ impl<const BIG: bool> Body for BinaryBody<BIG> {
 /// faces as `list uchar int vertex_indices`.
 ///
 /// # Errors
-/// Writing fails.
+/// `w` fails to take the bytes.
 pub fn write_ply(w: &mut impl Write, data: &MeshData, format: PlyFormat) -> std::io::Result<()> {
     let has_n = !data.normals.is_empty();
     let has_uv = !data.uvs.is_empty();

@@ -23,7 +23,7 @@ impl Generation {
         Self::default()
     }
 
-    /// The current value.
+    /// The current value: a job started now runs until the next [`Generation::bump`].
     #[must_use]
     pub fn current(&self) -> u64 {
         self.0.load(Ordering::Acquire)

@@ -22,37 +22,41 @@ pub struct SceneDesc {
     /// One line saying what the scene shows.
     #[serde(default, skip_serializing_if = "String::is_empty")]
     pub description: String,
-    /// The camera.
+    /// Where the eye is and what it sees; required (at least `eye`).
     pub camera: CameraDesc,
-    /// Resolution, samples, seed, exposure.
+    /// Resolution, samples, seed, exposure; every field defaults (see [`RenderDesc`]).
     #[serde(default)]
     pub render: RenderDesc,
-    /// Ambient light.
+    /// Light from every direction, which lit materials scale by their `ka`; default white at
+    /// `ls` 1.
     #[serde(default)]
     pub ambient: AmbientDesc,
-    /// Directional and point lights.
+    /// Directional and point lights, each added to the ambient term; default none.
     #[serde(default)]
     pub lights: Vec<LightDesc>,
-    /// The objects.
+    /// Required, but may be empty (the render is then all `render.background`). Each ray takes
+    /// the nearest hit, so order matters only where two surfaces coincide (the earlier wins).
     pub objects: Vec<ObjectDesc>,
     /// Settings for `texplore snapshot`.
     #[serde(default)]
     pub snapshot: SnapshotDesc,
 }
 
-/// Camera placement and projection.
+/// Camera placement and projection, in world space with y up. A preset writes
+/// `camera: (eye: (0, 1, 4), look_at: (0, 0.5, 0), projection: Pinhole(fov: 50))`.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CameraDesc {
-    /// Eye position.
+    /// Eye position in world units (y is up); required, and not equal to `look_at`.
     pub eye: Vec3,
-    /// The point looked at.
+    /// The point at the centre of the view, in world units; default the origin.
     #[serde(default)]
     pub look_at: Vec3,
-    /// Approximate up direction.
+    /// Which way is up on the film (default +y); need not be perpendicular to the view, must not
+    /// be zero.
     #[serde(default = "default_up")]
     pub up: Vec3,
-    /// Projection and its angles.
+    /// Projection and its angles; default `Pinhole(fov: 45)`.
     #[serde(default)]
     pub projection: ProjectionDesc,
 }
@@ -75,7 +79,7 @@ pub enum ProjectionDesc {
         /// Full field of view, degrees (360 sees everything).
         fov: f32,
     },
-    /// Equirectangular panorama.
+    /// Equirectangular panorama: x across the image is longitude, y is latitude.
     Spherical {
         /// Horizontal field of view, degrees (360 for all around).
         h_fov: f32,
@@ -90,30 +94,31 @@ impl Default for ProjectionDesc {
     }
 }
 
-/// Render settings.
+/// Image size, sampling, exposure and view. Every field has a default (written below), so a
+/// preset lists only what it changes: `render: (width: 320, spp: 4)`.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct RenderDesc {
-    /// Image width in pixels.
+    /// Image width in pixels, 1 to [`MAX_RESOLUTION`](super::MAX_RESOLUTION); default 640.
     pub width: u32,
-    /// Image height in pixels.
+    /// Image height in pixels, 1 to [`MAX_RESOLUTION`](super::MAX_RESOLUTION); default 480.
     pub height: u32,
-    /// Samples per pixel.
+    /// Samples per pixel, 1 to [`MAX_SPP`](super::MAX_SPP); default 16.
     pub spp: u32,
-    /// Seed of every random number.
+    /// Seed of every random number: the same seed gives the same image; default 0.
     pub seed: u32,
-    /// Where samples go in a pixel.
+    /// Where samples go in a pixel; default `Jittered`.
     pub sampler: PixelSampler,
-    /// Exposure in stops (multiplies radiance by 2^exposure before display).
+    /// Exposure in stops, -64 to 64 (multiplies radiance by 2^exposure before display); default 0.
     pub exposure: f32,
-    /// Colour of rays that hit nothing.
+    /// Linear radiance of rays that hit nothing (not negative); default black.
     pub background: Rgb,
-    /// How a pixel weighs its samples (the reconstruction filter).
+    /// How a pixel weighs its samples (the reconstruction filter); default `Box`.
     pub pixel_filter: PixelFilter,
     /// Adaptive sampling: after `spp` samples everywhere, more (up to `max_spp`) only where
-    /// the image needs them.
+    /// the image needs them; default `None` (off), on with `adaptive: Some((max_spp: 256))`.
     pub adaptive: Option<AdaptiveDesc>,
-    /// What the render shows: the shaded image or a debug view.
+    /// What the render shows: the shaded image or a debug view; default `Shaded`.
     pub view: View,
 }
 
@@ -139,9 +144,10 @@ impl Default for RenderDesc {
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct AdaptiveDesc {
-    /// Most samples a pixel may take.
+    /// Most samples a pixel may take, from `render.spp` to [`MAX_SPP`](super::MAX_SPP);
+    /// required.
     pub max_spp: u32,
-    /// Error tolerance in display units (0-1, sRGB-encoded luminance): a pixel keeps sampling
+    /// Error tolerance in display units ((0, 1], sRGB-encoded luminance): a pixel keeps sampling
     /// while the standard error of its mean, or (after a single sample) its difference from a
     /// neighbour, exceeds this.
     #[serde(default = "default_threshold")]
@@ -159,11 +165,11 @@ fn default_threshold() -> f32 {
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct SnapshotDesc {
-    /// Width in pixels.
+    /// Width in pixels; default 320.
     pub width: u32,
-    /// Height in pixels.
+    /// Height in pixels; default 240.
     pub height: u32,
-    /// Samples per pixel.
+    /// Samples per pixel; default 4.
     pub spp: u32,
 }
 
@@ -177,13 +183,14 @@ impl Default for SnapshotDesc {
     }
 }
 
-/// The ambient light: radiance `ls * color` from everywhere.
+/// The ambient light: radiance `ls * color` from everywhere, scaled by each lit material's
+/// `ka` (emissive materials ignore it).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct AmbientDesc {
-    /// Radiance scale.
+    /// Multiplier on `color` (finite, not negative); default 1.
     pub ls: f32,
-    /// Colour.
+    /// Linear RGB, `(r, g, b)`; default white `(1, 1, 1)`.
     pub color: Rgb,
 }
 
@@ -196,18 +203,20 @@ impl Default for AmbientDesc {
     }
 }
 
-/// A light.
+/// A light source in `lights: [...]`. Its radiance `ls * color` reaches a surface undimmed
+/// by distance, unless `shadows` is on and an object that casts shadows is in the way.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub enum LightDesc {
     /// Light from one direction (the sun).
     Directional {
-        /// Direction from surfaces toward the light (need not be unit length).
+        /// World-space direction from surfaces toward the light (need not be unit length, must not
+        /// be zero).
         direction: Vec3,
-        /// Radiance scale.
+        /// Multiplier on `color` (finite, not negative); default 1.
         #[serde(default = "one")]
         ls: f32,
-        /// Colour.
+        /// Linear RGB, `(r, g, b)`, not negative; default white.
         #[serde(default = "white")]
         color: Rgb,
         /// Whether objects cast shadows from it.
@@ -216,12 +225,12 @@ pub enum LightDesc {
     },
     /// Light from a point, without fall-off (the lecture's).
     Point {
-        /// Position.
+        /// Position in world units.
         position: Vec3,
-        /// Radiance scale.
+        /// Multiplier on `color` (finite, not negative); default 1.
         #[serde(default = "one")]
         ls: f32,
-        /// Colour.
+        /// Linear RGB, `(r, g, b)`, not negative; default white.
         #[serde(default = "white")]
         color: Rgb,
         /// Whether objects cast shadows from it.
@@ -244,7 +253,8 @@ fn yes() -> bool {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ObjectDesc {
-    /// A name for menus and messages.
+    /// A name for menus and messages; default empty, which names it by its shape (or mesh
+    /// path) and index.
     #[serde(default, skip_serializing_if = "String::is_empty")]
     pub name: String,
     /// The generic shape or a mesh file.
@@ -252,7 +262,7 @@ pub struct ObjectDesc {
     /// Scale, then rotate, then translate.
     #[serde(default)]
     pub transform: TransformDesc,
-    /// The material.
+    /// How the surface shades; required.
     pub material: MaterialDesc,
     /// Whether it blocks shadow rays (default: yes, except emissive objects).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -307,11 +317,12 @@ impl ShapeDesc {
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct TransformDesc {
-    /// Translation.
+    /// Where the object's origin goes, in world units; default `(0, 0, 0)`.
     pub translate: Vec3,
-    /// Rotation in degrees about x, then y, then z.
+    /// Rotation in degrees about x, then y, then z; default `(0, 0, 0)`.
     pub rotate: Vec3,
-    /// Scale along each axis.
+    /// Scale along each axis of the object (negative mirrors; zero is refused); default
+    /// `(1, 1, 1)`.
     pub scale: Vec3,
 }
 
@@ -325,47 +336,49 @@ impl Default for TransformDesc {
     }
 }
 
-/// Materials.
+/// How a surface shades, given its textured colour `cd`. Coefficients are finite and not
+/// negative. A lit material's radiance is the ambient term `ka cd L_ambient` plus, per light
+/// of radiance `L` arriving along `wi`, `(kd cd / pi + ks cs (r . wo)^exp) L (n . wi)`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub enum MaterialDesc {
     /// The lecture's `SV_Matte`: ambient + diffuse with a textured colour.
     Matte {
-        /// Ambient coefficient.
+        /// Share of the ambient light reflected; default 0.25.
         #[serde(default = "default_ka")]
         ka: f32,
-        /// Diffuse coefficient.
+        /// Share of direct light reflected diffusely; default 0.75.
         #[serde(default = "default_kd")]
         kd: f32,
-        /// Diffuse colour.
+        /// The surface colour (linear reflectance, usually in [0, 1]); required.
         cd: TextureDesc,
     },
     /// Matte with a Phong highlight.
     Phong {
-        /// Ambient coefficient.
+        /// Share of the ambient light reflected; default 0.25.
         #[serde(default = "default_ka")]
         ka: f32,
-        /// Diffuse coefficient.
+        /// Share of direct light reflected diffusely; default 0.75.
         #[serde(default = "default_kd")]
         kd: f32,
-        /// Diffuse colour.
+        /// The surface colour (linear reflectance, usually in [0, 1]); required.
         cd: TextureDesc,
-        /// Specular coefficient.
+        /// Strength of the highlight; default 0.25.
         #[serde(default = "default_ks")]
         ks: f32,
-        /// Specular colour.
+        /// Colour of the highlight, linear RGB; default white (the light's own colour).
         #[serde(default = "white")]
         cs: Rgb,
-        /// Phong exponent.
+        /// Phong exponent: larger is a smaller, sharper highlight; default 20.
         #[serde(default = "default_exp")]
         exp: f32,
     },
     /// The lecture's `SV_Emissive`: glows with a textured colour, ignores lights.
     Emissive {
-        /// Radiance scale.
+        /// Multiplier on the emitted colour (finite, not negative); default 1.
         #[serde(default = "one")]
         ls: f32,
-        /// Emitted colour.
+        /// The emitted colour as linear radiance (may exceed 1); required.
         ce: TextureDesc,
     },
 }
@@ -383,11 +396,11 @@ fn default_exp() -> f32 {
     20.0
 }
 
-/// Textures.
+/// Where a material's colour comes from. Colours and texel values are linear RGB.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub enum TextureDesc {
-    /// One colour everywhere.
+    /// One linear RGB colour everywhere: `Constant((0.7, 0.7, 0.7))`.
     Constant(Rgb),
     /// An image file through a mapping.
     Image {
@@ -402,7 +415,7 @@ pub enum TextureDesc {
         /// Which texel the nearest filter picks.
         #[serde(default)]
         lookup: Lookup,
-        /// Outside [0, 1].
+        /// What (u, v) outside [0, 1] reads; default `Repeat`.
         #[serde(default)]
         wrap: Wrap,
         /// Multiplier on the texel values.
@@ -423,7 +436,8 @@ pub enum TextureDesc {
         /// Squares along u and along v over [0, 1].
         #[serde(default = "default_squares")]
         squares: (f32, f32),
-        /// The two colours.
+        /// The colour of the square at the (u, v) origin, then the other's; default light grey 0.8
+        /// and near-black 0.05.
         #[serde(default = "default_checker_colors")]
         colors: (Rgb, Rgb),
         /// `Trilinear` or `Ewa`: box-filtered over the pixel's footprint in closed form;
@@ -443,7 +457,7 @@ pub enum TextureDesc {
         /// Which texel the nearest filter picks.
         #[serde(default)]
         lookup: Lookup,
-        /// Outside [0, 1].
+        /// What (u, v) outside [0, 1] reads; default `Repeat`.
         #[serde(default)]
         wrap: Wrap,
         /// Longest-to-shortest axis ratio the EWA filter honours (see the `Image` texture).
@@ -458,7 +472,7 @@ pub enum TextureDesc {
         /// How texels are combined.
         #[serde(default)]
         filter: Filter,
-        /// Outside [0, 1].
+        /// What (u, v) outside [0, 1] reads; default `Repeat`.
         #[serde(default)]
         wrap: Wrap,
         /// The longest footprint the EWA filter follows (major / minor axis, 1 to 64).
@@ -520,7 +534,7 @@ impl TextureDesc {
 }
 
 impl MaterialDesc {
-    /// The colour texture.
+    /// The texture giving the surface its colour: `cd`, or `ce` for an emissive material.
     #[must_use]
     pub fn texture(&self) -> &TextureDesc {
         match self {

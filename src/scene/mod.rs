@@ -84,17 +84,18 @@ impl RenderSettings {
 /// An immutable, ready-to-trace scene.
 #[derive(Clone, Debug)]
 pub struct Scene {
-    /// The placed objects.
+    /// The objects with their world transforms, in preset order; [`SurfaceHit::object`]
+    /// indexes this.
     pub objects: Vec<Object>,
     /// Materials, indexed by `Object::material`.
     pub materials: Vec<Material>,
     /// Directional and point lights.
     pub lights: Vec<Light>,
-    /// Ambient radiance.
+    /// Ambient radiance, linear (`ambient.ls * ambient.color` of the preset).
     pub ambient: Rgb,
-    /// The camera.
+    /// Makes the primary rays, for a film of `settings.width` x `settings.height` pixels.
     pub camera: Camera,
-    /// Render settings.
+    /// Resolution, sampling, exposure and view, checked against their ranges.
     pub settings: RenderSettings,
     /// Whether any texture needs ray differentials (computed only then).
     pub needs_differentials: bool,

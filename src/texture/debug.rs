@@ -29,7 +29,7 @@ use serde::{Deserialize, Serialize};
     parse_err_fn = crate::names::unknown::<View>
 )]
 pub enum View {
-    /// The shaded image.
+    /// The lit, textured image (the default): what a render shows unless a debug view is picked.
     #[default]
     #[strum(message = "The rendered image.")]
     Shaded,

@@ -332,7 +332,8 @@ impl Filter {
 /// An image read through a mapping with a filter and wrap mode.
 #[derive(Clone, Debug)]
 pub struct ImageTexture {
-    /// The texels.
+    /// The decoded image, shared (through the asset cache) with every texture that reads the
+    /// same file with the same `srgb` setting.
     pub image: Arc<ImageData>,
     /// How hit points become (u, v).
     pub mapping: Mapping,
@@ -424,11 +425,8 @@ impl Wrap {
 pub trait Real:
     Copy + PartialOrd + std::ops::Sub<Output = Self> + std::ops::Mul<Output = Self>
 {
-    /// 0.
     const ZERO: Self;
-    /// 1.
     const ONE: Self;
-    /// 2.
     const TWO: Self;
     /// The largest integer not above `self`.
     #[must_use]

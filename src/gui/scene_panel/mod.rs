@@ -18,10 +18,11 @@ use crate::names::Named;
 use crate::scene::{ObjectDesc, SceneDesc, ShapeDesc, TextureDesc, TextureKind};
 use std::path::{Path, PathBuf};
 
-/// The panel's own state.
+/// What the scene panel keeps between frames (the selection, half-typed paths, the asset
+/// list); the scene itself is the [`SceneDesc`] passed to it.
 #[derive(Default)]
 pub struct ScenePanel {
-    /// Index of the selected object.
+    /// Index into `SceneDesc::objects` of the object the panel edits.
     pub selected: usize,
     /// The image path being typed, applied with Enter or "Load".
     path_text: Option<(usize, String)>,

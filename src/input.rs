@@ -70,9 +70,11 @@ pub fn open_input(path: &Path) -> Result<File> {
     let file = options.open(path).map_err(|e| Error::io(path, e))?;
     let meta = file.metadata().map_err(|e| Error::io(path, e))?;
     if !meta.is_file() {
-        return Err(Error::invalid(
+        // An I/O error, so that callers which re-word value errors keep the file's name.
+        let why = format!("not a regular file ({})", kind(&meta));
+        return Err(Error::io(
             path,
-            format!("not a regular file ({})", kind(&meta)),
+            std::io::Error::new(std::io::ErrorKind::InvalidInput, why),
         ));
     }
     Ok(file)
@@ -81,9 +83,15 @@ pub fn open_input(path: &Path) -> Result<File> {
 /// Reads all of an opened `file` (named `path` in errors), refusing it above `max_bytes`.
 ///
 /// # Errors
-/// A read fails, or the file holds more than `max_bytes` (`FILE: larger than 16 MiB`).
+/// A read fails, or the file holds more than `max_bytes` (`FILE: too large (larger than 16 MiB)`).
 pub fn read_opened(file: File, path: &Path, max_bytes: u64) -> Result<Vec<u8>> {
-    let too_large = || Error::invalid(path, format!("larger than {}", human_bytes(max_bytes)));
+    let too_large = || {
+        let why = format!("too large (larger than {})", human_bytes(max_bytes));
+        Error::io(
+            path,
+            std::io::Error::new(std::io::ErrorKind::FileTooLarge, why),
+        )
+    };
     // A quick refusal when the size is known; the bound on the read below is what holds.
     if file.metadata().is_ok_and(|m| m.len() > max_bytes) {
         return Err(too_large());
@@ -135,7 +143,10 @@ mod tests {
         std::fs::write(&p, vec![b'a'; 100]).unwrap();
         assert_eq!(read_input(&p, 100).unwrap().len(), 100);
         let e = read_input(&p, 99).unwrap_err().to_string();
-        assert!(e.ends_with("f.txt: larger than 99 bytes"), "{e}");
+        assert!(
+            e.ends_with("f.txt: too large (larger than 99 bytes)"),
+            "{e}"
+        );
     }
 
     #[test]
@@ -148,7 +159,9 @@ mod tests {
     #[cfg(unix)]
     #[test]
     fn devices_are_refused() {
-        let e = read_input(Path::new("/dev/zero"), 16).unwrap_err().to_string();
+        let e = read_input(Path::new("/dev/zero"), 16)
+            .unwrap_err()
+            .to_string();
         assert_eq!(e, "/dev/zero: not a regular file (a character device)");
     }
 

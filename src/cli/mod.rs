@@ -153,7 +153,11 @@ mod tests {
             Err("2000000000 is out of range (8 to 8388608)".into())
         );
         assert!(parse_repeat("0").is_err());
-        assert!(parse_spp("99999999999").unwrap_err().contains("not a whole number"));
+        assert!(
+            parse_spp("99999999999")
+                .unwrap_err()
+                .contains("not a whole number")
+        );
         for bad in ["1e300", "NaN", "-1", "inf"] {
             assert!(parse_time_budget(bad).is_err(), "{bad}");
         }

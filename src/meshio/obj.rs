@@ -73,7 +73,9 @@ fn logical_lines(
     let mut total = 0u64;
     loop {
         raw.clear();
-        let n = r.read_until(b'\n', &mut raw).map_err(|e| Error::io(path, e))?;
+        let n = r
+            .read_until(b'\n', &mut raw)
+            .map_err(|e| Error::io(path, e))?;
         if n == 0 {
             break;
         }
@@ -81,7 +83,10 @@ fn logical_lines(
         if total > max_bytes {
             return Err(Error::invalid(
                 path,
-                format!("larger than {}", crate::input::human_bytes(max_bytes)),
+                format!(
+                    "too large (larger than {})",
+                    crate::input::human_bytes(max_bytes)
+                ),
             ));
         }
         physical += 1;
@@ -125,7 +130,7 @@ fn prepare(path: &Path, dir: &Path) -> Result<Prepared> {
         return Err(Error::invalid(
             path,
             format!(
-                "larger than {} (the most texplore reads as OBJ)",
+                "too large (larger than {}, the most texplore reads as OBJ)",
                 crate::input::human_bytes(MAX_MESH_FILE_BYTES)
             ),
         ));
@@ -400,7 +405,8 @@ fn texture_file(value: &str) -> std::result::Result<&str, String> {
         rest = after;
         for k in 0..max {
             let (word, after) = keyword(rest);
-            let ok = !word.is_empty() && (!numeric || word.parse::<f32>().is_ok_and(f32::is_finite));
+            let ok =
+                !word.is_empty() && (!numeric || word.parse::<f32>().is_ok_and(f32::is_finite));
             if !ok {
                 if k < min {
                     return Err(format!(

@@ -83,9 +83,7 @@ fn preset_text(info: &png::Info<'_>, path: &Path) -> Result<Option<String>> {
         )
     };
     let inflate_err = |e: png::DecodingError| match e {
-        png::DecodingError::Format(_)
-            if e.to_string().contains("decompression space") =>
-        {
+        png::DecodingError::Format(_) if e.to_string().contains("decompression space") => {
             too_large()
         }
         e => Error::invalid(

@@ -6,7 +6,9 @@ use crate::error::{Error, Result};
 use crate::math::{Rgb, Vec2, linear_to_srgb, srgb_to_linear, srgb8_table};
 use std::path::Path;
 
+mod float_tiff;
 mod hdr;
+mod png_decode;
 
 /// The largest width or height an image may have (decoding refuses anything bigger).
 pub const MAX_IMAGE_DIMENSION: u32 = 32_768;
@@ -348,10 +350,7 @@ fn limits() -> image::Limits {
 
 /// Decodes an opened image file: the format from its first bytes (else from `path`'s
 /// extension), Radiance HDR in any of its eight orientations and with any `#?` signature.
-fn decode(
-    mut file: std::io::BufReader<std::fs::File>,
-    path: &Path,
-) -> Result<image::DynamicImage> {
+fn decode(mut file: std::io::BufReader<std::fs::File>, path: &Path) -> Result<image::DynamicImage> {
     use std::io::BufRead;
     let err = |message: String| Error::Image {
         path: path.to_path_buf(),
@@ -368,6 +367,20 @@ fn decode(
         && let Ok(format) = image::ImageFormat::from_path(path)
     {
         reader.set_format(format);
+    }
+    if reader.format() == Some(image::ImageFormat::Png) {
+        return png_decode::decode_png(reader.into_inner(), MAX_IMAGE_DIMENSION, MAX_IMAGE_BYTES)
+            .map_err(err);
+    }
+    if reader.format() == Some(image::ImageFormat::Tiff) {
+        let mut file = reader.into_inner();
+        if let Some(image) =
+            float_tiff::decode_gray_f32(&mut file, MAX_IMAGE_DIMENSION, MAX_IMAGE_BYTES)
+                .map_err(err)?
+        {
+            return Ok(image);
+        }
+        reader = image::ImageReader::with_format(file, image::ImageFormat::Tiff);
     }
     reader.limits(limits());
     reader.decode().map_err(|e| err(e.to_string()))

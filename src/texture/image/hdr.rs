@@ -22,10 +22,22 @@ struct Axis {
 impl Axis {
     fn parse(tag: &str) -> Option<Self> {
         match tag {
-            "+X" => Some(Self { x: true, plus: true }),
-            "-X" => Some(Self { x: true, plus: false }),
-            "+Y" => Some(Self { x: false, plus: true }),
-            "-Y" => Some(Self { x: false, plus: false }),
+            "+X" => Some(Self {
+                x: true,
+                plus: true,
+            }),
+            "-X" => Some(Self {
+                x: true,
+                plus: false,
+            }),
+            "+Y" => Some(Self {
+                x: false,
+                plus: true,
+            }),
+            "-Y" => Some(Self {
+                x: false,
+                plus: false,
+            }),
             _ => None,
         }
     }
@@ -65,10 +77,7 @@ fn line(r: &mut impl BufRead, budget: &mut u64) -> Result<String, String> {
 ///
 /// # Errors
 /// A malformed header or resolution line, or what the scanline decoder or the limits report.
-pub fn decode_radiance(
-    mut r: impl BufRead,
-    limits: image::Limits,
-) -> Result<DynamicImage, String> {
+pub fn decode_radiance(mut r: impl BufRead, limits: image::Limits) -> Result<DynamicImage, String> {
     let mut budget = MAX_HEADER_BYTES;
     let signature = line(&mut r, &mut budget)?;
     debug_assert!(signature.starts_with("#?"));
@@ -101,7 +110,12 @@ pub fn decode_radiance(
         .map_err(|e| e.to_string())?;
     decoder.set_limits(limits).map_err(|e| e.to_string())?;
     let decoded = DynamicImage::from_decoder(decoder).map_err(|e| e.to_string())?;
-    if (a1, a2) == (Axis::parse("-Y").unwrap_or(a1), Axis::parse("+X").unwrap_or(a2)) {
+    if (a1, a2)
+        == (
+            Axis::parse("-Y").unwrap_or(a1),
+            Axis::parse("+X").unwrap_or(a2),
+        )
+    {
         return Ok(decoded);
     }
     let scan = decoded.into_rgb32f();
@@ -149,8 +163,8 @@ mod tests {
             ("-X 3 +Y 2", (2, 1), (2, 0)),
         ];
         for (res, first, second) in cases {
-            let img = decode_radiance(&file("#?RADIANCE", res, 6)[..], image::Limits::default())
-                .unwrap();
+            let img =
+                decode_radiance(&file("#?RADIANCE", res, 6)[..], image::Limits::default()).unwrap();
             assert_eq!((img.width(), img.height()), (3, 2), "{res}");
             assert_eq!(red(&img, first.0, first.1), 0.0, "{res}");
             assert_eq!(red(&img, second.0, second.1), 1.0, "{res}");
@@ -159,8 +173,11 @@ mod tests {
 
     #[test]
     fn any_signature_is_read() {
-        let img = decode_radiance(&file("#?RGBE", "-Y 1 +X 2", 2)[..], image::Limits::default())
-            .unwrap();
+        let img = decode_radiance(
+            &file("#?RGBE", "-Y 1 +X 2", 2)[..],
+            image::Limits::default(),
+        )
+        .unwrap();
         assert_eq!(red(&img, 1, 0), 1.0);
     }
 

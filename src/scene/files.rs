@@ -28,11 +28,11 @@ pub fn read_preset_or_png(path: &Path) -> Result<SceneDesc> {
 
 /// Most bytes the PNG decoder may hold for a screenshot's ancillary chunks (text, the colour
 /// profile is skipped) while looking for the preset: room for a preset of
-/// [`MAX_PRESET_BYTES`](super::build::MAX_PRESET_BYTES) stored uncompressed, and no more.
+/// 16 MiB (`MAX_PRESET_BYTES`) stored uncompressed, and no more.
 pub const MAX_PNG_ANCILLARY_BYTES: usize = 64 << 20;
 
 /// The preset embedded in a PNG's text chunk (`tEXt`, `zTXt` or `iTXt`, before or after the
-/// image data), at most [`MAX_PRESET_BYTES`](super::build::MAX_PRESET_BYTES) once inflated.
+/// image data), at most 16 MiB (`MAX_PRESET_BYTES`) once inflated.
 ///
 /// # Errors
 /// Not a regular file, not a PNG, no texplore preset inside, or a preset above the limit.
@@ -70,7 +70,7 @@ pub fn read_png_preset(path: &Path) -> Result<String> {
     })
 }
 
-/// The preset in `info`'s text chunks, inflated under [`MAX_PRESET_BYTES`](super::build::MAX_PRESET_BYTES).
+/// The preset in `info`'s text chunks, inflated under 16 MiB (`MAX_PRESET_BYTES`).
 fn preset_text(info: &png::Info<'_>, path: &Path) -> Result<Option<String>> {
     let limit = super::build::MAX_PRESET_BYTES;
     let too_large = || {

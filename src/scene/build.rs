@@ -53,7 +53,7 @@ pub fn parse_preset(text: &str, path: &Path) -> Result<SceneDesc> {
     Ok(desc)
 }
 
-/// Reads and parses a preset file (a regular file of at most [`MAX_PRESET_BYTES`]).
+/// Reads and parses a preset file (a regular file of at most 16 MiB, `MAX_PRESET_BYTES`).
 ///
 /// # Errors
 /// The file cannot be read, is not a regular file, is too large, or does not parse.

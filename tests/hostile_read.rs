@@ -281,6 +281,14 @@ fn valid_objs_with_tabs_continuations_libraries_and_texture_options_load() {
     let out = texplore(d, &["render", "q.ron", "-o", "o.png", "-q"]);
     assert!(out.status.success(), "{}", stderr(&out));
     assert_eq!(centre_pixel(&d.join("o.png")), [230, 20, 10]);
+    // `vt u` (v is optional in OBJ and defaults to 0).
+    std::fs::write(
+        d.join("u.obj"),
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0.25\nvt 0.5\nvt 0.75\nf 1/1 2/2 3/3\n",
+    )
+    .unwrap();
+    let data = read_obj(&d.join("u.obj")).unwrap();
+    assert_eq!(data.uvs[1], texplore::math::Vec2::new(0.5, 0.0));
     // A line continued past the face: an error in it still names the line it starts on.
     std::fs::write(d.join("bad.obj"), format!("{QUAD}\nf 1 2 \\\n 9\n")).unwrap();
     let e = read_obj(&d.join("bad.obj")).unwrap_err().to_string();

@@ -10,6 +10,7 @@ pub mod camera;
 pub mod cli;
 pub mod error;
 pub mod geometry;
+pub mod input;
 pub mod inspect;
 pub mod mapping;
 pub mod material;

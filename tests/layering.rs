@@ -15,10 +15,11 @@ use std::path::{Path, PathBuf};
 /// The layers, lowest first. A module may use modules of lower layers only: not those of its own
 /// layer (peers stay independent) and never those above.
 const LAYERS: &[&[&str]] = &[
-    // Foundations every layer may use: the error type, then the `named_enum!` helpers and the
-    // atomic file writer (which returns the error type).
+    // Foundations every layer may use: the error type, then the names of closed sets (strum
+    // helpers), the bounded reader of every input file and the atomic writer of every output
+    // (both return the error type).
     &["error"],
-    &["names", "output"],
+    &["names", "input", "output"],
     &["math"],
     &["geometry"],
     // Mesh files produce `geometry::MeshData`.

@@ -18,7 +18,7 @@ pub struct BenchArgs {
     pub preset: Option<PathBuf>,
     /// Instead of a preset: a generated bumpy sphere of about this many triangles (with UVs)
     /// filling the view; also reports the BVH build time and bytes per triangle.
-    #[arg(long, value_name = "TRIANGLES", conflicts_with = "preset")]
+    #[arg(long, value_name = "TRIANGLES", conflicts_with = "preset", value_parser = super::parse_bench_triangles)]
     pub mesh: Option<u32>,
     /// With `--mesh`: the light casts shadows (one shadow ray per pixel through the BVH).
     #[arg(long, requires = "mesh")]
@@ -30,10 +30,10 @@ pub struct BenchArgs {
     #[arg(long, default_value_t = 800)]
     pub height: u32,
     /// Thread counts to measure.
-    #[arg(long, value_delimiter = ',', default_values_t = [1, 2])]
+    #[arg(long, value_delimiter = ',', default_values_t = [1, 2], value_parser = super::parse_threads)]
     pub threads: Vec<usize>,
     /// Timed passes per thread count (after one warm-up); the median is reported.
-    #[arg(long, default_value_t = 9)]
+    #[arg(long, default_value_t = 9, value_parser = super::parse_repeat)]
     pub repeat: usize,
 }
 

@@ -62,3 +62,103 @@ pub fn run(command: Command) -> Result<()> {
         Command::Report(a) => report::run(&a),
     }
 }
+
+/// Most timed runs `--repeat` asks for.
+pub const MAX_REPEAT: usize = 1000;
+/// Most triangles `bench --mesh` generates (about 1 GB of mesh and BVH).
+pub const MAX_BENCH_TRIANGLES: u32 = 1 << 23;
+/// Longest `report --time-budget`, in seconds (a day).
+pub const MAX_TIME_BUDGET: f64 = 86_400.0;
+
+/// An integer option in `min..=max`, with a message naming the range.
+fn parse_in_range<T>(s: &str, min: T, max: T) -> Result<T, String>
+where
+    T: std::str::FromStr + PartialOrd + std::fmt::Display + Copy,
+{
+    let n: T = s
+        .trim()
+        .parse()
+        .map_err(|_| format!("'{s}' is not a whole number from {min} to {max}"))?;
+    if n < min || n > max {
+        return Err(format!("{n} is out of range ({min} to {max})"));
+    }
+    Ok(n)
+}
+
+/// `--threads`: 0 (one per core) to [`crate::render::MAX_THREADS`].
+///
+/// # Errors
+/// Not a number, or above the limit.
+pub fn parse_threads(s: &str) -> Result<usize, String> {
+    parse_in_range(s, 0, crate::render::MAX_THREADS)
+        .map_err(|e| format!("{e}: 0 means one thread per core"))
+}
+
+/// `--repeat`: 1 to [`MAX_REPEAT`].
+///
+/// # Errors
+/// Not a number, or out of range.
+pub fn parse_repeat(s: &str) -> Result<usize, String> {
+    parse_in_range(s, 1, MAX_REPEAT)
+}
+
+/// `bench --mesh`: 8 to [`MAX_BENCH_TRIANGLES`].
+///
+/// # Errors
+/// Not a number, or out of range.
+pub fn parse_bench_triangles(s: &str) -> Result<u32, String> {
+    parse_in_range(s, 8, MAX_BENCH_TRIANGLES)
+}
+
+/// Samples per pixel: 1 to [`crate::scene::MAX_SPP`].
+///
+/// # Errors
+/// Not a number, or out of range.
+pub fn parse_spp(s: &str) -> Result<u32, String> {
+    parse_in_range(s, 1, crate::scene::MAX_SPP)
+}
+
+/// `report --time-budget`: seconds, 0 to [`MAX_TIME_BUDGET`].
+///
+/// # Errors
+/// Not a number, not finite, or out of range.
+pub fn parse_time_budget(s: &str) -> Result<f64, String> {
+    let t: f64 = s
+        .trim()
+        .parse()
+        .map_err(|_| format!("'{s}' is not a number of seconds"))?;
+    if !(0.0..=MAX_TIME_BUDGET).contains(&t) {
+        return Err(format!(
+            "{s} seconds is out of range (0 to {MAX_TIME_BUDGET})"
+        ));
+    }
+    Ok(t)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn counts_are_bounded_with_a_message() {
+        assert_eq!(parse_threads("8"), Ok(8));
+        assert_eq!(
+            parse_threads("100000"),
+            Err("100000 is out of range (0 to 1024): 0 means one thread per core".into())
+        );
+        assert_eq!(
+            parse_bench_triangles("2000000000"),
+            Err("2000000000 is out of range (8 to 8388608)".into())
+        );
+        assert!(parse_repeat("0").is_err());
+        assert!(
+            parse_spp("99999999999")
+                .unwrap_err()
+                .contains("not a whole number")
+        );
+        for bad in ["1e300", "NaN", "-1", "inf"] {
+            assert!(parse_time_budget(bad).is_err(), "{bad}");
+        }
+        assert_eq!(parse_time_budget("0.5"), Ok(0.5));
+    }
+}

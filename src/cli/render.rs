@@ -60,7 +60,7 @@ pub struct RenderArgs {
     #[arg(long, value_parser = value_parser::<View>())]
     pub view: Option<View>,
     /// Worker threads (default: one per core).
-    #[arg(long, default_value_t = 0)]
+    #[arg(long, default_value_t = 0, value_parser = super::parse_threads)]
     pub threads: usize,
     /// Don't draw the progress bar.
     #[arg(long, short)]

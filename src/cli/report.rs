@@ -28,13 +28,13 @@ pub struct ReportArgs {
     #[arg(long, default_value = "default")]
     pub modes: String,
     /// Samples per pixel of the measured renders.
-    #[arg(long, value_delimiter = ',', default_values_t = [1, 2, 4, 8, 16, 32, 64, 128, 256])]
+    #[arg(long, value_delimiter = ',', default_values_t = [1, 2, 4, 8, 16, 32, 64, 128, 256], value_parser = super::parse_spp)]
     pub spp: Vec<u32>,
     /// Timed runs per render after a warm-up; the median is reported.
-    #[arg(long, default_value_t = 5)]
+    #[arg(long, default_value_t = 5, value_parser = super::parse_repeat)]
     pub repeat: usize,
     /// Seconds the timed runs of one render may take before fewer are made (at least one).
-    #[arg(long, default_value_t = 2.0)]
+    #[arg(long, default_value_t = 2.0, value_parser = super::parse_time_budget)]
     pub time_budget: f64,
     /// Image width (overrides the presets).
     #[arg(long)]
@@ -43,7 +43,7 @@ pub struct ReportArgs {
     #[arg(long)]
     pub height: Option<u32>,
     /// Samples per pixel of the reference.
-    #[arg(long, default_value_t = 4096)]
+    #[arg(long, default_value_t = 4096, value_parser = super::parse_spp)]
     pub reference_spp: u32,
     /// Texture filter of the reference.
     #[arg(long, default_value = "bilinear", value_parser = value_parser::<Filter>())]
@@ -60,10 +60,10 @@ pub struct ReportArgs {
     pub no_cache: bool,
     /// Samples per pixel of the renders whose error heat maps are written (default: the
     /// smallest of --spp).
-    #[arg(long)]
+    #[arg(long, value_parser = super::parse_spp)]
     pub heatmap_spp: Option<u32>,
     /// Worker threads (default: one per core).
-    #[arg(long, default_value_t = 0)]
+    #[arg(long, default_value_t = 0, value_parser = super::parse_threads)]
     pub threads: usize,
     /// Don't draw the progress bar.
     #[arg(long, short)]

@@ -33,6 +33,13 @@ pub enum SnapshotAction {
 pub fn run(a: &SnapshotArgs) -> Result<()> {
     let update = a.action == SnapshotAction::Update;
     let mut presets = list_presets(&a.presets)?;
+    if presets.is_empty() {
+        bail!(
+            "{}: no presets (*.ron) here, nothing to {}",
+            a.presets.display(),
+            if update { "update" } else { "check" }
+        );
+    }
     if !a.names.is_empty() {
         presets.retain(|p| {
             p.file_stem()

@@ -39,9 +39,8 @@ pub fn load_mesh(path: &Path) -> Result<MeshData> {
         Some("obj") => read_obj(path),
         _ => {
             let mut head = [0u8; 4];
-            let n = std::fs::File::open(path)
-                .and_then(|mut f| std::io::Read::read(&mut f, &mut head))
-                .map_err(|e| Error::io(path, e))?;
+            let mut file = crate::input::open_input(path)?;
+            let n = std::io::Read::read(&mut file, &mut head).map_err(|e| Error::io(path, e))?;
             if n >= 3 && &head[..3] == b"ply" {
                 read_ply(path)
             } else {

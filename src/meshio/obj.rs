@@ -37,45 +37,202 @@ impl<R: BufRead> BufRead for LineCounter<R> {
     }
 }
 
-/// Reads an OBJ file and its material library.
+/// Largest `.mtl` file read.
+pub const MAX_MTL_BYTES: u64 = 16 << 20;
+
+/// A material as texplore uses it: its name, `Kd` and the file `map_Kd` names (resolved against
+/// the library's folder).
+#[derive(Clone, Debug, PartialEq)]
+struct MtlMaterial {
+    name: String,
+    diffuse: Option<[f32; 3]>,
+    texture: Option<PathBuf>,
+}
+
+/// The OBJ text as `tobj` is given it, and the material libraries each `mtllib` line names.
+struct Prepared {
+    /// One output line per input line (a continued line's followers left blank), so line
+    /// numbers stay those of the file; `mtllib` lines replaced by `mtllib K`, K indexing
+    /// `libraries`; keywords separated from their argument by one space.
+    text: String,
+    /// The files of each `mtllib` line.
+    libraries: Vec<Vec<PathBuf>>,
+}
+
+/// Reads the lines of `r` (at most `max_bytes`), joining backslash continuations; calls `f`
+/// with each logical line and the count of physical lines it took.
+fn logical_lines(
+    r: &mut impl BufRead,
+    path: &Path,
+    max_bytes: u64,
+    mut f: impl FnMut(&str, usize) -> Result<()>,
+) -> Result<()> {
+    let mut raw = Vec::new();
+    let mut joined = String::new();
+    let mut physical = 0usize;
+    let mut total = 0u64;
+    loop {
+        raw.clear();
+        let n = r
+            .read_until(b'\n', &mut raw)
+            .map_err(|e| Error::io(path, e))?;
+        if n == 0 {
+            break;
+        }
+        total += n as u64;
+        if total > max_bytes {
+            return Err(Error::invalid(
+                path,
+                format!(
+                    "too large (larger than {})",
+                    crate::input::human_bytes(max_bytes)
+                ),
+            ));
+        }
+        physical += 1;
+        let text = String::from_utf8_lossy(&raw);
+        let line = text.trim_end_matches(['\n', '\r']);
+        let line = if physical == 1 && joined.is_empty() {
+            line.strip_prefix('\u{feff}').unwrap_or(line)
+        } else {
+            line
+        };
+        if let Some(head) = line.trim_end().strip_suffix('\\') {
+            joined.push_str(head);
+            joined.push(' ');
+            continue;
+        }
+        joined.push_str(line);
+        f(&joined, physical)?;
+        joined.clear();
+        physical = 0;
+    }
+    if physical > 0 {
+        f(&joined, physical)?;
+    }
+    Ok(())
+}
+
+/// The first word of `line` and the rest, trimmed.
+fn keyword(line: &str) -> (&str, &str) {
+    let line = line.trim_start();
+    match line.find(char::is_whitespace) {
+        Some(i) => (&line[..i], line[i..].trim()),
+        None => (line, ""),
+    }
+}
+
+/// Reads the OBJ (at most [`MAX_MESH_FILE_BYTES`]) into the form `tobj` parses: continuations
+/// joined, tabs after `usemtl` and `mtllib` accepted, every library of a `mtllib` line kept.
+fn prepare(path: &Path, dir: &Path) -> Result<Prepared> {
+    let file = crate::input::open_input(path)?;
+    if file.metadata().is_ok_and(|m| m.len() > MAX_MESH_FILE_BYTES) {
+        return Err(Error::invalid(
+            path,
+            format!(
+                "too large (larger than {}, the most texplore reads as OBJ)",
+                crate::input::human_bytes(MAX_MESH_FILE_BYTES)
+            ),
+        ));
+    }
+    let mut reader = std::io::BufReader::new(file.take(MAX_MESH_FILE_BYTES + 1));
+    let mut out = Prepared {
+        text: String::new(),
+        libraries: Vec::new(),
+    };
+    logical_lines(&mut reader, path, MAX_MESH_FILE_BYTES, |line, physical| {
+        let (word, rest) = keyword(line);
+        match word {
+            "mtllib" => {
+                // A name with spaces if that file exists, else one library per word.
+                let whole = dir.join(rest);
+                let files = if rest.contains(char::is_whitespace) && whole.is_file() {
+                    vec![whole]
+                } else {
+                    rest.split_whitespace().map(|w| dir.join(w)).collect()
+                };
+                out.text
+                    .push_str(&format!("mtllib {}\n", out.libraries.len()));
+                out.libraries.push(files);
+            }
+            "usemtl" | "o" | "g" => {
+                out.text.push_str(&format!("{word} {rest}\n"));
+            }
+            // `vt u` is valid OBJ (v defaults to 0); tobj wants two numbers.
+            "vt" if rest.split_whitespace().count() == 1 => {
+                out.text.push_str(&format!("vt {rest} 0\n"));
+            }
+            _ => {
+                out.text.push_str(line);
+                out.text.push('\n');
+            }
+        }
+        for _ in 1..physical {
+            out.text.push('\n');
+        }
+        Ok(())
+    })?;
+    Ok(out)
+}
+
+/// Reads an OBJ file and its material libraries.
 ///
 /// # Errors
-/// The file cannot be read or parsed (the message names the line where `tobj` stopped), or it
-/// is too large.
+/// The file is not a regular file, cannot be read or parsed (the message names the line where
+/// parsing stopped), or is too large. A material library that cannot be read or parsed is not
+/// an error here: the mesh keeps its geometry and [`MeshData::material_problem`] names the
+/// library, the line and the problem.
 pub fn read_obj(path: &Path) -> Result<MeshData> {
     let fail = |at: String, message: String| Error::Mesh {
         path: path.to_path_buf(),
         at,
         message,
     };
-    let meta = std::fs::metadata(path).map_err(|e| Error::io(path, e))?;
-    if meta.len() > MAX_MESH_FILE_BYTES {
-        return Err(fail(
-            "file".into(),
-            format!(
-                "{} bytes is more than texplore reads as OBJ ({MAX_MESH_FILE_BYTES})",
-                meta.len()
-            ),
-        ));
-    }
-    check_face_indices(path).map_err(|(line, message)| fail(format!("line {line}"), message))?;
-    let file = std::fs::File::open(path).map_err(|e| Error::io(path, e))?;
+    let dir = path.parent().unwrap_or(Path::new(".")).to_path_buf();
+    let prepared = prepare(path, &dir)?;
+    check_face_indices(&prepared.text)
+        .map_err(|(line, message)| fail(format!("line {line}"), message))?;
     let mut reader = LineCounter {
-        inner: std::io::BufReader::new(file),
+        inner: prepared.text.as_bytes(),
         lines: 0,
     };
-    let dir = path.parent().unwrap_or(Path::new(".")).to_path_buf();
-    let mtl_dir: RefCell<Option<PathBuf>> = RefCell::new(None);
+    // Every material of every library, in the order tobj numbers them.
+    let parsed: RefCell<Vec<MtlMaterial>> = RefCell::new(Vec::new());
+    let problem: RefCell<Option<String>> = RefCell::new(None);
     let options = tobj::LoadOptions {
         triangulate: true,
         single_index: true,
         ignore_points: true,
         ignore_lines: true,
     };
-    let (models, materials) = tobj::load_obj_buf(&mut reader, &options, |mtl| {
-        let full = dir.join(mtl);
-        *mtl_dir.borrow_mut() = full.parent().map(Path::to_path_buf);
-        tobj::load_mtl(&full)
+    let (models, _) = tobj::load_obj_buf(&mut reader, &options, |line| {
+        let files = line
+            .to_str()
+            .and_then(|k| k.parse::<usize>().ok())
+            .and_then(|k| prepared.libraries.get(k))
+            .map_or(&[][..], Vec::as_slice);
+        let mut mats = Vec::new();
+        let mut names = std::collections::HashMap::new();
+        for file in files {
+            match read_mtl(file) {
+                Ok(list) => {
+                    for m in list {
+                        names.insert(m.name.clone(), mats.len());
+                        mats.push(tobj::Material {
+                            name: m.name.clone(),
+                            ..tobj::Material::default()
+                        });
+                        parsed.borrow_mut().push(m);
+                    }
+                }
+                Err(e) => {
+                    problem
+                        .borrow_mut()
+                        .get_or_insert_with(|| format!("material library {e}"));
+                }
+            }
+        }
+        Ok((mats, names.into_iter().collect()))
     })
     .map_err(|e| fail(format!("line {}", reader.lines), e.to_string()))?;
 
@@ -132,44 +289,140 @@ pub fn read_obj(path: &Path) -> Result<MeshData> {
     if has_uv && !data.positions.is_empty() {
         data.uv_names = Some(("vt".into(), "vt".into()));
     }
-    match materials {
-        Ok(mats) => {
-            // The first material a model uses that has an image, else the first one used.
-            let used = models.iter().filter_map(|m| m.mesh.material_id);
-            let chosen = used
-                .clone()
-                .find(|&i| mats.get(i).is_some_and(|m| m.diffuse_texture.is_some()))
-                .or_else(|| used.clone().next())
-                .and_then(|i| mats.get(i));
-            if let Some(m) = chosen {
-                let mtl_dir = mtl_dir.borrow().clone().unwrap_or_else(|| dir.clone());
-                data.material = Some(MeshMaterial {
-                    name: m.name.clone(),
-                    diffuse: m.diffuse,
-                    diffuse_texture: m
-                        .diffuse_texture
-                        .as_deref()
-                        .map(|t| mtl_dir.join(texture_file(t))),
-                });
-            }
-        }
-        Err(e) => {
-            if mtl_dir.borrow().is_some() {
-                data.material_problem = Some(format!("its material library cannot be read: {e}"));
-            }
-        }
+    let mats = parsed.into_inner();
+    // The first material a model uses that has an image, else the first one used.
+    let used = models.iter().filter_map(|m| m.mesh.material_id);
+    let chosen = used
+        .clone()
+        .find(|&i| mats.get(i).is_some_and(|m| m.texture.is_some()))
+        .or_else(|| used.clone().next())
+        .and_then(|i| mats.get(i));
+    if let Some(m) = chosen {
+        data.material = Some(MeshMaterial {
+            name: m.name.clone(),
+            diffuse: m.diffuse,
+            diffuse_texture: m.texture.clone(),
+        });
     }
+    data.material_problem = problem.into_inner();
     Ok(data)
 }
 
-/// The file name of a `map_Kd` value, past any `-option value` pairs.
-fn texture_file(value: &str) -> &str {
-    let v = value.trim();
-    if v.starts_with('-') {
-        v.rsplit(char::is_whitespace).next().unwrap_or(v)
-    } else {
-        v
+/// Reads and parses a material library.
+///
+/// # Errors
+/// The file cannot be read, or a statement texplore uses is malformed: the error names the
+/// library and the line.
+fn read_mtl(path: &Path) -> Result<Vec<MtlMaterial>> {
+    let file = crate::input::open_input(path)?;
+    let mut reader = std::io::BufReader::new(file.take(MAX_MTL_BYTES + 1));
+    let dir = path.parent().unwrap_or(Path::new("."));
+    let mut materials: Vec<MtlMaterial> = Vec::new();
+    let mut number = 0usize;
+    logical_lines(&mut reader, path, MAX_MTL_BYTES, |line, physical| {
+        number += physical;
+        let fail = |message: String| Error::Mesh {
+            path: path.to_path_buf(),
+            at: format!("line {}", number + 1 - physical),
+            message,
+        };
+        let (word, rest) = keyword(line);
+        match word {
+            "newmtl" if rest.is_empty() => Err(fail("'newmtl' names no material".into())),
+            "newmtl" => {
+                materials.push(MtlMaterial {
+                    name: rest.to_owned(),
+                    diffuse: None,
+                    texture: None,
+                });
+                Ok(())
+            }
+            "Kd" => {
+                let kd = parse_color(rest).map_err(|m| fail(format!("Kd: {m}")))?;
+                if let (Some(m), Some(kd)) = (materials.last_mut(), kd) {
+                    m.diffuse = Some(kd);
+                }
+                Ok(())
+            }
+            "map_Kd" => {
+                let file = texture_file(rest).map_err(|m| fail(format!("map_Kd: {m}")))?;
+                if let Some(m) = materials.last_mut() {
+                    m.texture = Some(dir.join(file));
+                }
+                Ok(())
+            }
+            // What texplore does not use is not checked.
+            _ => Ok(()),
+        }
+    })?;
+    Ok(materials)
+}
+
+/// An MTL colour: `r [g b]` (one number is grey), `xyz x [y z]` (taken as RGB), or `spectral
+/// file [factor]` (not supported: `None`).
+fn parse_color(rest: &str) -> std::result::Result<Option<[f32; 3]>, String> {
+    let mut words: Vec<&str> = rest.split_whitespace().collect();
+    match words.first() {
+        Some(&"spectral") => return Ok(None),
+        Some(&"xyz") => {
+            words.remove(0);
+        }
+        _ => {}
     }
+    let numbers = words
+        .iter()
+        .map(|w| {
+            w.parse::<f32>()
+                .ok()
+                .filter(|x| x.is_finite())
+                .ok_or_else(|| format!("'{w}' is not a number"))
+        })
+        .collect::<std::result::Result<Vec<f32>, String>>()?;
+    match numbers[..] {
+        [g] => Ok(Some([g; 3])),
+        [r, g, b] => Ok(Some([r, g, b])),
+        _ => Err(format!(
+            "expected 1 or 3 numbers (r [g b]), found {}",
+            numbers.len()
+        )),
+    }
+}
+
+/// The file name of a `map_Kd` value, past its options (`-s 2 2 1`, `-bm 1`, `-clamp on`, ...);
+/// the rest of the line is the name, spaces included.
+fn texture_file(value: &str) -> std::result::Result<&str, String> {
+    let mut rest = value.trim();
+    while rest.starts_with('-') {
+        let (option, after) = keyword(rest);
+        // (arguments required, at most, numeric)
+        let (min, max, numeric) = match option {
+            "-o" | "-s" | "-t" => (1, 3, true),
+            "-mm" => (2, 2, true),
+            "-bm" | "-boost" | "-texres" => (1, 1, true),
+            "-blendu" | "-blendv" | "-cc" | "-clamp" | "-imfchan" | "-type" => (1, 1, false),
+            _ => return Err(format!("unknown option '{option}'")),
+        };
+        rest = after;
+        for k in 0..max {
+            let (word, after) = keyword(rest);
+            let ok =
+                !word.is_empty() && (!numeric || word.parse::<f32>().is_ok_and(f32::is_finite));
+            if !ok {
+                if k < min {
+                    return Err(format!(
+                        "option '{option}' needs {min} {}",
+                        if numeric { "numbers" } else { "values" }
+                    ));
+                }
+                break;
+            }
+            rest = after;
+        }
+    }
+    if rest.is_empty() {
+        return Err("no file name".into());
+    }
+    Ok(rest)
 }
 
 /// Checks every face index of an OBJ against the vertices, texture coordinates and normals the
@@ -180,25 +433,14 @@ fn texture_file(value: &str) -> &str {
 ///
 /// # Errors
 /// The 1-based line and what is wrong.
-fn check_face_indices(path: &Path) -> Result<(), (usize, String)> {
-    use std::io::BufRead;
+fn check_face_indices(text: &str) -> Result<(), (usize, String)> {
     const KINDS: [&str; 3] = ["vertex", "texture coordinate", "normal"];
-    let file = std::fs::File::open(path).map_err(|e| (0, e.to_string()))?;
     let mut counts = [0i64; 3];
     // The largest positive index of each kind, and the line it is on.
     let mut largest = [(0i64, 0usize); 3];
-    let mut line = Vec::new();
-    let mut reader = std::io::BufReader::new(file);
-    let mut number = 0usize;
-    loop {
-        line.clear();
-        match reader.read_until(b'\n', &mut line) {
-            Ok(0) => break,
-            Ok(_) => number += 1,
-            Err(e) => return Err((number + 1, e.to_string())),
-        }
-        let text = String::from_utf8_lossy(&line);
-        let mut words = text.split_whitespace();
+    for (index, line) in text.lines().enumerate() {
+        let number = index + 1;
+        let mut words = line.split_whitespace();
         match words.next() {
             Some("v") => counts[0] += 1,
             Some("vt") => counts[1] += 1,

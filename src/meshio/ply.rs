@@ -163,7 +163,7 @@ struct Header {
 /// The file cannot be read, or is not a PLY this reader understands; the message names the
 /// file, the line or byte, and the element.
 pub fn read_ply(path: &Path) -> Result<MeshData> {
-    let file = std::fs::File::open(path).map_err(|e| Error::io(path, e))?;
+    let file = crate::input::open_input(path)?;
     let mut r = std::io::BufReader::with_capacity(1 << 16, file);
     read_ply_from(&mut r, path)
 }

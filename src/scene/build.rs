@@ -33,6 +33,8 @@ pub const UV_GRID_SIZE: u32 = 1024;
 /// # Errors
 /// Malformed RON, unknown fields, wrong types, or an unsupported `version`.
 pub fn parse_preset(text: &str, path: &Path) -> Result<SceneDesc> {
+    // A byte-order mark is not RON; editors on Windows write one.
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let desc: SceneDesc = ron::from_str(text).map_err(|e| Error::Preset {
         path: path.to_path_buf(),
         line: e.span.start.line,
@@ -51,19 +53,12 @@ pub fn parse_preset(text: &str, path: &Path) -> Result<SceneDesc> {
     Ok(desc)
 }
 
-/// Reads and parses a preset file.
+/// Reads and parses a preset file (a regular file of at most 16 MiB, `MAX_PRESET_BYTES`).
 ///
 /// # Errors
-/// The file cannot be read, is too large, or does not parse.
+/// The file cannot be read, is not a regular file, is too large, or does not parse.
 pub fn load_preset(path: &Path) -> Result<SceneDesc> {
-    let meta = std::fs::metadata(path).map_err(|e| Error::io(path, e))?;
-    if meta.len() > MAX_PRESET_BYTES {
-        return Err(Error::invalid(
-            path,
-            format!("{} bytes is too large for a preset", meta.len()),
-        ));
-    }
-    let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+    let text = crate::input::read_input_text(path, MAX_PRESET_BYTES)?;
     parse_preset(&text, path)
 }
 

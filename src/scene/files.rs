@@ -26,35 +26,98 @@ pub fn read_preset_or_png(path: &Path) -> Result<SceneDesc> {
     }
 }
 
-/// The preset embedded in a PNG's text chunk.
+/// Most bytes the PNG decoder may hold for a screenshot's ancillary chunks (text, the colour
+/// profile is skipped) while looking for the preset: room for a preset of
+/// 16 MiB (`MAX_PRESET_BYTES`) stored uncompressed, and no more.
+pub const MAX_PNG_ANCILLARY_BYTES: usize = 64 << 20;
+
+/// The preset embedded in a PNG's text chunk (`tEXt`, `zTXt` or `iTXt`, before or after the
+/// image data), at most 16 MiB (`MAX_PRESET_BYTES`) once inflated.
 ///
 /// # Errors
-/// Not a PNG, or no texplore preset inside.
+/// Not a regular file, not a PNG, no texplore preset inside, or a preset above the limit.
 pub fn read_png_preset(path: &Path) -> Result<String> {
-    let file = std::fs::File::open(path).map_err(|e| Error::io(path, e))?;
-    let decoder = png::Decoder::new(std::io::BufReader::new(file));
-    let reader = decoder.read_info().map_err(|e| Error::Image {
+    let file = crate::input::open_input(path)?;
+    let image_err = |e: png::DecodingError| Error::Image {
         path: path.to_path_buf(),
-        message: e.to_string(),
-    })?;
-    let info = reader.info();
-    let found = info
-        .utf8_text
-        .iter()
-        .find(|c| c.keyword == PRESET_CHUNK)
-        .and_then(|c| c.get_text().ok())
-        .or_else(|| {
-            info.uncompressed_latin1_text
-                .iter()
-                .find(|c| c.keyword == PRESET_CHUNK)
-                .map(|c| c.text.clone())
-        });
-    found.ok_or_else(|| {
+        message: match e {
+            png::DecodingError::LimitsExceeded => format!(
+                "its text chunks take more than {}",
+                crate::input::human_bytes(MAX_PNG_ANCILLARY_BYTES as u64)
+            ),
+            e => e.to_string(),
+        },
+    };
+    let mut decoder = png::Decoder::new_with_limits(
+        std::io::BufReader::new(file),
+        png::Limits {
+            bytes: MAX_PNG_ANCILLARY_BYTES,
+        },
+    );
+    // The colour profile is of no use here, and it can be a deflate bomb.
+    decoder.set_ignore_iccp_chunk(true);
+    let mut reader = decoder.read_info().map_err(image_err)?;
+    if let Some(text) = preset_text(reader.info(), path)? {
+        return Ok(text);
+    }
+    // Text chunks may also follow the image data.
+    reader.finish().map_err(image_err)?;
+    preset_text(reader.info(), path)?.ok_or_else(|| {
         Error::invalid(
             path,
             format!("this PNG has no '{PRESET_CHUNK}' text chunk (it was not saved by texplore)"),
         )
     })
+}
+
+/// The preset in `info`'s text chunks, inflated under 16 MiB (`MAX_PRESET_BYTES`).
+fn preset_text(info: &png::Info<'_>, path: &Path) -> Result<Option<String>> {
+    let limit = super::build::MAX_PRESET_BYTES;
+    let too_large = || {
+        Error::invalid(
+            path,
+            format!(
+                "the preset in its '{PRESET_CHUNK}' chunk is larger than {}",
+                crate::input::human_bytes(limit)
+            ),
+        )
+    };
+    let inflate_err = |e: png::DecodingError| match e {
+        png::DecodingError::Format(_) if e.to_string().contains("decompression space") => {
+            too_large()
+        }
+        e => Error::invalid(
+            path,
+            format!("its '{PRESET_CHUNK}' chunk cannot be read: {e}"),
+        ),
+    };
+    let text = if let Some(c) = info.utf8_text.iter().find(|c| c.keyword == PRESET_CHUNK) {
+        let mut c = c.clone();
+        c.decompress_text_with_limit(limit as usize)
+            .map_err(inflate_err)?;
+        c.get_text().map_err(inflate_err)?
+    } else if let Some(c) = info
+        .compressed_latin1_text
+        .iter()
+        .find(|c| c.keyword == PRESET_CHUNK)
+    {
+        let mut c = c.clone();
+        c.decompress_text_with_limit(limit as usize)
+            .map_err(inflate_err)?;
+        c.get_text().map_err(inflate_err)?
+    } else if let Some(c) = info
+        .uncompressed_latin1_text
+        .iter()
+        .find(|c| c.keyword == PRESET_CHUNK)
+    {
+        c.text.clone()
+    } else {
+        return Ok(None);
+    };
+    if text.len() as u64 > limit {
+        return Err(too_large());
+    }
+    Ok(Some(text))
 }
 
 /// Writes a display image as an sRGB PNG with `desc` in a text chunk (atomically). `desc`'s

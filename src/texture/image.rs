@@ -6,6 +6,10 @@ use crate::error::{Error, Result};
 use crate::math::{Rgb, Vec2, linear_to_srgb8, srgb_to_linear, srgb8_table};
 use std::path::Path;
 
+mod float_tiff;
+mod hdr;
+mod png_decode;
+
 /// The largest width or height an image may have (decoding refuses anything bigger).
 pub const MAX_IMAGE_DIMENSION: u32 = 32_768;
 /// The most memory one decoded image may take.
@@ -287,16 +291,8 @@ pub fn load_image(path: &Path, srgb: bool) -> Result<ImageData> {
         path: path.to_path_buf(),
         message,
     };
-    let reader = image::ImageReader::open(path).map_err(|e| Error::io(path, e))?;
-    let mut reader = reader
-        .with_guessed_format()
-        .map_err(|e| Error::io(path, e))?;
-    let mut limits = image::Limits::default();
-    limits.max_image_width = Some(MAX_IMAGE_DIMENSION);
-    limits.max_image_height = Some(MAX_IMAGE_DIMENSION);
-    limits.max_alloc = Some(MAX_IMAGE_BYTES);
-    reader.limits(limits);
-    let decoded = reader.decode().map_err(|e| err(e.to_string()))?;
+    let file = crate::input::open_input(path)?;
+    let decoded = decode(std::io::BufReader::new(file), path)?;
     let (w, h) = (decoded.width(), decoded.height());
     if w == 0 || h == 0 {
         return Err(err("the image is empty (0 pixels)".into()));
@@ -341,6 +337,53 @@ pub fn load_image(path: &Path, srgb: bool) -> Result<ImageData> {
         }
     };
     Ok(ImageData::new(w, h, texels, name))
+}
+
+/// The decode limits every image is read under.
+fn limits() -> image::Limits {
+    let mut limits = image::Limits::default();
+    limits.max_image_width = Some(MAX_IMAGE_DIMENSION);
+    limits.max_image_height = Some(MAX_IMAGE_DIMENSION);
+    limits.max_alloc = Some(MAX_IMAGE_BYTES);
+    limits
+}
+
+/// Decodes an opened image file: the format from its first bytes (else from `path`'s
+/// extension), Radiance HDR in any of its eight orientations and with any `#?` signature.
+fn decode(mut file: std::io::BufReader<std::fs::File>, path: &Path) -> Result<image::DynamicImage> {
+    use std::io::BufRead;
+    let err = |message: String| Error::Image {
+        path: path.to_path_buf(),
+        message,
+    };
+    let head = file.fill_buf().map_err(|e| Error::io(path, e))?;
+    if head.starts_with(b"#?") {
+        return hdr::decode_radiance(file, limits()).map_err(err);
+    }
+    let mut reader = image::ImageReader::new(file)
+        .with_guessed_format()
+        .map_err(|e| Error::io(path, e))?;
+    if reader.format().is_none()
+        && let Ok(format) = image::ImageFormat::from_path(path)
+    {
+        reader.set_format(format);
+    }
+    if reader.format() == Some(image::ImageFormat::Png) {
+        return png_decode::decode_png(reader.into_inner(), MAX_IMAGE_DIMENSION, MAX_IMAGE_BYTES)
+            .map_err(err);
+    }
+    if reader.format() == Some(image::ImageFormat::Tiff) {
+        let mut file = reader.into_inner();
+        if let Some(image) =
+            float_tiff::decode_gray_f32(&mut file, MAX_IMAGE_DIMENSION, MAX_IMAGE_BYTES)
+                .map_err(err)?
+        {
+            return Ok(image);
+        }
+        reader = image::ImageReader::with_format(file, image::ImageFormat::Tiff);
+    }
+    reader.limits(limits());
+    reader.decode().map_err(|e| err(e.to_string()))
 }
 
 /// HDR files may hold NaN or Inf (a corrupt RGBE exponent, an EXR with holes): such texels are

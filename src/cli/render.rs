@@ -9,7 +9,7 @@ use crate::scene::{
     build_scene, read_preset_or_png, save_render_png_checked,
 };
 use crate::texture::{Filter, View};
-use anyhow::{Context, Result};
+use anyhow::Result;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -112,10 +112,7 @@ pub fn run(a: &RenderArgs) -> Result<()> {
         bar.set_message(format!("{}x{}", s.width, s.height));
         bar
     };
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(a.threads)
-        .build()
-        .context("cannot start worker threads")?;
+    let pool = crate::render::thread_pool(a.threads)?;
     let t0 = Instant::now();
     let film = pool.install(|| render_blocking(&scene, |n| bar.set_position(u64::from(n))));
     let dt = t0.elapsed();

@@ -164,10 +164,7 @@ pub fn run(a: &ReportArgs) -> Result<()> {
                 .unwrap_or_else(|| a.spp.iter().copied().min().unwrap_or(1)),
         ),
     };
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(a.threads)
-        .build()
-        .context("cannot start worker threads")?;
+    let pool = crate::render::thread_pool(a.threads)?;
     let threads = pool.current_num_threads();
     let bar = if a.quiet {
         indicatif::ProgressBar::hidden()

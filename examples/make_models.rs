@@ -85,10 +85,10 @@ fn soup_can() -> MeshData {
     for k in 0..=rows {
         let t = k as f32 / rows as f32;
         let y = -H + 2.0 * H * t;
-        let ridge = if !(0.1..=0.9).contains(&t) {
-            0.012 * (t * 80.0).sin()
-        } else {
+        let ridge = if (0.1..=0.9).contains(&t) {
             0.0
+        } else {
+            0.012 * (t * 80.0).sin()
         };
         wall.push((1.0 + ridge, y));
     }
@@ -231,6 +231,28 @@ fn glyph(c: char) -> [u8; 7] {
     }
 }
 
+fn text(img: &mut image::RgbImage, s: &str, x0: u32, y0: u32, scale: u32, colour: image::Rgb<u8>) {
+    let size = img.width();
+    for (n, ch) in s.chars().enumerate() {
+        let g = glyph(ch);
+        for (row, bits) in g.iter().enumerate() {
+            for col in 0..5 {
+                if bits & (0x10 >> col) != 0 {
+                    for dy in 0..scale {
+                        for dx in 0..scale {
+                            let x = x0 + (n as u32 * 6 + col) * scale + dx;
+                            let y = y0 + row as u32 * scale + dy;
+                            if x < size && y < size {
+                                img.put_pixel(x, y, colour);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
 fn label(size: u32) -> image::RgbImage {
     let red = image::Rgb([178u8, 24, 30]);
     let cream = image::Rgb([244u8, 236, 214]);
@@ -241,10 +263,10 @@ fn label(size: u32) -> image::RgbImage {
     for y in 0..half {
         let t = y as f32 / half as f32; // 0 at the top of the can
         for x in 0..size {
-            let c = if !(0.3..=0.72).contains(&t) {
-                red
-            } else {
+            let c = if (0.3..=0.72).contains(&t) {
                 cream
+            } else {
+                red
             };
             let c = if (0.28..0.3).contains(&t) || (0.72..0.74).contains(&t) {
                 gold
@@ -252,34 +274,6 @@ fn label(size: u32) -> image::RgbImage {
                 c
             };
             img.put_pixel(x, y, c);
-        }
-    }
-    fn text(
-        img: &mut image::RgbImage,
-        s: &str,
-        x0: u32,
-        y0: u32,
-        scale: u32,
-        colour: image::Rgb<u8>,
-    ) {
-        let size = img.width();
-        for (n, ch) in s.chars().enumerate() {
-            let g = glyph(ch);
-            for (row, bits) in g.iter().enumerate() {
-                for col in 0..5 {
-                    if bits & (0x10 >> col) != 0 {
-                        for dy in 0..scale {
-                            for dx in 0..scale {
-                                let x = x0 + (n as u32 * 6 + col) * scale + dx;
-                                let y = y0 + row as u32 * scale + dy;
-                                if x < size && y < size {
-                                    img.put_pixel(x, y, colour);
-                                }
-                            }
-                        }
-                    }
-                }
-            }
         }
     }
     let s = size / 512;

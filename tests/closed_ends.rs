@@ -84,7 +84,10 @@ fn domain_edges(m: Mapping) -> Vec<Edge> {
             let mut v = Vec::new();
             for x in [-1.0f32, 0.0, 1.0] {
                 for z in [-1.0f32, 0.0, 1.0] {
-                    let uv = ((f64::from(z) + 1.0) / 2.0, (f64::from(x) + 1.0) / 2.0);
+                    let uv = (
+                        f64::midpoint(f64::from(z), 1.0),
+                        f64::midpoint(f64::from(x), 1.0),
+                    );
                     v.push(edge([x, 0.0, z], uv.0, uv.1));
                 }
             }
@@ -93,7 +96,7 @@ fn domain_edges(m: Mapping) -> Vec<Edge> {
         Mapping::Cylindrical => {
             let mut v = Vec::new();
             for y in [-1.0f32, 1.0] {
-                let vv = (f64::from(y) + 1.0) / 2.0;
+                let vv = f64::midpoint(f64::from(y), 1.0);
                 v.push(edge([0.0, y, 1.0], 0.0, vv));
                 for phi in rim {
                     let p = [phi.sin() as f32, y, phi.cos() as f32];

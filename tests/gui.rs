@@ -1,4 +1,4 @@
-//! The window, headless: egui_kittest drives the real app and renders it with wgpu (Mesa's
+//! The window, headless: `egui_kittest` drives the real app and renders it with wgpu (Mesa's
 //! lavapipe on a machine without a GPU). Small renders keep these quick.
 
 use egui::accesskit::Role;
@@ -29,7 +29,7 @@ fn small_earth(dir: &Path) -> PathBuf {
     let texture = "earth_2048x1024.jpg";
     std::fs::copy(root.join("assets").join(texture), dir.join(texture)).expect("copy texture");
     if let TextureDesc::Image { path, .. } = desc.objects[0].material.texture_mut() {
-        *path = texture.to_owned();
+        texture.clone_into(path);
     }
     let path = dir.join("earth-small.ron");
     save_preset(&desc, &path).expect("write preset");
@@ -58,7 +58,7 @@ fn settle(h: &mut Harness<'_, ExplorerApp>) {
     for _ in 0..3 {
         h.step();
         h.state()
-            .wait_for_render(std::time::Duration::from_secs(120))
+            .wait_for_render(std::time::Duration::from_mins(2))
             .expect("the render ends");
     }
     h.step();

@@ -49,7 +49,7 @@ fn assert_ok(o: &Output) {
 
 /// Asserts a failure whose message is "cannot write OUT: ..." containing `reason`.
 fn assert_refused(o: &Output, out: &Path, reason: &str) {
-    assert!(!o.status.success(), "should have failed: {out:?}");
+    assert!(!o.status.success(), "should have failed: {}", out.display());
     let e = stderr(o);
     assert!(
         e.contains(&format!("cannot write {}: ", out.display())) && e.contains(reason),

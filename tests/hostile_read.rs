@@ -37,7 +37,7 @@ fn texplore_in(dir: &Path, args: &[&str], limit: Duration) -> Output {
 }
 
 fn texplore(dir: &Path, args: &[&str]) -> Output {
-    texplore_in(dir, args, Duration::from_secs(60))
+    texplore_in(dir, args, Duration::from_mins(1))
 }
 
 fn stderr(out: &Output) -> String {
@@ -418,7 +418,7 @@ fn crc32(bytes: &[u8]) -> u32 {
     !c
 }
 
-fn chunk(kind: &[u8; 4], data: &[u8]) -> Vec<u8> {
+fn chunk(kind: [u8; 4], data: &[u8]) -> Vec<u8> {
     let mut v = (data.len() as u32).to_be_bytes().to_vec();
     let mut body = kind.to_vec();
     body.extend_from_slice(data);
@@ -469,14 +469,14 @@ fn screenshots_carry_presets_compressed_after_the_image_and_with_a_bom() {
             let mut data = key.as_bytes().to_vec();
             data.push(0);
             data.extend_from_slice(text.as_bytes());
-            png_with(|_| {}, &[chunk(b"tEXt", &data)])
+            png_with(|_| {}, &[chunk(*b"tEXt", &data)])
         }),
         (
             "bom.png",
             png_with(
                 |e| {
                     e.add_itxt_chunk(key.into(), format!("\u{feff}{text}"))
-                        .unwrap()
+                        .unwrap();
                 },
                 &[],
             ),
@@ -525,7 +525,7 @@ fn compressed_chunks_inflate_under_their_limits() {
     let big = png_with(
         |e| {
             e.add_text_chunk(key.into(), " ".repeat((16 << 20) + 1))
-                .unwrap()
+                .unwrap();
         },
         &[],
     );

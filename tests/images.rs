@@ -4,6 +4,7 @@
 mod common;
 
 use common::{build_with, root, sized};
+use std::fmt::Write as _;
 use std::path::Path;
 use texplore::Error;
 use texplore::math::{DisplayImage, Rgb, quantize8, srgb_to_linear};
@@ -120,7 +121,7 @@ fn ascii_ppm_p3_and_16_bit_p6() {
     let p3 = dir.path().join("a.ppm");
     let mut text = String::from("P3\n# a comment\n3 2\n255\n");
     for p in PATTERN {
-        text += &format!("{} {} {}\n", p[0], p[1], p[2]);
+        let _ = writeln!(text, "{} {} {}", p[0], p[1], p[2]);
     }
     std::fs::write(&p3, text).unwrap();
     check_8bit(&p3);

@@ -507,7 +507,7 @@ mod tests {
 
 #[test]
 fn unit_test_modules_are_outside_the_layering() {
-    let src = r#"
+    let src = r"
 #[cfg(test)]
 mod tests {
     use crate::report::Metrics;
@@ -519,7 +519,7 @@ mod helpers { use crate::render::Film; }
 #[cfg(test)]
 fn only_modules_are_exempt() -> crate::report::Metrics { todo!() }
 mod plain;
-"#;
+";
     let modules: BTreeSet<String> = ["scene", "render", "report"]
         .into_iter()
         .map(String::from)

@@ -78,7 +78,7 @@ fn the_lectures_ply_renders_with_the_uv_it_implies() {
             let Some(hit) = scene.hit(&ray) else {
                 continue;
             };
-            let (u, v) = ((hit.p.z + 1.0) / 2.0, (hit.p.x + 1.0) / 2.0);
+            let (u, v) = (f32::midpoint(hit.p.z, 1.0), f32::midpoint(hit.p.x, 1.0));
             let (fu, fv) = (u * 4.0, v * 4.0);
             // Skip pixels on texel borders.
             if (fu - fu.round()).abs() < 0.05 || (fv - fv.round()).abs() < 0.05 {
@@ -341,10 +341,10 @@ fn rays_through_shared_edges_and_vertices_never_miss() {
         ("torus", torus(48, 20, 1.0, 0.35)),
         ("sphere", texplore::meshio::bumpy_sphere(64, 32, 0.05)),
     ] {
-        let m = Mesh::new(data.clone(), Path::new(name)).unwrap();
-        let key = |p: Vec3| (p + Vec3::ZERO).to_array().map(f32::to_bits); // -0 is 0
         // Faces around each edge and each vertex, by position (seams duplicate indices).
         type Key = [u32; 3];
+        let m = Mesh::new(data.clone(), Path::new(name)).unwrap();
+        let key = |p: Vec3| (p + Vec3::ZERO).to_array().map(f32::to_bits); // -0 is 0
         // Edge (by its ends' positions) -> its ends and the normals of the faces around it.
         let mut edges: HashMap<(Key, Key), (Vec3, Vec3, Vec<Vec3>)> = HashMap::new();
         let mut verts: HashMap<[u32; 3], (Vec3, Vec<Vec3>)> = HashMap::new();

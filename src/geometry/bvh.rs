@@ -217,6 +217,10 @@ impl Bvh {
     /// Builds over `bounds` (one box per primitive). Returns the hierarchy and the primitive
     /// order its leaves refer to: leaf ranges index into `order`, so callers reorder their
     /// primitives by it.
+    ///
+    /// # Panics
+    /// With 2^28 primitives or more (a leaf's first index has 28 bits); meshes are refused long
+    /// before that by their loaders' limits.
     #[must_use]
     pub fn build(bounds: &[Aabb]) -> (Self, Vec<u32>) {
         let mut prims: Vec<Prim> = bounds

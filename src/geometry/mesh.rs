@@ -295,7 +295,7 @@ impl Mesh {
         drop(bounds);
         let triangles: Vec<[u32; 3]> = order.iter().map(|&i| triangles[i as usize]).collect();
         let (positions, uvs, normals, triangles) =
-            renumber_vertices(positions, uvs, normals, triangles);
+            renumber_vertices(&positions, uvs, &normals, triangles);
         let half = ((bbox.max - bbox.min) * 0.5).max_element();
         Ok(Self {
             path: path.to_path_buf(),
@@ -577,9 +577,9 @@ fn dp_duv(p0: Vec3, p1: Vec3, p2: Vec3, t0: Vec2, t1: Vec2, t2: Vec2) -> Option<
 /// Renumbers the vertices in the order the (BVH-ordered) triangles first use them, so the
 /// vertices of a leaf, and of nearby leaves, sit together in memory. Unused vertices go last.
 fn renumber_vertices(
-    positions: Vec<Vec3>,
+    positions: &[Vec3],
     uvs: Vec<Vec2>,
-    normals: Vec<Vec3>,
+    normals: &[Vec3],
     mut triangles: Vec<[u32; 3]>,
 ) -> (Vec<Vec3>, Vec<Vec2>, Vec<Vec3>, Vec<[u32; 3]>) {
     const UNSEEN: u32 = u32::MAX;
@@ -816,7 +816,7 @@ mod tests {
         d.triangles[1] = [0, 2, 4];
         let e = Mesh::new(d, Path::new("x.ply")).unwrap_err().to_string();
         assert!(
-            e.contains("x.ply") && e.contains("triangle 1") && e.contains("4"),
+            e.contains("x.ply") && e.contains("triangle 1") && e.contains('4'),
             "{e}"
         );
         let mut d = quad();

@@ -231,12 +231,12 @@ mod tests {
         let world = h.p * s;
         let expected_z = (1.0_f64 - 0.13).sqrt() * 1e6;
         assert!(
-            ((world.z as f64 - expected_z) / expected_z).abs() < 1e-5,
+            ((f64::from(world.z) - expected_z) / expected_z).abs() < 1e-5,
             "{world:?}"
         );
         let expected_t = (1e6 + 1e4) - expected_z;
         assert!(
-            ((h.t as f64 - expected_t) / expected_t).abs() < 1e-4,
+            ((f64::from(h.t) - expected_t) / expected_t).abs() < 1e-4,
             "{}",
             h.t
         );

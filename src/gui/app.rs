@@ -70,7 +70,7 @@ impl ExplorerApp {
             good_desc: None,
             saved_desc: None,
             home_camera: None,
-            path: path.clone(),
+            path,
             cache: AssetCache::new(),
             generation: Generation::new(),
             job: None,
@@ -86,6 +86,7 @@ impl ExplorerApp {
             frame_time: FRAME_INTERVAL.as_secs_f32(),
             layout_time: 0.0,
         };
+        let path = app.path.clone();
         app.open_file(&path);
         app
     }
@@ -148,7 +149,7 @@ impl ExplorerApp {
     /// The latest image of the render (preview or accumulated).
     #[must_use]
     pub fn image(&self) -> Option<Arc<DisplayImage>> {
-        self.job.as_ref().and_then(|j| j.image()).map(|(i, _)| i)
+        self.job.as_ref().and_then(RenderJob::image).map(|(i, _)| i)
     }
 
     /// Blocks until the current render has finished, stopped or failed, or `deadline` has
@@ -356,7 +357,7 @@ impl ExplorerApp {
                     (&mut self.ab.enabled, "A/B split"),
                     (&mut self.speed.open, "Speed and error"),
                 ],
-            )
+            );
         });
         let mut actions: Vec<FileAction> = Vec::new();
         actions.extend(self.files.dropped(&ctx));
@@ -388,12 +389,11 @@ impl ExplorerApp {
                             path,
                             ..
                         } = self;
-                        match desc {
-                            Some(desc) => scene_panel.ui(ui, desc, resolution_scale, path),
-                            None => {
-                                ui.label("No scene: open a preset from the Presets menu.");
-                                false
-                            }
+                        if let Some(desc) = desc {
+                            scene_panel.ui(ui, desc, resolution_scale, path)
+                        } else {
+                            ui.label("No scene: open a preset from the Presets menu.");
+                            false
                         }
                     })
                     .inner
@@ -482,7 +482,7 @@ impl ExplorerApp {
                         Ok(()) => {
                             *desc = out.clone();
                             self.saved_desc = Some(out);
-                            self.path = p.clone();
+                            self.path.clone_from(&p);
                             self.files.add_recent(&p);
                             self.error = None;
                         }

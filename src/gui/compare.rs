@@ -8,6 +8,7 @@ use crate::report::{Mode, ProgressUpdate, ReferenceSettings, ReportConfig, Row, 
 use crate::sampler::PixelSampler;
 use crate::scene::{AssetCache, Scene, SceneDesc, build_scene};
 use crate::texture::Filter;
+use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -186,11 +187,13 @@ impl AbSplit {
         let name = ["A", "B"].get(side).copied().unwrap_or("?");
         let mut s = format!("{name}: {} {} spp", self.modes[side].name(), self.spp[side]);
         match self.time(side) {
-            Some(t) => s.push_str(&format!(" · {:.0} ms", t.as_secs_f64() * 1e3)),
+            Some(t) => {
+                let _ = write!(s, " · {:.0} ms", t.as_secs_f64() * 1e3);
+            }
             None => s.push_str(" · rendering"),
         }
         if let Some(e) = self.errors[side] {
-            s.push_str(&format!(" · RMSE {e:.4}"));
+            let _ = write!(s, " · RMSE {e:.4}");
         }
         s
     }

@@ -120,7 +120,7 @@ pub fn show(
     toolbar(ui, &mut out, view);
     let avail = ui.available_rect_before_wrap();
     let (Some(t), Some(size)) = (texture, size) else {
-        ui.centered_and_justified(|ui| ui.spinner());
+        ui.centered_and_justified(egui::Ui::spinner);
         return out;
     };
     let rect = fit(avail, size);

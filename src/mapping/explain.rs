@@ -71,17 +71,16 @@ fn worked(mapping: Mapping, p: DVec3, out: &mut Option<Vec<String>>) -> DVec2 {
             DVec2::new(u, v)
         }
         Mapping::Cylindrical => {
-            let u = match rescaled(DVec3::new(p.x, 0.0, p.z)) {
-                // The lecture's atan2(x, z) on the point as given (libm's atan2 is exact at
-                // any scale); the renderer's rescaling only keeps its f32 squares finite.
-                Some(_) => azimuth(p.x, p.z, out),
-                None => {
-                    line!(
-                        out,
-                        "x = z = 0 (on the axis): phi is undefined, u = 0 as the renderer"
-                    );
-                    0.0
-                }
+            // The lecture's atan2(x, z) on the point as given (libm's atan2 is exact at any
+            // scale); the renderer's rescaling only keeps its f32 squares finite.
+            let u = if rescaled(DVec3::new(p.x, 0.0, p.z)).is_some() {
+                azimuth(p.x, p.z, out)
+            } else {
+                line!(
+                    out,
+                    "x = z = 0 (on the axis): phi is undefined, u = 0 as the renderer"
+                );
+                0.0
             };
             let raw = (p.y + 1.0) * 0.5;
             line!(out, "v = (y + 1) / 2 = ({} + 1) / 2 = {}", n(p.y), n(raw));

@@ -6,6 +6,7 @@ use crate::error::{Error, Result};
 use crate::geometry::{MeshData, MeshMaterial};
 use crate::math::{Vec2, Vec3};
 use std::cell::RefCell;
+use std::fmt::Write as _;
 use std::io::{BufRead, Read};
 use std::path::{Path, PathBuf};
 
@@ -151,16 +152,15 @@ fn prepare(path: &Path, dir: &Path) -> Result<Prepared> {
                 } else {
                     rest.split_whitespace().map(|w| dir.join(w)).collect()
                 };
-                out.text
-                    .push_str(&format!("mtllib {}\n", out.libraries.len()));
+                let _ = writeln!(out.text, "mtllib {}", out.libraries.len());
                 out.libraries.push(files);
             }
             "usemtl" | "o" | "g" => {
-                out.text.push_str(&format!("{word} {rest}\n"));
+                let _ = writeln!(out.text, "{word} {rest}");
             }
             // `vt u` is valid OBJ (v defaults to 0); tobj wants two numbers.
             "vt" if rest.split_whitespace().count() == 1 => {
-                out.text.push_str(&format!("vt {rest} 0\n"));
+                let _ = writeln!(out.text, "vt {rest} 0");
             }
             _ => {
                 out.text.push_str(line);

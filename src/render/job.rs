@@ -29,9 +29,9 @@ impl Generation {
         self.0.load(Ordering::Acquire)
     }
 
-    /// Invalidates every running job; returns the new value.
-    pub fn bump(&self) -> u64 {
-        self.0.fetch_add(1, Ordering::AcqRel) + 1
+    /// Invalidates every running job.
+    pub fn bump(&self) {
+        self.0.fetch_add(1, Ordering::AcqRel);
     }
 }
 

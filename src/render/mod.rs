@@ -267,13 +267,13 @@ mod tests {
     use std::path::Path;
 
     fn scene(adaptive: bool) -> Scene {
-        let text = r#"(
+        let text = r"(
             version: 1,
             camera: (eye: (0, 0, 4)),
             render: (width: 24, height: 16, spp: 1, background: (0.2, 0.3, 0.4)),
             lights: [Directional(direction: (1, 1, 1))],
             objects: [(shape: Sphere, material: Matte(cd: Checker(mapping: Spherical, filter: Ewa)))],
-        )"#;
+        )";
         let mut desc = parse_preset(text, Path::new("test.ron")).unwrap();
         if adaptive {
             desc.render.adaptive = Some(AdaptiveDesc {

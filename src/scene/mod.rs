@@ -337,10 +337,8 @@ impl Scene {
 #[must_use]
 pub const fn natural_mapping(shape: &Shape) -> Mapping {
     match shape {
-        Shape::Sphere => Mapping::Spherical,
+        Shape::Sphere | Shape::Mesh(_) => Mapping::Spherical,
         Shape::Cylinder { .. } => Mapping::Cylindrical,
         Shape::Plane | Shape::Rectangle | Shape::Disk => Mapping::Rectangular,
-        // Never used: building refuses `Uv` on a mesh without (u, v) (see `check_uv_mapping`).
-        Shape::Mesh(_) => Mapping::Spherical,
     }
 }

@@ -11,6 +11,7 @@ use strum::VariantArray;
 use texplore::geometry::{Shape, intersect_shape};
 use texplore::mapping::{Mapping, TexCoord};
 use texplore::math::{Ray, SampleRng, Vec2, Vec3A};
+use texplore::names::Named as _;
 use texplore::render::{Film, render_pass};
 use texplore::scene::{AssetCache, Overrides, apply_overrides, build_scene, load_preset};
 use texplore::texture::{

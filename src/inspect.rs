@@ -7,6 +7,7 @@
 use crate::geometry::Shape;
 use crate::mapping::{Mapping, TexCoord, explain_mapping};
 use crate::math::{Rgb, Vec2, Vec3A};
+use crate::names::Named as _;
 use crate::texture::{Filter, ImageData, Lookup, Texture, Wrap, explain_lookup};
 use crate::{material::Material, scene::Scene};
 use std::sync::Arc;

@@ -26,12 +26,12 @@ pub trait Named:
     const WHAT: &'static str;
 
     /// The variant's name on the command line and in menus.
-    fn label(self) -> &'static str {
+    fn name(self) -> &'static str {
         self.into()
     }
 
     /// One sentence on the variant, for tooltips and `--help`.
-    fn tip(self) -> &'static str {
+    fn description(self) -> &'static str {
         self.get_message().unwrap_or_default()
     }
 }
@@ -39,7 +39,7 @@ pub trait Named:
 /// Every variant's name, in menu order.
 #[must_use]
 pub fn names<T: Named>() -> Vec<&'static str> {
-    T::VARIANTS.iter().map(|v| v.label()).collect()
+    T::VARIANTS.iter().map(|v| v.name()).collect()
 }
 
 /// The error for a name that is none of `T`'s: it lists the valid names.
@@ -60,7 +60,7 @@ pub fn value_parser<T: Named>() -> impl clap::builder::TypedValueParser<Value = 
     PossibleValuesParser::new(
         T::VARIANTS
             .iter()
-            .map(|v| PossibleValue::new(v.label()).help(v.tip())),
+            .map(|v| PossibleValue::new(v.name()).help(v.description())),
     )
     .try_map(|s| s.parse::<T>())
 }
@@ -78,9 +78,13 @@ mod tests {
     /// Every variant parses back from its name and prints as it, and has a description.
     fn round_trips<T: Named + std::fmt::Debug + std::fmt::Display>() -> Vec<&'static str> {
         for &v in T::VARIANTS {
-            assert_eq!(v.label().parse::<T>(), Ok(v), "{} {v:?}", T::WHAT);
-            assert_eq!(v.to_string(), v.label());
-            assert!(!v.tip().is_empty(), "{} {v:?} has no description", T::WHAT);
+            assert_eq!(v.name().parse::<T>(), Ok(v), "{} {v:?}", T::WHAT);
+            assert_eq!(v.to_string(), v.name());
+            assert!(
+                !v.description().is_empty(),
+                "{} {v:?} has no description",
+                T::WHAT
+            );
         }
         let err = "no-such-name".parse::<T>().unwrap_err();
         assert_eq!(
@@ -168,7 +172,7 @@ mod tests {
     fn the_command_line_takes_every_name_and_lists_them_for_an_unknown_one() {
         use clap::Parser as _;
         for &f in Filter::VARIANTS {
-            let cli = Cli::try_parse_from(["t", "--filter", f.label()]).expect("a valid name");
+            let cli = Cli::try_parse_from(["t", "--filter", f.name()]).expect("a valid name");
             assert_eq!(cli.filter, f);
         }
         let err = Cli::try_parse_from(["t", "--filter", "linear"])

@@ -15,7 +15,8 @@ use serde::{Deserialize, Serialize};
 use std::path::Path;
 
 /// The layout of a probe image.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
+#[derive(Serialize, Deserialize)]
 pub enum ProbeFormat {
     /// Debevec's angular map, the lecture's: distance from the centre is proportional to the
     /// angle from +z (read by the `light-probe` mapping).

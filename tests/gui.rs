@@ -314,15 +314,15 @@ fn assert_menu_offers_every<T: Named>(h: &mut Harness<'_, ExplorerApp>, label: &
     h.get_by_role_and_label(Role::ComboBox, label)
         .scroll_to_me();
     h.run_steps(3);
-    let before: Vec<usize> = T::VARIANTS.iter().map(|v| count(h, v.label())).collect();
+    let before: Vec<usize> = T::VARIANTS.iter().map(|v| count(h, v.name())).collect();
     h.get_by_role_and_label(Role::ComboBox, label).click();
     h.run_steps(3);
     for (v, before) in T::VARIANTS.iter().zip(before) {
         assert_eq!(
-            count(h, v.label()),
+            count(h, v.name()),
             before + 1,
             "the {label} menu should offer '{}' once",
-            v.label()
+            v.name()
         );
     }
     h.get_by_role_and_label(Role::ComboBox, label).click();
@@ -344,7 +344,7 @@ fn every_menu_offers_every_variant_the_library_names() {
     assert_menu_offers_every::<ProjectionKind>(&mut h, "Camera");
     assert_menu_offers_every::<View>(&mut h, "View");
     for &kind in LightKind::VARIANTS {
-        let button = format!("Add {}", kind.label());
+        let button = format!("Add {}", kind.name());
         assert!(h.query_by_label(&button).is_some(), "no '{button}' button");
     }
 }
@@ -355,7 +355,7 @@ fn picking_a_texture_kind_gives_its_defaults_and_keeps_the_mapping() {
     let mut h = harness(small_earth(dir.path()));
     h.get_by_role_and_label(Role::ComboBox, "Texture").click();
     h.run_steps(3);
-    h.get_by_label(TextureKind::Checker.label()).click();
+    h.get_by_label(TextureKind::Checker.name()).click();
     settle(&mut h);
     let texture = h.state().desc().expect("scene").objects[0]
         .material

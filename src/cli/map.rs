@@ -1,6 +1,7 @@
 //! `texplore map`: the lecture's formulas as a teaching tool.
 
 use crate::mapping::{Mapping, explain_mapping_f64};
+use crate::names::Named as _;
 use crate::names::value_parser;
 use crate::texture::{Lookup, Wrap, explain_lookup, explain_wrap};
 use anyhow::{Result, bail};

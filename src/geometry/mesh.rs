@@ -12,22 +12,10 @@ use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
 /// How a mesh's shading normal is found.
-#[derive(
-    Clone,
-    Copy,
-    Debug,
-    Default,
-    PartialEq,
-    Eq,
-    Hash,
-    Serialize,
-    Deserialize,
-    strum::VariantArray,
-    strum::IntoStaticStr,
-    strum::EnumString,
-    strum::EnumMessage,
-    strum::Display,
-)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[derive(Serialize, Deserialize)]
+#[derive(strum::VariantArray, strum::IntoStaticStr, strum::Display)]
+#[derive(strum::EnumString, strum::EnumMessage)]
 #[strum(
     serialize_all = "kebab-case",
     parse_err_ty = String,
@@ -46,14 +34,6 @@ pub enum Shading {
 
 impl crate::names::Named for Shading {
     const WHAT: &'static str = "shading";
-}
-
-impl Shading {
-    /// The name used on the command line and in menus.
-    #[must_use]
-    pub fn name(self) -> &'static str {
-        self.into()
-    }
 }
 
 /// The material a mesh file names (an OBJ's .mtl): its diffuse colour and image.

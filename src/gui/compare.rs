@@ -2,6 +2,7 @@
 //! with its time and its error against a high-spp reference) and the speed/error plot.
 
 use super::live::LiveImage;
+use crate::names::Named as _;
 use crate::render::{Generation, RenderJob, RenderOptions};
 use crate::report::metrics::{EncodedImage, rmse};
 use crate::report::{Mode, ProgressUpdate, ReferenceSettings, ReportConfig, Row, run_scene};

@@ -4,6 +4,7 @@
 
 use crate::inspect::{ImageRead, Inspection};
 use crate::math::{Rgb, Vec2, linear_to_srgb8};
+use crate::names::Named as _;
 use crate::scene::Scene;
 use crate::texture::{ImageData, Lookup};
 use std::sync::Arc;

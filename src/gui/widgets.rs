@@ -11,16 +11,16 @@ pub fn enum_combo<T: Named>(ui: &mut egui::Ui, label: &str, value: &mut T) -> bo
     ui.horizontal(|ui| {
         let l = ui.label(label);
         egui::ComboBox::from_id_salt(label)
-            .selected_text(value.label())
+            .selected_text(value.name())
             .show_ui(ui, |ui| {
                 for &option in T::VARIANTS {
-                    ui.selectable_value(value, option, option.label())
-                        .on_hover_text(option.tip());
+                    ui.selectable_value(value, option, option.name())
+                        .on_hover_text(option.description());
                 }
             })
             .response
             .labelled_by(l.id)
-            .on_hover_text(value.tip());
+            .on_hover_text(value.description());
     });
     *value != before
 }

@@ -106,18 +106,7 @@ fn worked(mapping: Mapping, p: DVec3, out: &mut Option<Vec<String>>) -> DVec2 {
                 );
                 return DVec2::new(0.0, 0.5);
             };
-            let len = q.length();
-            let nq = q / len;
-            if ((p.length() - 1.0).abs()) >= 1e-4 || !p.length().is_finite() {
-                line!(
-                    out,
-                    "|p| = {}: normalised to the unit sphere, ({}, {}, {})",
-                    n(p.length()),
-                    n(nq.x),
-                    n(nq.y),
-                    n(nq.z)
-                );
-            }
+            let nq = unit_direction(p, q, out);
             let u = azimuth(nq.x, nq.z, out);
             // theta = acos(y / |p|), computed as atan2(sqrt(x^2 + z^2), y) (exact off the
             // sphere, as the renderer).
@@ -194,17 +183,7 @@ fn probe(mapping: Mapping, p: DVec3, out: &mut Option<Vec<String>>) -> DVec2 {
         );
         return DVec2::splat(0.5);
     };
-    let nq = q / q.length();
-    if ((p.length() - 1.0).abs()) >= 1e-4 || !p.length().is_finite() {
-        line!(
-            out,
-            "|p| = {}: normalised to the unit sphere, ({}, {}, {})",
-            n(p.length()),
-            n(nq.x),
-            n(nq.y),
-            n(nq.z)
-        );
-    }
+    let nq = unit_direction(p, q, out);
     let flip = mapping == Mapping::Panoramic;
     let z = if flip { -nq.z } else { nq.z };
     let d = nq.x.hypot(nq.y);
@@ -266,6 +245,24 @@ fn probe(mapping: Mapping, p: DVec3, out: &mut Option<Vec<String>>) -> DVec2 {
 
 /// `p` divided by its largest component (squares neither overflow nor underflow), `None` for
 /// the origin and for NaN or infinite input: the renderer's `rescaled`.
+/// The unit direction of `p` from its rescaled copy `q` (see [`rescaled`]), saying so when `p` was
+/// off the unit sphere.
+fn unit_direction(p: DVec3, q: DVec3, out: &mut Option<Vec<String>>) -> DVec3 {
+    let n = explain_number;
+    let nq = q / q.length();
+    if ((p.length() - 1.0).abs()) >= 1e-4 || !p.length().is_finite() {
+        line!(
+            out,
+            "|p| = {}: normalised to the unit sphere, ({}, {}, {})",
+            n(p.length()),
+            n(nq.x),
+            n(nq.y),
+            n(nq.z)
+        );
+    }
+    nq
+}
+
 fn rescaled(p: DVec3) -> Option<(DVec3, f64)> {
     let s = p.abs().max_element();
     (s > 0.0 && s.is_finite()).then(|| (p / s, s))

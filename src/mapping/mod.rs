@@ -14,22 +14,10 @@ use crate::math::{PI, TAU, Vec2, Vec3A, atan2};
 use serde::{Deserialize, Serialize};
 
 /// How a hit point becomes texture coordinates.
-#[derive(
-    Clone,
-    Copy,
-    Debug,
-    Default,
-    PartialEq,
-    Eq,
-    Hash,
-    Serialize,
-    Deserialize,
-    strum::VariantArray,
-    strum::IntoStaticStr,
-    strum::EnumString,
-    strum::EnumMessage,
-    strum::Display,
-)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[derive(Serialize, Deserialize)]
+#[derive(strum::VariantArray, strum::IntoStaticStr, strum::Display)]
+#[derive(strum::EnumString, strum::EnumMessage)]
 #[strum(
     serialize_all = "kebab-case",
     parse_err_ty = String,
@@ -78,18 +66,6 @@ impl crate::names::Named for Mapping {
 }
 
 impl Mapping {
-    /// The name used on the command line and in menus.
-    #[must_use]
-    pub fn name(self) -> &'static str {
-        self.into()
-    }
-
-    /// One sentence on what the mapping does, for tooltips and `--help`.
-    #[must_use]
-    pub fn description(self) -> &'static str {
-        crate::names::Named::tip(self)
-    }
-
     /// Whether u wraps around (the seam of a closed surface): filters then read across it.
     #[must_use]
     pub const fn u_is_periodic(self) -> bool {

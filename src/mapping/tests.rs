@@ -2,6 +2,7 @@
 //! gradients against central finite differences.
 
 use super::*;
+use crate::names::Named as _;
 use strum::VariantArray;
 
 const EPS: f32 = 1e-6;

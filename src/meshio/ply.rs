@@ -12,6 +12,7 @@ use super::{MAX_POLYGON_CORNERS, MAX_TRIANGLES, MAX_VERTICES};
 use crate::error::{Error, Result};
 use crate::geometry::MeshData;
 use crate::math::{Vec2, Vec3};
+use crate::names::Named as _;
 use std::io::{BufRead, Read, Write};
 use std::path::Path;
 
@@ -28,18 +29,9 @@ pub const UV_NAMES: [(&str, &str); 4] = [
 /// The body encodings a PLY header's `format` line names, spelt as there (`ascii`,
 /// `binary_little_endian`, `binary_big_endian`); [`read_ply`] reads all three and
 /// [`write_ply`] writes any.
-#[derive(
-    Clone,
-    Copy,
-    Debug,
-    PartialEq,
-    Eq,
-    strum::VariantArray,
-    strum::IntoStaticStr,
-    strum::EnumString,
-    strum::EnumMessage,
-    strum::Display,
-)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(strum::VariantArray, strum::IntoStaticStr, strum::Display)]
+#[derive(strum::EnumString, strum::EnumMessage)]
 #[strum(
     serialize_all = "snake_case",
     parse_err_ty = String,
@@ -59,14 +51,6 @@ pub enum PlyFormat {
 
 impl crate::names::Named for PlyFormat {
     const WHAT: &'static str = "PLY format";
-}
-
-impl PlyFormat {
-    /// The name in the `format` header line.
-    #[must_use]
-    pub fn name(self) -> &'static str {
-        self.into()
-    }
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -16,6 +16,7 @@ pub use output::write_outputs;
 pub use reference::{CacheKey, CachedReference, REFERENCE_VERSION, cache_key, default_cache_dir};
 pub use table::{RMSE_TARGETS, pareto_front, time_to_reach};
 
+use crate::names::Named as _;
 use crate::render::{Film, render_pass, render_scheduled_pass};
 use crate::sampler::PixelSampler;
 use crate::scene::{AssetCache, Overrides, SceneDesc, apply_overrides, build_scene};

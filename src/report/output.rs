@@ -2,6 +2,7 @@
 //! plot (SVG and PNG) and the heat maps.
 
 use super::{ReportError, SceneReport, plot, table};
+use crate::names::Named as _;
 use std::path::{Path, PathBuf};
 
 /// A name safe as a file name: letters, digits, `-`, `_` and `.` kept, anything else `_`.

@@ -2,6 +2,7 @@
 //! interpolation, and the Markdown summary.
 
 use super::{METRIC_DEFINITIONS, Mode, Row, SceneReport};
+use crate::names::Named as _;
 use std::fmt::Write as _;
 use std::time::Duration;
 

@@ -10,22 +10,10 @@ use crate::math::{SampleRng, Vec2, hash3};
 use serde::{Deserialize, Serialize};
 
 /// Where in a pixel its samples go.
-#[derive(
-    Clone,
-    Copy,
-    Debug,
-    Default,
-    PartialEq,
-    Eq,
-    Hash,
-    Serialize,
-    Deserialize,
-    strum::VariantArray,
-    strum::IntoStaticStr,
-    strum::EnumString,
-    strum::EnumMessage,
-    strum::Display,
-)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[derive(Serialize, Deserialize)]
+#[derive(strum::VariantArray, strum::IntoStaticStr, strum::Display)]
+#[derive(strum::EnumString, strum::EnumMessage)]
 #[strum(
     serialize_all = "kebab-case",
     parse_err_ty = String,
@@ -62,18 +50,6 @@ impl crate::names::Named for PixelSampler {
 }
 
 impl PixelSampler {
-    /// The name used on the command line and in menus.
-    #[must_use]
-    pub fn name(self) -> &'static str {
-        self.into()
-    }
-
-    /// One sentence on what the sampler does, for tooltips.
-    #[must_use]
-    pub fn description(self) -> &'static str {
-        crate::names::Named::tip(self)
-    }
-
     /// Sample `index` of `count` in pixel `pixel`, as an offset in [0, 1)^2 from the pixel's
     /// top-left corner.
     #[must_use]

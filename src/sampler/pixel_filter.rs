@@ -13,22 +13,10 @@ pub const GAUSSIAN_SIGMA: f32 = 0.5;
 pub const GAUSSIAN_RADIUS: f32 = 1.5;
 
 /// How a pixel weighs the points around its centre.
-#[derive(
-    Clone,
-    Copy,
-    Debug,
-    Default,
-    PartialEq,
-    Eq,
-    Hash,
-    Serialize,
-    Deserialize,
-    strum::VariantArray,
-    strum::IntoStaticStr,
-    strum::EnumString,
-    strum::EnumMessage,
-    strum::Display,
-)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[derive(Serialize, Deserialize)]
+#[derive(strum::VariantArray, strum::IntoStaticStr, strum::Display)]
+#[derive(strum::EnumString, strum::EnumMessage)]
 #[strum(
     serialize_all = "kebab-case",
     parse_err_ty = String,
@@ -52,12 +40,6 @@ impl crate::names::Named for PixelFilter {
 }
 
 impl PixelFilter {
-    /// The name used on the command line and in menus.
-    #[must_use]
-    pub fn name(self) -> &'static str {
-        self.into()
-    }
-
     /// The offset from the pixel centre, in pixels, of the sample at `p` in [0, 1)^2.
     #[must_use]
     #[inline]

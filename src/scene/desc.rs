@@ -553,19 +553,9 @@ impl MaterialDesc {
 }
 
 /// The kinds of [`ShapeDesc`], as the shape menu names them.
-#[derive(
-    Clone,
-    Copy,
-    Debug,
-    PartialEq,
-    Eq,
-    Hash,
-    strum::VariantArray,
-    strum::IntoStaticStr,
-    strum::EnumString,
-    strum::EnumMessage,
-    strum::Display,
-)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(strum::VariantArray, strum::IntoStaticStr, strum::Display)]
+#[derive(strum::EnumString, strum::EnumMessage)]
 #[strum(parse_err_ty = String, parse_err_fn = crate::names::unknown::<ShapeKind>)]
 pub enum ShapeKind {
     /// [`ShapeDesc::Sphere`].
@@ -595,19 +585,9 @@ impl crate::names::Named for ShapeKind {
 }
 
 /// The kinds of [`TextureDesc`], as the texture menu names them.
-#[derive(
-    Clone,
-    Copy,
-    Debug,
-    PartialEq,
-    Eq,
-    Hash,
-    strum::VariantArray,
-    strum::IntoStaticStr,
-    strum::EnumString,
-    strum::EnumMessage,
-    strum::Display,
-)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(strum::VariantArray, strum::IntoStaticStr, strum::Display)]
+#[derive(strum::EnumString, strum::EnumMessage)]
 #[strum(parse_err_ty = String, parse_err_fn = crate::names::unknown::<TextureKind>)]
 pub enum TextureKind {
     /// [`TextureDesc::Constant`].
@@ -638,19 +618,9 @@ impl crate::names::Named for TextureKind {
 }
 
 /// The kinds of [`MaterialDesc`], as the material menu names them.
-#[derive(
-    Clone,
-    Copy,
-    Debug,
-    PartialEq,
-    Eq,
-    Hash,
-    strum::VariantArray,
-    strum::IntoStaticStr,
-    strum::EnumString,
-    strum::EnumMessage,
-    strum::Display,
-)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(strum::VariantArray, strum::IntoStaticStr, strum::Display)]
+#[derive(strum::EnumString, strum::EnumMessage)]
 #[strum(parse_err_ty = String, parse_err_fn = crate::names::unknown::<MaterialKind>)]
 pub enum MaterialKind {
     /// [`MaterialDesc::Matte`].
@@ -671,19 +641,9 @@ impl crate::names::Named for MaterialKind {
 }
 
 /// The kinds of [`LightDesc`], as the lights panel names them.
-#[derive(
-    Clone,
-    Copy,
-    Debug,
-    PartialEq,
-    Eq,
-    Hash,
-    strum::VariantArray,
-    strum::IntoStaticStr,
-    strum::EnumString,
-    strum::EnumMessage,
-    strum::Display,
-)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(strum::VariantArray, strum::IntoStaticStr, strum::Display)]
+#[derive(strum::EnumString, strum::EnumMessage)]
 #[strum(parse_err_ty = String, parse_err_fn = crate::names::unknown::<LightKind>)]
 pub enum LightKind {
     /// [`LightDesc::Directional`].
@@ -705,19 +665,9 @@ impl crate::names::Named for LightKind {
 }
 
 /// The kinds of [`ProjectionDesc`], as the camera menu names them.
-#[derive(
-    Clone,
-    Copy,
-    Debug,
-    PartialEq,
-    Eq,
-    Hash,
-    strum::VariantArray,
-    strum::IntoStaticStr,
-    strum::EnumString,
-    strum::EnumMessage,
-    strum::Display,
-)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(strum::VariantArray, strum::IntoStaticStr, strum::Display)]
+#[derive(strum::EnumString, strum::EnumMessage)]
 #[strum(parse_err_ty = String, parse_err_fn = crate::names::unknown::<ProjectionKind>)]
 pub enum ProjectionKind {
     /// [`ProjectionDesc::Pinhole`].

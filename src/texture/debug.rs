@@ -7,22 +7,10 @@ use crate::math::{Rgb, srgb_to_linear};
 use serde::{Deserialize, Serialize};
 
 /// What a render shows.
-#[derive(
-    Clone,
-    Copy,
-    Debug,
-    Default,
-    PartialEq,
-    Eq,
-    Hash,
-    Serialize,
-    Deserialize,
-    strum::VariantArray,
-    strum::IntoStaticStr,
-    strum::EnumString,
-    strum::EnumMessage,
-    strum::Display,
-)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[derive(Serialize, Deserialize)]
+#[derive(strum::VariantArray, strum::IntoStaticStr, strum::Display)]
+#[derive(strum::EnumString, strum::EnumMessage)]
 #[strum(
     serialize_all = "kebab-case",
     parse_err_ty = String,
@@ -64,12 +52,6 @@ impl crate::names::Named for View {
 }
 
 impl View {
-    /// The name used on the command line and in menus.
-    #[must_use]
-    pub fn name(self) -> &'static str {
-        self.into()
-    }
-
     /// Whether this view needs ray differentials (every view but the shaded one).
     #[must_use]
     pub const fn needs_footprint(self) -> bool {

@@ -93,22 +93,10 @@ impl Texture {
 }
 
 /// Which texel the nearest lookup picks.
-#[derive(
-    Clone,
-    Copy,
-    Debug,
-    Default,
-    PartialEq,
-    Eq,
-    Hash,
-    Serialize,
-    Deserialize,
-    strum::VariantArray,
-    strum::IntoStaticStr,
-    strum::EnumString,
-    strum::EnumMessage,
-    strum::Display,
-)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[derive(Serialize, Deserialize)]
+#[derive(strum::VariantArray, strum::IntoStaticStr, strum::Display)]
+#[derive(strum::EnumString, strum::EnumMessage)]
 #[strum(
     serialize_all = "kebab-case",
     parse_err_ty = String,
@@ -133,12 +121,6 @@ impl crate::names::Named for Lookup {
 }
 
 impl Lookup {
-    /// The name used on the command line and in menus.
-    #[must_use]
-    pub fn name(self) -> &'static str {
-        self.into()
-    }
-
     /// The texel index along an axis of `n` texels for a coordinate already wrapped to [0, 1]
     /// (closed: t == 1 is the last texel under both lookups). Generic over [`Real`] so that the
     /// renderer (f32) and `texplore map` (f64) run one formula.
@@ -155,22 +137,10 @@ impl Lookup {
 }
 
 /// What happens outside [0, 1].
-#[derive(
-    Clone,
-    Copy,
-    Debug,
-    Default,
-    PartialEq,
-    Eq,
-    Hash,
-    Serialize,
-    Deserialize,
-    strum::VariantArray,
-    strum::IntoStaticStr,
-    strum::EnumString,
-    strum::EnumMessage,
-    strum::Display,
-)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[derive(Serialize, Deserialize)]
+#[derive(strum::VariantArray, strum::IntoStaticStr, strum::Display)]
+#[derive(strum::EnumString, strum::EnumMessage)]
 #[strum(
     serialize_all = "kebab-case",
     parse_err_ty = String,
@@ -197,12 +167,6 @@ impl crate::names::Named for Wrap {
 }
 
 impl Wrap {
-    /// The name used on the command line and in menus.
-    #[must_use]
-    pub fn name(self) -> &'static str {
-        self.into()
-    }
-
     /// A continuous coordinate brought into [0, 1], or `None` outside under [`Wrap::Black`].
     ///
     /// The square is closed: t in [0, 1], both ends included, is returned as it is under every
@@ -253,22 +217,10 @@ impl Wrap {
 /// On the procedural checker, which has no texels, `Nearest`, `Bilinear` and `Bicubic` all
 /// point-sample, and `Trilinear` and `Ewa` use the closed-form box filter of the checker over
 /// the footprint's bounding box (pbrt's analytically filtered checkerboard).
-#[derive(
-    Clone,
-    Copy,
-    Debug,
-    Default,
-    PartialEq,
-    Eq,
-    Hash,
-    Serialize,
-    Deserialize,
-    strum::VariantArray,
-    strum::IntoStaticStr,
-    strum::EnumString,
-    strum::EnumMessage,
-    strum::Display,
-)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[derive(Serialize, Deserialize)]
+#[derive(strum::VariantArray, strum::IntoStaticStr, strum::Display)]
+#[derive(strum::EnumString, strum::EnumMessage)]
 #[strum(
     serialize_all = "kebab-case",
     parse_err_ty = String,
@@ -304,18 +256,6 @@ impl crate::names::Named for Filter {
 }
 
 impl Filter {
-    /// The name used on the command line and in menus.
-    #[must_use]
-    pub fn name(self) -> &'static str {
-        self.into()
-    }
-
-    /// One sentence on what the filter does, for tooltips.
-    #[must_use]
-    pub fn description(self) -> &'static str {
-        crate::names::Named::tip(self)
-    }
-
     /// Whether this filter needs the pixel's footprint in texture space (ray differentials).
     #[must_use]
     pub const fn needs_footprint(self) -> bool {

@@ -17,7 +17,7 @@ pub(super) fn lights_ui(ui: &mut egui::Ui, desc: &mut SceneDesc) -> bool {
     for (i, l) in desc.lights.iter_mut().enumerate() {
         ui.push_id(i, |ui| {
             ui.horizontal(|ui| {
-                ui.strong(format!("light {i}: {}", l.kind().label()));
+                ui.strong(format!("light {i}: {}", l.kind().name()));
                 if ui
                     .button("Remove")
                     .on_hover_text("Removes this light")
@@ -36,8 +36,8 @@ pub(super) fn lights_ui(ui: &mut egui::Ui, desc: &mut SceneDesc) -> bool {
     ui.horizontal(|ui| {
         for &kind in LightKind::VARIANTS {
             if ui
-                .button(format!("Add {}", kind.label()))
-                .on_hover_text(kind.tip())
+                .button(format!("Add {}", kind.name()))
+                .on_hover_text(kind.description())
                 .clicked()
             {
                 desc.lights.push(kind.default_desc());

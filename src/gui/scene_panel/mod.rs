@@ -33,7 +33,7 @@ pub struct ScenePanel {
 
 fn object_label(i: usize, o: &ObjectDesc) -> String {
     if o.name.is_empty() {
-        format!("{i}: {}", o.shape.kind().label())
+        format!("{i}: {}", o.shape.kind().name())
     } else {
         format!("{i}: {}", o.name)
     }

@@ -73,11 +73,17 @@ fn line(r: &mut impl BufRead, budget: &mut u64) -> Result<String, String> {
     Ok(String::from_utf8_lossy(&buf).into_owned())
 }
 
-/// Decodes a Radiance HDR file whose first bytes are `#?`.
+/// Decodes a Radiance HDR file whose first bytes are `#?`, once `check` has accepted its width
+/// and height (read from the resolution line, before any scanline is decoded).
 ///
 /// # Errors
-/// A malformed header or resolution line, or what the scanline decoder or the limits report.
-pub fn decode_radiance(mut r: impl BufRead, limits: image::Limits) -> Result<DynamicImage, String> {
+/// A malformed header or resolution line, what `check` reports, or what the scanline decoder or
+/// the limits report.
+pub fn decode_radiance(
+    mut r: impl BufRead,
+    limits: image::Limits,
+    check: &dyn Fn(u32, u32) -> Result<(), String>,
+) -> Result<DynamicImage, String> {
     let mut budget = MAX_HEADER_BYTES;
     let signature = line(&mut r, &mut budget)?;
     debug_assert!(signature.starts_with("#?"));
@@ -105,6 +111,8 @@ pub fn decode_radiance(mut r: impl BufRead, limits: image::Limits) -> Result<Dyn
     let (Ok(n1), Ok(n2)) = (n1.parse::<u32>(), n2.parse::<u32>()) else {
         return Err(bad());
     };
+    let (width, height) = if a1.x { (n1, n2) } else { (n2, n1) };
+    check(width, height)?;
     header.extend_from_slice(format!("\n-Y {n1} +X {n2}\n").as_bytes());
     let mut decoder = image::codecs::hdr::HdrDecoder::new(std::io::Cursor::new(header).chain(r))
         .map_err(|e| e.to_string())?;
@@ -119,7 +127,6 @@ pub fn decode_radiance(mut r: impl BufRead, limits: image::Limits) -> Result<Dyn
         return Ok(decoded);
     }
     let scan = decoded.into_rgb32f();
-    let (width, height) = if a1.x { (n1, n2) } else { (n2, n1) };
     let mut out = Rgb32FImage::new(width, height);
     for (j, i, p) in scan.enumerate_pixels() {
         // Scanline i (along the first axis), pixel j along it (the second).
@@ -163,8 +170,12 @@ mod tests {
             ("-X 3 +Y 2", (2, 1), (2, 0)),
         ];
         for (res, first, second) in cases {
-            let img =
-                decode_radiance(&file("#?RADIANCE", res, 6)[..], image::Limits::default()).unwrap();
+            let img = decode_radiance(
+                &file("#?RADIANCE", res, 6)[..],
+                image::Limits::default(),
+                &|_, _| Ok(()),
+            )
+            .unwrap();
             assert_eq!((img.width(), img.height()), (3, 2), "{res}");
             assert_eq!(red(&img, first.0, first.1), 0.0, "{res}");
             assert_eq!(red(&img, second.0, second.1), 1.0, "{res}");
@@ -176,6 +187,7 @@ mod tests {
         let img = decode_radiance(
             &file("#?RGBE", "-Y 1 +X 2", 2)[..],
             image::Limits::default(),
+            &|_, _| Ok(()),
         )
         .unwrap();
         assert_eq!(red(&img, 1, 0), 1.0);
@@ -184,8 +196,12 @@ mod tests {
     #[test]
     fn bad_resolution_lines_are_named() {
         for res in ["-Y 2 -Y 3", "-Y 2", "+Z 2 +X 3", "-Y two +X 3"] {
-            let e = decode_radiance(&file("#?RADIANCE", res, 6)[..], image::Limits::default())
-                .unwrap_err();
+            let e = decode_radiance(
+                &file("#?RADIANCE", res, 6)[..],
+                image::Limits::default(),
+                &|_, _| Ok(()),
+            )
+            .unwrap_err();
             assert!(e.contains(res), "{e}");
         }
     }

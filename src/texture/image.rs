@@ -238,6 +238,8 @@ impl Storage {
     /// 16-bit ones become linear through the sRGB curve (unless not sRGB), floats are
     /// [sanitized](sanitize). Bytes past the row's width are ignored.
     fn put_row(&mut self, row: u32, data: &[u8], layout: Layout) {
+        /// Writes `f` of each pixel of the row into its tiles, four texels (one tile's row) at
+        /// a time.
         fn fill<T>(
             v: &mut [T],
             tiles_x: u32,
@@ -247,8 +249,14 @@ impl Storage {
             bpp: usize,
             f: impl Fn(&[u8]) -> T,
         ) {
-            for (column, px) in data.chunks_exact(bpp).take(width as usize).enumerate() {
-                v[tiled_index(tiles_x, column as u32, row)] = f(px);
+            let data = &data[..data.len().min(width as usize * bpp)];
+            let tile = (TILE * TILE) as usize;
+            let first = tiled_index(tiles_x, 0, row);
+            let tiles = v[first..].chunks_mut(tile);
+            for (texels, pixels) in tiles.zip(data.chunks(TILE as usize * bpp)) {
+                for (t, px) in texels.iter_mut().zip(pixels.chunks_exact(bpp)) {
+                    *t = f(px);
+                }
             }
         }
         let (tiles_x, width, srgb) = (self.tiles_x, self.width, self.srgb);
@@ -277,7 +285,7 @@ impl Storage {
             (Texels::Linear(v), Sample::U8, false) => {
                 fill(v, tiles_x, width, row, data, bpp, |p| {
                     [u8_linear(p[0]), u8_linear(p[1]), u8_linear(p[2])]
-                })
+                });
             }
             (Texels::Linear(v), Sample::U16Be, true) => {
                 fill(v, tiles_x, width, row, data, bpp, |p| {
@@ -567,7 +575,7 @@ fn catmull_rom(t: f32) -> [f32; 4] {
 }
 
 /// Decodes an image file (PNG, JPEG, TIFF, PPM/PGM P2/P3/P5/P6 8- and 16-bit, Radiance HDR,
-/// OpenEXR) under [`MAX_IMAGE_DIMENSION`] and [`MAX_IMAGE_BYTES`].
+/// `OpenEXR`) under [`MAX_IMAGE_DIMENSION`] and [`MAX_IMAGE_BYTES`].
 ///
 /// The texel storage is sized from the header and refused above [`MAX_IMAGE_BYTES`] before any
 /// pixel is decoded; rows are converted straight into it (PNG row by row, other formats from

@@ -178,10 +178,11 @@ fn a_small_jpeg_claiming_18000_squared_is_refused_without_allocating() {
 
 #[test]
 fn a_small_jpeg_claiming_a_size_within_the_budget_is_truncated() {
-    // 4000^2 fits the budget (61 MiB of texels), but its data is missing: refused, not grey.
+    // 8000^2 fits the budget (244 MiB of texels), but its data is missing: refused, not grey,
+    // and before allocating (the limit leaves no room for the texels).
     let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("claims.jpg"), jpeg_claiming(4000, 4000)).unwrap();
-    let out = render_limited(dir.path(), "claims.jpg", true, BASELINE + 128 * MIB);
+    std::fs::write(dir.path().join("claims.jpg"), jpeg_claiming(8000, 8000)).unwrap();
+    let out = render_limited(dir.path(), "claims.jpg", true, BASELINE);
     let e = stderr(&out);
     assert!(!out.status.success());
     assert!(

@@ -95,10 +95,12 @@ pub(super) fn decode_jpeg(r: impl Read, max_bytes: u64, srgb: bool) -> Result<St
         u32::try_from(w).map_err(|_| "too wide")?,
         u32::try_from(h).map_err(|_| "too tall")?,
     );
-    let mut storage = Storage::new(w, h, layout, srgb)?;
+    // The budget, then whether the data can be there at all, before allocating anything.
+    Storage::check(w, h, layout, srgb)?;
     if !can_hold(&data, w as usize, h as usize) {
         return Err("truncated image data".into());
     }
+    let mut storage = Storage::new(w, h, layout, srgb)?;
     let mut buf = zeroed::<u8>(
         w as usize * h as usize * layout.bytes_per_pixel(),
         "the decoder",

@@ -215,7 +215,18 @@ fn the_first_3000_bytes_of_the_earth_jpeg_are_refused() {
         "{e}"
     );
     assert!(!dir.path().join("out.png").exists());
-    // ... and by the loader the window uses, in either colour space.
+    // ... by the window, which builds the scene through the same asset cache ...
+    let desc = texplore::scene::read_preset_or_png(&dir.path().join("p.ron")).unwrap();
+    let mut cache = texplore::scene::AssetCache::new();
+    let e = texplore::scene::build_scene(&desc, &dir.path().join("p.ron"), &mut cache)
+        .err()
+        .expect("the truncated texture is refused")
+        .to_string();
+    assert!(
+        e.contains("earth.jpg") && e.contains("truncated image data"),
+        "{e}"
+    );
+    // ... and by the image loader itself, in either colour space.
     for srgb in [true, false] {
         let e = load_image(&dir.path().join("earth.jpg"), srgb)
             .unwrap_err()

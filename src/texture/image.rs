@@ -617,7 +617,7 @@ fn decode(mut file: std::io::BufReader<std::fs::File>, path: &Path, srgb: bool) 
     if head.starts_with(b"#?") {
         let check = |w: u32, h: u32| Storage::check(w, h, F32_RGB, srgb).map(|_| ());
         let img = hdr::decode_radiance(file, limits(), &check).map_err(err)?;
-        return from_dynamic(&img, srgb).map_err(err);
+        return from_radiance(&img, srgb).map_err(err);
     }
     let mut reader = image::ImageReader::new(file)
         .with_guessed_format()
@@ -680,12 +680,18 @@ fn from_decoder(
     Ok(storage)
 }
 
-/// Storage from a decoded image (Radiance HDR, which is reoriented after decoding).
-fn from_dynamic(img: &image::DynamicImage, srgb: bool) -> std::result::Result<Storage, String> {
-    let color = img.color();
-    let layout = Layout::of(color).ok_or_else(|| format!("unsupported colour type {color:?}"))?;
-    let mut storage = Storage::new(img.width(), img.height(), layout, srgb)?;
-    storage.put_rows(img.as_bytes(), layout)?;
+/// Storage from a decoded Radiance file: its scanlines are the rows, or each pixel goes where
+/// the file's orientation puts it (no turned copy of the image is made).
+fn from_radiance(img: &hdr::Radiance, srgb: bool) -> std::result::Result<Storage, String> {
+    let (w, h) = img.size();
+    let mut storage = Storage::new(w, h, F32_RGB, srgb)?;
+    let Texels::Linear(v) = &mut storage.texels else {
+        return Err("Radiance texels are linear".into());
+    };
+    for (j, i, p) in img.scan.enumerate_pixels() {
+        let (x, y) = img.place(j, i);
+        v[tiled_index(storage.tiles_x, x, y)] = sanitize(p.0);
+    }
     Ok(storage)
 }
 

@@ -8,11 +8,19 @@ use std::path::Path;
 
 mod float_tiff;
 mod hdr;
+mod jpeg;
 mod png_decode;
 
-/// The largest width or height an image may have (decoding refuses anything bigger).
-pub const MAX_IMAGE_DIMENSION: u32 = 32_768;
-/// The most memory one decoded image may take.
+/// The largest width or height an image may have (decoding refuses anything bigger): 2^20, so
+/// that an `f32` (u, v) still addresses a sixteenth of a texel. Memory is bounded by
+/// [`MAX_IMAGE_BYTES`], not by the sides: a 1 x 100000 strip is fine.
+pub const MAX_IMAGE_DIMENSION: u32 = 1 << 20;
+/// The texture budget: the most memory one image's texel storage may take (padding to whole
+/// tiles included), checked from the header before decoding; also the most one decoder buffer
+/// may take. 1 GiB holds a 16384 x 16384 8-bit image as sRGB texels (4 bytes each), the largest
+/// texture most GPUs accept and the largest Blue Marble tile, or up to 9459 x 9459 linear RGB
+/// (12 bytes each); twice that would not fit beside the renderer on an 8 GiB laptop once the mip
+/// pyramid (a third more) and a decoder buffer are added.
 pub const MAX_IMAGE_BYTES: u64 = 1 << 30;
 
 /// Texel storage: 8-bit sRGB images stay compact (4 bytes per texel, decoded through a 256-entry
@@ -53,6 +61,294 @@ fn to_tiles<T: Copy + Default>(width: u32, height: u32, v: &[T]) -> Vec<T> {
         }
     }
     out
+}
+
+/// How the samples of one decoded pixel are laid out in a decoder's output.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Layout {
+    /// Samples per pixel: 1 (grey), 2 (grey, alpha), 3 (RGB) or 4 (RGBA). Alpha is ignored.
+    channels: usize,
+    sample: Sample,
+}
+
+/// One sample's encoding.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Sample {
+    /// 8 bits.
+    U8,
+    /// 16 bits, big-endian (as PNG stores them).
+    U16Be,
+    /// 16 bits, native-endian (as the `image` crate's decoders write them).
+    U16Ne,
+    /// 32-bit float, native-endian.
+    F32Ne,
+}
+
+impl Layout {
+    /// The layout of an `image` crate colour type (all of them but the non-exhaustive rest).
+    fn of(color: image::ColorType) -> Option<Self> {
+        use image::ColorType as C;
+        let (channels, sample) = match color {
+            C::L8 => (1, Sample::U8),
+            C::La8 => (2, Sample::U8),
+            C::Rgb8 => (3, Sample::U8),
+            C::Rgba8 => (4, Sample::U8),
+            C::L16 => (1, Sample::U16Ne),
+            C::La16 => (2, Sample::U16Ne),
+            C::Rgb16 => (3, Sample::U16Ne),
+            C::Rgba16 => (4, Sample::U16Ne),
+            C::Rgb32F => (3, Sample::F32Ne),
+            C::Rgba32F => (4, Sample::F32Ne),
+            _ => return None,
+        };
+        Some(Self { channels, sample })
+    }
+
+    /// Bytes one pixel takes.
+    const fn bytes_per_pixel(self) -> usize {
+        self.channels
+            * match self.sample {
+                Sample::U8 => 1,
+                Sample::U16Be | Sample::U16Ne => 2,
+                Sample::F32Ne => 4,
+            }
+    }
+}
+
+/// `bytes` to one decimal, as a person reads it: `1.0 GiB`, `3.0 GiB`, `768.0 MiB`.
+fn approx_bytes(bytes: u64) -> String {
+    let b = bytes as f64;
+    if bytes >= 1 << 30 {
+        format!("{:.1} GiB", b / f64::from(1u32 << 30))
+    } else if bytes >= 1 << 20 {
+        format!("{:.1} MiB", b / f64::from(1u32 << 20))
+    } else {
+        format!("{bytes} bytes")
+    }
+}
+
+/// A zeroed vector of `n` elements, or an error (never an abort) when memory runs out.
+fn zeroed<T: Clone + Default>(n: usize, what: &str) -> std::result::Result<Vec<T>, String> {
+    let mut v = Vec::new();
+    v.try_reserve_exact(n).map_err(|_| {
+        let bytes = n as u64 * std::mem::size_of::<T>() as u64;
+        format!(
+            "out of memory allocating {} for {what}",
+            approx_bytes(bytes)
+        )
+    })?;
+    v.resize(n, T::default());
+    Ok(v)
+}
+
+/// The final texel storage of an image being decoded. It is sized from the header and checked
+/// against [`MAX_IMAGE_BYTES`] before any pixel is decoded, allocated once, and filled in tiled
+/// order as the decoder delivers rows, so no row-major copy of the texels ever exists.
+struct Storage {
+    width: u32,
+    height: u32,
+    tiles_x: u32,
+    /// 8- and 16-bit samples are sRGB-encoded.
+    srgb: bool,
+    texels: Texels,
+}
+
+impl Storage {
+    /// Bytes the tiled storage of a `width` x `height` image takes (rows and columns padded to
+    /// whole tiles), linear or sRGB.
+    fn bytes(width: u32, height: u32, linear: bool) -> u64 {
+        let texels = u64::from(width.div_ceil(TILE))
+            * u64::from(height.div_ceil(TILE))
+            * u64::from(TILE * TILE);
+        texels * if linear { 12 } else { 4 }
+    }
+
+    /// Checks a `width` x `height` image whose decoder writes `layout` against
+    /// [`MAX_IMAGE_DIMENSION`] and [`MAX_IMAGE_BYTES`]; the bytes its storage takes.
+    ///
+    /// # Errors
+    /// An empty image, a side above the limit, or storage above the budget.
+    fn check(
+        width: u32,
+        height: u32,
+        layout: Layout,
+        srgb: bool,
+    ) -> std::result::Result<u64, String> {
+        if width == 0 || height == 0 {
+            return Err("the image is empty (0 pixels)".into());
+        }
+        if width > MAX_IMAGE_DIMENSION || height > MAX_IMAGE_DIMENSION {
+            return Err(format!(
+                "{width} x {height} pixels is more than {MAX_IMAGE_DIMENSION} per side"
+            ));
+        }
+        let linear = Self::linear(layout, srgb);
+        let bytes = Self::bytes(width, height, linear);
+        if bytes > MAX_IMAGE_BYTES {
+            let kind = if linear {
+                "as linear RGB (12 bytes a texel)"
+            } else {
+                "as sRGB (4 bytes a texel)"
+            };
+            return Err(format!(
+                "{width} x {height} texels need {} {kind}, above the {} texture budget",
+                approx_bytes(bytes),
+                approx_bytes(MAX_IMAGE_BYTES)
+            ));
+        }
+        Ok(bytes)
+    }
+
+    /// Whether samples in `layout` are stored as linear floats (all but 8-bit sRGB).
+    fn linear(layout: Layout, srgb: bool) -> bool {
+        !(layout.sample == Sample::U8 && srgb)
+    }
+
+    /// Storage for a `width` x `height` image whose decoder writes `layout`, allocated after
+    /// [`Storage::check`].
+    ///
+    /// # Errors
+    /// What [`Storage::check`] reports, or the allocation fails.
+    fn new(
+        width: u32,
+        height: u32,
+        layout: Layout,
+        srgb: bool,
+    ) -> std::result::Result<Self, String> {
+        let bytes = Self::check(width, height, layout, srgb)?;
+        let linear = Self::linear(layout, srgb);
+        let n = usize::try_from(bytes / if linear { 12 } else { 4 })
+            .map_err(|_| "the image does not fit in memory".to_string())?;
+        let texels = if linear {
+            Texels::Linear(zeroed(n, "the texels")?)
+        } else {
+            Texels::Srgb8(zeroed(n, "the texels")?)
+        };
+        Ok(Self {
+            width,
+            height,
+            tiles_x: width.div_ceil(TILE),
+            srgb,
+            texels,
+        })
+    }
+
+    /// Converts file row `row` (0 = top), in `layout`, into its texels. Grey becomes RGB, alpha
+    /// is dropped, 8-bit samples stay sRGB-encoded (or become linear `v / 255` when not sRGB),
+    /// 16-bit ones become linear through the sRGB curve (unless not sRGB), floats are
+    /// [sanitized](sanitize). Bytes past the row's width are ignored.
+    fn put_row(&mut self, row: u32, data: &[u8], layout: Layout) {
+        /// Writes `f` of each pixel of the row into its tiles, four texels (one tile's row) at
+        /// a time.
+        fn fill<T>(
+            v: &mut [T],
+            tiles_x: u32,
+            width: u32,
+            row: u32,
+            data: &[u8],
+            bpp: usize,
+            f: impl Fn(&[u8]) -> T,
+        ) {
+            let data = &data[..data.len().min(width as usize * bpp)];
+            let tile = (TILE * TILE) as usize;
+            let first = tiled_index(tiles_x, 0, row);
+            let tiles = v[first..].chunks_mut(tile);
+            for (texels, pixels) in tiles.zip(data.chunks(TILE as usize * bpp)) {
+                for (t, px) in texels.iter_mut().zip(pixels.chunks_exact(bpp)) {
+                    *t = f(px);
+                }
+            }
+        }
+        let (tiles_x, width, srgb) = (self.tiles_x, self.width, self.srgb);
+        let bpp = layout.bytes_per_pixel();
+        let grey = layout.channels < 3;
+        let u8_linear = |v: u8| f32::from(v) / 255.0;
+        let u16_linear = |v: u16| {
+            let x = f32::from(v) / 65_535.0;
+            if srgb { srgb_to_linear(x) } else { x }
+        };
+        let be = |p: &[u8], c: usize| u16::from_be_bytes([p[2 * c], p[2 * c + 1]]);
+        let ne = |p: &[u8], c: usize| u16::from_ne_bytes([p[2 * c], p[2 * c + 1]]);
+        let f32_at = |p: &[u8], c: usize| {
+            f32::from_ne_bytes([p[4 * c], p[4 * c + 1], p[4 * c + 2], p[4 * c + 3]])
+        };
+        match (&mut self.texels, layout.sample, grey) {
+            (Texels::Srgb8(v), _, true) => fill(v, tiles_x, width, row, data, bpp, |p| {
+                [p[0], p[0], p[0], 255]
+            }),
+            (Texels::Srgb8(v), _, false) => fill(v, tiles_x, width, row, data, bpp, |p| {
+                [p[0], p[1], p[2], 255]
+            }),
+            (Texels::Linear(v), Sample::U8, true) => {
+                fill(v, tiles_x, width, row, data, bpp, |p| [u8_linear(p[0]); 3]);
+            }
+            (Texels::Linear(v), Sample::U8, false) => {
+                fill(v, tiles_x, width, row, data, bpp, |p| {
+                    [u8_linear(p[0]), u8_linear(p[1]), u8_linear(p[2])]
+                });
+            }
+            (Texels::Linear(v), Sample::U16Be, true) => {
+                fill(v, tiles_x, width, row, data, bpp, |p| {
+                    [u16_linear(be(p, 0)); 3]
+                });
+            }
+            (Texels::Linear(v), Sample::U16Be, false) => {
+                fill(v, tiles_x, width, row, data, bpp, |p| {
+                    [0, 1, 2].map(|c| u16_linear(be(p, c)))
+                });
+            }
+            (Texels::Linear(v), Sample::U16Ne, true) => {
+                fill(v, tiles_x, width, row, data, bpp, |p| {
+                    [u16_linear(ne(p, 0)); 3]
+                });
+            }
+            (Texels::Linear(v), Sample::U16Ne, false) => {
+                fill(v, tiles_x, width, row, data, bpp, |p| {
+                    [0, 1, 2].map(|c| u16_linear(ne(p, c)))
+                });
+            }
+            (Texels::Linear(v), Sample::F32Ne, true) => {
+                fill(v, tiles_x, width, row, data, bpp, |p| {
+                    sanitize([f32_at(p, 0); 3])
+                });
+            }
+            (Texels::Linear(v), Sample::F32Ne, false) => {
+                fill(v, tiles_x, width, row, data, bpp, |p| {
+                    sanitize([0, 1, 2].map(|c| f32_at(p, c)))
+                });
+            }
+        }
+    }
+
+    /// Converts a whole decoded image (rows top to bottom, in `layout`).
+    ///
+    /// # Errors
+    /// `data` holds fewer rows than the image has.
+    fn put_rows(&mut self, data: &[u8], layout: Layout) -> std::result::Result<(), String> {
+        let stride = self.width as usize * layout.bytes_per_pixel();
+        if data.len() < stride * self.height as usize {
+            return Err("truncated image data".into());
+        }
+        for (row, line) in data
+            .chunks_exact(stride)
+            .take(self.height as usize)
+            .enumerate()
+        {
+            self.put_row(row as u32, line, layout);
+        }
+        Ok(())
+    }
+
+    /// The image, named `name`.
+    fn finish(self, name: String) -> ImageData {
+        ImageData {
+            width: self.width,
+            height: self.height,
+            tiles_x: self.tiles_x,
+            texels: self.texels,
+            name,
+        }
+    }
 }
 
 /// An image in memory. Row 0 is the top row of the file; the lecture's `v` runs up, so
@@ -279,7 +575,11 @@ fn catmull_rom(t: f32) -> [f32; 4] {
 }
 
 /// Decodes an image file (PNG, JPEG, TIFF, PPM/PGM P2/P3/P5/P6 8- and 16-bit, Radiance HDR,
-/// OpenEXR) under [`MAX_IMAGE_DIMENSION`] and [`MAX_IMAGE_BYTES`].
+/// `OpenEXR`) under [`MAX_IMAGE_DIMENSION`] and [`MAX_IMAGE_BYTES`].
+///
+/// The texel storage is sized from the header and refused above [`MAX_IMAGE_BYTES`] before any
+/// pixel is decoded; rows are converted straight into it (PNG row by row, other formats from
+/// one decoder buffer), so the peak is the storage plus at most one decoder buffer.
 ///
 /// 8-bit images are taken as sRGB-encoded unless `srgb` is false; 16-bit ones are decoded to
 /// linear floats through the same curve; float formats are linear already.
@@ -287,56 +587,12 @@ fn catmull_rom(t: f32) -> [f32; 4] {
 /// # Errors
 /// A missing, truncated, corrupt or oversized file, naming the file.
 pub fn load_image(path: &Path, srgb: bool) -> Result<ImageData> {
-    let err = |message: String| Error::Image {
-        path: path.to_path_buf(),
-        message,
-    };
     let file = crate::input::open_input(path)?;
-    let decoded = decode(std::io::BufReader::new(file), path)?;
-    let (w, h) = (decoded.width(), decoded.height());
-    if w == 0 || h == 0 {
-        return Err(err("the image is empty (0 pixels)".into()));
-    }
+    let storage = decode(std::io::BufReader::new(file), path, srgb)?;
     let name = path
         .file_name()
         .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
-    use image::DynamicImage as D;
-    let texels = match decoded {
-        D::ImageRgb32F(_) | D::ImageRgba32F(_) => {
-            let rgb = decoded.to_rgb32f();
-            Texels::Linear(rgb.pixels().map(|p| sanitize(p.0)).collect())
-        }
-        D::ImageLuma16(_) | D::ImageLumaA16(_) | D::ImageRgb16(_) | D::ImageRgba16(_) => {
-            let rgb = decoded.to_rgb16();
-            let dec = |v: u16| {
-                let x = f32::from(v) / 65_535.0;
-                if srgb { srgb_to_linear(x) } else { x }
-            };
-            Texels::Linear(
-                rgb.pixels()
-                    .map(|p| [dec(p.0[0]), dec(p.0[1]), dec(p.0[2])])
-                    .collect(),
-            )
-        }
-        _ => {
-            let rgb = decoded.to_rgb8();
-            if srgb {
-                Texels::Srgb8(
-                    rgb.pixels()
-                        .map(|p| [p.0[0], p.0[1], p.0[2], 255])
-                        .collect(),
-                )
-            } else {
-                let f = |v: u8| f32::from(v) / 255.0;
-                Texels::Linear(
-                    rgb.pixels()
-                        .map(|p| [f(p.0[0]), f(p.0[1]), f(p.0[2])])
-                        .collect(),
-                )
-            }
-        }
-    };
-    Ok(ImageData::new(w, h, texels, name))
+    Ok(storage.finish(name))
 }
 
 /// The decode limits every image is read under.
@@ -348,9 +604,10 @@ fn limits() -> image::Limits {
     limits
 }
 
-/// Decodes an opened image file: the format from its first bytes (else from `path`'s
-/// extension), Radiance HDR in any of its eight orientations and with any `#?` signature.
-fn decode(mut file: std::io::BufReader<std::fs::File>, path: &Path) -> Result<image::DynamicImage> {
+/// Decodes an opened image file into its storage: the format from its first bytes (else from
+/// `path`'s extension), Radiance HDR in any of its eight orientations and with any `#?`
+/// signature.
+fn decode(mut file: std::io::BufReader<std::fs::File>, path: &Path, srgb: bool) -> Result<Storage> {
     use std::io::BufRead;
     let err = |message: String| Error::Image {
         path: path.to_path_buf(),
@@ -358,7 +615,9 @@ fn decode(mut file: std::io::BufReader<std::fs::File>, path: &Path) -> Result<im
     };
     let head = file.fill_buf().map_err(|e| Error::io(path, e))?;
     if head.starts_with(b"#?") {
-        return hdr::decode_radiance(file, limits()).map_err(err);
+        let check = |w: u32, h: u32| Storage::check(w, h, F32_RGB, srgb).map(|_| ());
+        let img = hdr::decode_radiance(file, limits(), &check).map_err(err)?;
+        return from_radiance(&img, srgb).map_err(err);
     }
     let mut reader = image::ImageReader::new(file)
         .with_guessed_format()
@@ -368,22 +627,72 @@ fn decode(mut file: std::io::BufReader<std::fs::File>, path: &Path) -> Result<im
     {
         reader.set_format(format);
     }
-    if reader.format() == Some(image::ImageFormat::Png) {
-        return png_decode::decode_png(reader.into_inner(), MAX_IMAGE_DIMENSION, MAX_IMAGE_BYTES)
-            .map_err(err);
-    }
-    if reader.format() == Some(image::ImageFormat::Tiff) {
-        let mut file = reader.into_inner();
-        if let Some(image) =
-            float_tiff::decode_gray_f32(&mut file, MAX_IMAGE_DIMENSION, MAX_IMAGE_BYTES)
-                .map_err(err)?
-        {
-            return Ok(image);
+    match reader.format() {
+        Some(image::ImageFormat::Png) => {
+            return png_decode::decode_png(reader.into_inner(), MAX_IMAGE_BYTES, srgb).map_err(err);
         }
-        reader = image::ImageReader::with_format(file, image::ImageFormat::Tiff);
+        Some(image::ImageFormat::Jpeg) => {
+            return jpeg::decode_jpeg(reader.into_inner(), MAX_IMAGE_BYTES, srgb).map_err(err);
+        }
+        Some(image::ImageFormat::Tiff) => {
+            let mut file = reader.into_inner();
+            if let Some(storage) =
+                float_tiff::decode_gray_f32(&mut file, MAX_IMAGE_BYTES).map_err(err)?
+            {
+                return Ok(storage);
+            }
+            reader = image::ImageReader::with_format(file, image::ImageFormat::Tiff);
+        }
+        _ => {}
     }
     reader.limits(limits());
-    reader.decode().map_err(|e| err(e.to_string()))
+    let decoder = reader.into_decoder().map_err(|e| err(e.to_string()))?;
+    from_decoder(decoder, srgb).map_err(err)
+}
+
+/// Linear RGB floats, as Radiance HDR decodes.
+const F32_RGB: Layout = Layout {
+    channels: 3,
+    sample: Sample::F32Ne,
+};
+
+/// Storage from an `image` crate decoder: the budget checked from its header, then one decoder
+/// buffer converted into the storage.
+fn from_decoder(
+    decoder: impl image::ImageDecoder,
+    srgb: bool,
+) -> std::result::Result<Storage, String> {
+    let (w, h) = decoder.dimensions();
+    let color = decoder.color_type();
+    let layout = Layout::of(color).ok_or_else(|| format!("unsupported colour type {color:?}"))?;
+    let mut storage = Storage::new(w, h, layout, srgb)?;
+    let total = decoder.total_bytes();
+    if total > MAX_IMAGE_BYTES {
+        return Err(format!(
+            "the decoder needs {}, above the {} limit",
+            approx_bytes(total),
+            approx_bytes(MAX_IMAGE_BYTES)
+        ));
+    }
+    let mut buf = zeroed::<u8>(total as usize, "the decoder")?;
+    decoder.read_image(&mut buf).map_err(|e| e.to_string())?;
+    storage.put_rows(&buf, layout)?;
+    Ok(storage)
+}
+
+/// Storage from a decoded Radiance file: its scanlines are the rows, or each pixel goes where
+/// the file's orientation puts it (no turned copy of the image is made).
+fn from_radiance(img: &hdr::Radiance, srgb: bool) -> std::result::Result<Storage, String> {
+    let (w, h) = img.size();
+    let mut storage = Storage::new(w, h, F32_RGB, srgb)?;
+    let Texels::Linear(v) = &mut storage.texels else {
+        return Err("Radiance texels are linear".into());
+    };
+    for (j, i, p) in img.scan.enumerate_pixels() {
+        let (x, y) = img.place(j, i);
+        v[tiled_index(storage.tiles_x, x, y)] = sanitize(p.0);
+    }
+    Ok(storage)
 }
 
 /// HDR files may hold NaN or Inf (a corrupt RGBE exponent, an EXR with holes): such texels are

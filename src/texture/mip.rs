@@ -276,22 +276,13 @@ fn ewa_level(
 fn downsample(img: &ImageData) -> ImageData {
     let (w, h) = (img.width(), img.height());
     let (nw, nh) = (half(w), half(h));
-    // Gather linear texels of the source, row 0 = top (row order does not matter for a box).
-    let mut src = Vec::with_capacity(w as usize * h as usize);
-    for row in 0..h {
-        for col in 0..w {
-            src.push(img.texel_top(col, row));
-        }
-    }
-    // Along x, then along y.
+    // Along x (reading the source's texels in place, row 0 = top: row order does not matter
+    // for a box), then along y.
     let mut tmp = vec![Rgb::BLACK; nw as usize * h as usize];
-    for row in 0..h as usize {
-        let line = &src[row * w as usize..(row + 1) * w as usize];
-        for (i, out) in tmp[row * nw as usize..(row + 1) * nw as usize]
-            .iter_mut()
-            .enumerate()
-        {
-            *out = taps(w, i as u32, |k| line[k as usize]);
+    for row in 0..h {
+        let start = row as usize * nw as usize;
+        for (i, out) in tmp[start..start + nw as usize].iter_mut().enumerate() {
+            *out = taps(w, i as u32, |k| img.texel_top(k, row));
         }
     }
     let mut dst = vec![Rgb::BLACK; nw as usize * nh as usize];

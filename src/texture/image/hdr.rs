@@ -4,7 +4,7 @@
 //! columns`), the scanlines are decoded under the same limits as any image, and the pixels are
 //! put where the orientation says.
 
-use image::{DynamicImage, ImageDecoder, Rgb32FImage};
+use image::{DynamicImage, ImageDecoder};
 use std::io::{BufRead, Read};
 
 /// Most bytes of header (signature, variables and resolution line) read.
@@ -44,7 +44,7 @@ impl Axis {
 
     /// The image coordinate (column for X, row from the top for Y) of index `k` of `n` along
     /// this axis.
-    fn coordinate(self, k: u32, n: u32) -> u32 {
+    const fn coordinate(self, k: u32, n: u32) -> u32 {
         // +X runs left to right, -Y top to bottom (Y points up in Radiance's pictures).
         if self.plus == self.x { k } else { n - 1 - k }
     }
@@ -73,11 +73,17 @@ fn line(r: &mut impl BufRead, budget: &mut u64) -> Result<String, String> {
     Ok(String::from_utf8_lossy(&buf).into_owned())
 }
 
-/// Decodes a Radiance HDR file whose first bytes are `#?`.
+/// Decodes a Radiance HDR file whose first bytes are `#?`, once `check` has accepted its width
+/// and height (read from the resolution line, before any scanline is decoded).
 ///
 /// # Errors
-/// A malformed header or resolution line, or what the scanline decoder or the limits report.
-pub fn decode_radiance(mut r: impl BufRead, limits: image::Limits) -> Result<DynamicImage, String> {
+/// A malformed header or resolution line, what `check` reports, or what the scanline decoder or
+/// the limits report.
+pub fn decode_radiance(
+    mut r: impl BufRead,
+    limits: image::Limits,
+    check: &dyn Fn(u32, u32) -> Result<(), String>,
+) -> Result<Radiance, String> {
     let mut budget = MAX_HEADER_BYTES;
     let signature = line(&mut r, &mut budget)?;
     debug_assert!(signature.starts_with("#?"));
@@ -105,29 +111,45 @@ pub fn decode_radiance(mut r: impl BufRead, limits: image::Limits) -> Result<Dyn
     let (Ok(n1), Ok(n2)) = (n1.parse::<u32>(), n2.parse::<u32>()) else {
         return Err(bad());
     };
+    check(if a1.x { n1 } else { n2 }, if a1.x { n2 } else { n1 })?;
     header.extend_from_slice(format!("\n-Y {n1} +X {n2}\n").as_bytes());
     let mut decoder = image::codecs::hdr::HdrDecoder::new(std::io::Cursor::new(header).chain(r))
         .map_err(|e| e.to_string())?;
     decoder.set_limits(limits).map_err(|e| e.to_string())?;
-    let decoded = DynamicImage::from_decoder(decoder).map_err(|e| e.to_string())?;
-    if (a1, a2)
-        == (
-            Axis::parse("-Y").unwrap_or(a1),
-            Axis::parse("+X").unwrap_or(a2),
-        )
-    {
-        return Ok(decoded);
+    let scan = DynamicImage::from_decoder(decoder)
+        .map_err(|e| e.to_string())?
+        .into_rgb32f();
+    Ok(Radiance {
+        scan,
+        axes: (a1, a2),
+        counts: (n1, n2),
+    })
+}
+
+/// A decoded Radiance file: its scanlines as stored, and where each pixel belongs.
+#[derive(Debug)]
+pub struct Radiance {
+    /// The scanlines in file order: row `i` is scanline `i`, column `j` its pixel `j`.
+    pub scan: image::Rgb32FImage,
+    /// The resolution line's axes, first (along which scanlines follow) and second.
+    axes: (Axis, Axis),
+    /// The resolution line's counts along the first and second axis.
+    counts: (u32, u32),
+}
+
+impl Radiance {
+    /// Width and height of the image.
+    pub const fn size(&self) -> (u32, u32) {
+        let ((a1, _), (n1, n2)) = (self.axes, self.counts);
+        if a1.x { (n1, n2) } else { (n2, n1) }
     }
-    let scan = decoded.into_rgb32f();
-    let (width, height) = if a1.x { (n1, n2) } else { (n2, n1) };
-    let mut out = Rgb32FImage::new(width, height);
-    for (j, i, p) in scan.enumerate_pixels() {
-        // Scanline i (along the first axis), pixel j along it (the second).
+
+    /// Image column and row (from the top) of pixel `j` of scanline `i`.
+    pub const fn place(&self, j: u32, i: u32) -> (u32, u32) {
+        let ((a1, a2), (n1, n2)) = (self.axes, self.counts);
         let (c1, c2) = (a1.coordinate(i, n1), a2.coordinate(j, n2));
-        let (x, y) = if a1.x { (c1, c2) } else { (c2, c1) };
-        out.put_pixel(x, y, *p);
+        if a1.x { (c1, c2) } else { (c2, c1) }
     }
-    Ok(DynamicImage::ImageRgb32F(out))
 }
 
 #[cfg(test)]
@@ -144,8 +166,18 @@ mod tests {
         v
     }
 
-    fn red(img: &DynamicImage, x: u32, y: u32) -> f32 {
-        img.to_rgb32f().get_pixel(x, y).0[0]
+    /// Red of the pixel the file puts at (`x`, `y`).
+    fn red(img: &Radiance, x: u32, y: u32) -> f32 {
+        let (w, h) = img.size();
+        let mut at = None;
+        for (j, i, p) in img.scan.enumerate_pixels() {
+            if img.place(j, i) == (x, y) {
+                assert!(at.is_none(), "two pixels at ({x}, {y})");
+                at = Some(p.0[0]);
+            }
+        }
+        assert!(x < w && y < h);
+        at.expect("a pixel at every place")
     }
 
     #[test]
@@ -163,9 +195,13 @@ mod tests {
             ("-X 3 +Y 2", (2, 1), (2, 0)),
         ];
         for (res, first, second) in cases {
-            let img =
-                decode_radiance(&file("#?RADIANCE", res, 6)[..], image::Limits::default()).unwrap();
-            assert_eq!((img.width(), img.height()), (3, 2), "{res}");
+            let img = decode_radiance(
+                &file("#?RADIANCE", res, 6)[..],
+                image::Limits::default(),
+                &|_, _| Ok(()),
+            )
+            .unwrap();
+            assert_eq!(img.size(), (3, 2), "{res}");
             assert_eq!(red(&img, first.0, first.1), 0.0, "{res}");
             assert_eq!(red(&img, second.0, second.1), 1.0, "{res}");
         }
@@ -176,6 +212,7 @@ mod tests {
         let img = decode_radiance(
             &file("#?RGBE", "-Y 1 +X 2", 2)[..],
             image::Limits::default(),
+            &|_, _| Ok(()),
         )
         .unwrap();
         assert_eq!(red(&img, 1, 0), 1.0);
@@ -184,8 +221,12 @@ mod tests {
     #[test]
     fn bad_resolution_lines_are_named() {
         for res in ["-Y 2 -Y 3", "-Y 2", "+Z 2 +X 3", "-Y two +X 3"] {
-            let e = decode_radiance(&file("#?RADIANCE", res, 6)[..], image::Limits::default())
-                .unwrap_err();
+            let e = decode_radiance(
+                &file("#?RADIANCE", res, 6)[..],
+                image::Limits::default(),
+                &|_, _| Ok(()),
+            )
+            .unwrap_err();
             assert!(e.contains(res), "{e}");
         }
     }

@@ -2,7 +2,7 @@
 //! not need and what can be a deflate bomb: the colour profile (`iCCP`, which `image`'s decoder
 //! inflates up to its whole allocation limit) and the text chunks.
 
-use image::{DynamicImage, ImageBuffer};
+use super::{Layout, Sample, Storage};
 use std::io::BufRead;
 
 /// The PNG decoder as textures are read: `max_bytes` of allocation, no colour profile, no
@@ -20,67 +20,54 @@ fn decoder<R: BufRead + std::io::Seek>(r: R, max_bytes: u64) -> png::Decoder<R> 
     decoder
 }
 
-/// Decodes a PNG under `max_dimension` per side and `max_bytes` of allocation.
+/// Decodes a PNG into its texel storage, the budget checked from the header. A plain PNG is
+/// converted row by row as it is inflated (the peak is the storage and one row); an interlaced
+/// one through one buffer of the whole image (its rows arrive in seven passes).
 ///
 /// # Errors
-/// What the decoder reports, or a size above the limits.
-pub fn decode_png(
+/// What the decoder reports (missing data, a bad checksum), or a size above the limits.
+pub(super) fn decode_png(
     r: impl BufRead + std::io::Seek,
-    max_dimension: u32,
     max_bytes: u64,
-) -> Result<DynamicImage, String> {
+    srgb: bool,
+) -> Result<Storage, String> {
     let mut reader = decoder(r, max_bytes)
         .read_info()
         .map_err(|e| e.to_string())?;
     let (w, h) = (reader.info().width, reader.info().height);
-    if w > max_dimension || h > max_dimension {
-        return Err(format!(
-            "{w} x {h} pixels is more than {max_dimension} per side"
-        ));
+    let (color, depth) = reader.output_color_type();
+    let sample = match depth {
+        png::BitDepth::Eight => Sample::U8,
+        png::BitDepth::Sixteen => Sample::U16Be,
+        _ => return Err(format!("unexpected {color:?} at {depth:?} after expansion")),
+    };
+    if color == png::ColorType::Indexed {
+        return Err("an indexed PNG was not expanded".into());
     }
-    let size = reader
-        .output_buffer_size()
-        .filter(|&n| n as u64 <= max_bytes)
-        .ok_or_else(|| format!("{w} x {h} pixels needs more than {max_bytes} bytes"))?;
-    let mut buf = vec![0; size];
-    let frame = reader.next_frame(&mut buf).map_err(|e| e.to_string())?;
-    buf.truncate(frame.buffer_size());
-    let bad = || "the decoded PNG does not match its size".to_string();
-    use png::{BitDepth, ColorType as C};
-    Ok(match (frame.color_type, frame.bit_depth) {
-        (C::Grayscale, BitDepth::Eight) => {
-            DynamicImage::ImageLuma8(ImageBuffer::from_raw(w, h, buf).ok_or_else(bad)?)
+    let layout = Layout {
+        channels: color.samples(),
+        sample,
+    };
+    let mut storage = Storage::new(w, h, layout, srgb)?;
+    if reader.info().interlaced {
+        let size = reader
+            .output_buffer_size()
+            .filter(|&n| n as u64 <= max_bytes)
+            .ok_or_else(|| format!("{w} x {h} pixels needs more than {max_bytes} bytes"))?;
+        let mut buf = super::zeroed::<u8>(size, "the decoder")?;
+        let frame = reader.next_frame(&mut buf).map_err(|e| e.to_string())?;
+        storage.put_rows(&buf[..frame.buffer_size().min(size)], layout)?;
+    } else {
+        let mut row = 0;
+        while row < h {
+            let Some(line) = reader.next_row().map_err(|e| e.to_string())? else {
+                return Err("truncated image data".into());
+            };
+            storage.put_row(row, line.data(), layout);
+            row += 1;
         }
-        (C::GrayscaleAlpha, BitDepth::Eight) => {
-            DynamicImage::ImageLumaA8(ImageBuffer::from_raw(w, h, buf).ok_or_else(bad)?)
-        }
-        (C::Rgb, BitDepth::Eight) => {
-            DynamicImage::ImageRgb8(ImageBuffer::from_raw(w, h, buf).ok_or_else(bad)?)
-        }
-        (C::Rgba, BitDepth::Eight) => {
-            DynamicImage::ImageRgba8(ImageBuffer::from_raw(w, h, buf).ok_or_else(bad)?)
-        }
-        (color, BitDepth::Sixteen) => {
-            let v: Vec<u16> = buf
-                .chunks_exact(2)
-                .map(|b| u16::from_be_bytes([b[0], b[1]]))
-                .collect();
-            match color {
-                C::Grayscale => {
-                    DynamicImage::ImageLuma16(ImageBuffer::from_raw(w, h, v).ok_or_else(bad)?)
-                }
-                C::GrayscaleAlpha => {
-                    DynamicImage::ImageLumaA16(ImageBuffer::from_raw(w, h, v).ok_or_else(bad)?)
-                }
-                C::Rgb => DynamicImage::ImageRgb16(ImageBuffer::from_raw(w, h, v).ok_or_else(bad)?),
-                C::Rgba => {
-                    DynamicImage::ImageRgba16(ImageBuffer::from_raw(w, h, v).ok_or_else(bad)?)
-                }
-                C::Indexed => return Err("an indexed PNG was not expanded".into()),
-            }
-        }
-        (color, depth) => return Err(format!("unexpected {color:?} at {depth:?} after expansion")),
-    })
+    }
+    Ok(storage)
 }
 
 #[cfg(test)]
@@ -116,7 +103,10 @@ mod tests {
             .read_info()
             .unwrap();
         assert!(ours.info().icc_profile.is_none());
-        let img = decode_png(std::io::Cursor::new(&file), 16, 1 << 20).unwrap();
-        assert_eq!(img.to_rgb8().into_raw(), [10, 20, 30, 40, 50, 60]);
+        let img = decode_png(std::io::Cursor::new(&file), 1 << 20, true).unwrap();
+        let super::super::Texels::Srgb8(texels) = &img.texels else {
+            panic!("8-bit sRGB texels expected");
+        };
+        assert_eq!(texels[..2], [[10, 20, 30, 255], [40, 50, 60, 255]]);
     }
 }

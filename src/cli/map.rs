@@ -14,16 +14,16 @@ pub struct MapArgs {
     #[arg(value_parser = value_parser::<Mapping>())]
     pub mapping: Mapping,
     /// Local hit point x (read as f64: the formulas are worked in f64).
-    #[arg(allow_hyphen_values = true)]
+    #[arg(allow_hyphen_values = true, value_parser = super::parse_finite)]
     pub x: f64,
     /// Local hit point y.
-    #[arg(allow_hyphen_values = true)]
+    #[arg(allow_hyphen_values = true, value_parser = super::parse_finite)]
     pub y: f64,
     /// Local hit point z.
-    #[arg(allow_hyphen_values = true)]
+    #[arg(allow_hyphen_values = true, value_parser = super::parse_finite)]
     pub z: f64,
     /// Texture resolution for the column and row (hres vres).
-    #[arg(long, num_args = 2, value_names = ["W", "H"], default_values_t = [2048, 1024])]
+    #[arg(long, num_args = 2, value_names = ["W", "H"], default_values_t = [2048, 1024], value_parser = super::parse_resolution)]
     pub res: Vec<u32>,
     /// How u and v become the printed column and row.
     #[arg(long, default_value_t = Lookup::Centred, value_parser = value_parser::<Lookup>())]
@@ -41,13 +41,21 @@ pub struct MapArgs {
 
 pub fn run(a: &MapArgs) -> Result<()> {
     let (hres, vres) = (a.res[0], a.res[1]);
-    if hres == 0 || vres == 0 {
-        bail!("--res must be at least 1 x 1");
-    }
     // f64 throughout: the lecture's arithmetic as written, not the renderer's f32 rounding.
     let p = DVec3::new(a.x, a.y, a.z);
     let lookup = a.lookup;
     let (mapping_lines, uv) = explain_mapping_f64(a.mapping, p);
+    if !uv.is_finite() {
+        bail!(
+            "the point ({}, {}, {}) is too large for the {} mapping: (u, v) = ({}, {})",
+            shortest(a.x),
+            shortest(a.y),
+            shortest(a.z),
+            a.mapping,
+            uv.x,
+            uv.y
+        );
+    }
     // The wraps the renderer applies: the texture's, except across a periodic mapping's seam
     // (repeat) and at the spherical map's poles (clamp).
     let wraps = Wrap::for_mapping(a.mapping, a.wrap);

@@ -37,10 +37,10 @@ pub struct ReportArgs {
     #[arg(long, default_value_t = 2.0, value_parser = super::parse_time_budget)]
     pub time_budget: f64,
     /// Image width (overrides the presets).
-    #[arg(long)]
+    #[arg(long, value_parser = super::parse_resolution)]
     pub width: Option<u32>,
     /// Image height (overrides the presets).
-    #[arg(long)]
+    #[arg(long, value_parser = super::parse_resolution)]
     pub height: Option<u32>,
     /// Samples per pixel of the reference.
     #[arg(long, default_value_t = 4096, value_parser = super::parse_spp)]
@@ -133,6 +133,16 @@ pub fn run(a: &ReportArgs) -> Result<()> {
     let modes = Mode::parse_list(&a.modes)?;
     if a.spp.is_empty() || a.spp.contains(&0) {
         bail!("--spp needs a list of positive numbers, like 1,4,16");
+    }
+    if let Some(h) = a.heatmap_spp.filter(|h| !a.spp.contains(h)) {
+        bail!(
+            "--heatmap-spp {h} is not among --spp {}: the heat map shows one of the renders",
+            a.spp
+                .iter()
+                .map(u32::to_string)
+                .collect::<Vec<_>>()
+                .join(",")
+        );
     }
     if !(a.time_budget.is_finite() && a.time_budget >= 0.0) {
         bail!("--time-budget must be a non-negative number of seconds");

@@ -76,8 +76,12 @@ pub fn to_ron(desc: &SceneDesc) -> String {
 /// of the preset's own images or meshes, whose paths are relative to `path`'s folder).
 ///
 /// # Errors
-/// The file is refused or cannot be written: "cannot write FILE: reason".
+/// A value is not a finite number ("FILE: not saved: ambient.color: NaN is not a number"), or
+/// the file is refused or cannot be written: "cannot write FILE: reason".
 pub fn save_preset(desc: &SceneDesc, path: &Path) -> Result<()> {
+    check_numbers(desc).map_err(|m| {
+        Error::invalid(path, format!("not saved: {m}"))
+    })?;
     let folder = path
         .parent()
         .filter(|p| !p.as_os_str().is_empty())
@@ -85,6 +89,129 @@ pub fn save_preset(desc: &SceneDesc, path: &Path) -> Result<()> {
     let assets = super::files::asset_paths(desc, folder);
     let inputs: Vec<&Path> = assets.iter().map(PathBuf::as_path).collect();
     crate::output::write_bytes(path, &inputs, to_ron(desc).as_bytes())
+}
+
+/// Refuses a preset holding a NaN or an infinity anywhere (every `f32`, point and colour),
+/// naming the field: `ambient.color: NaN is not a number`,
+/// `objects[2].material.cd.scale: inf is not finite`. Ranges are checked by [`build_scene`];
+/// this check needs no files, so it also guards every preset written out (a saved preset or
+/// the one a PNG carries never holds a value that does not read back).
+///
+/// # Errors
+/// The first field that is not a finite number.
+pub fn check_numbers(desc: &SceneDesc) -> std::result::Result<(), String> {
+    let mut bad = None;
+    let mut n = |what: &dyn Fn() -> String, values: &[f32]| {
+        if bad.is_none() {
+            if let Some(v) = values.iter().find(|v| !v.is_finite()) {
+                bad = Some(format!("{}: {}", what(), not_finite(*v)));
+            }
+        }
+    };
+    let c = &desc.camera;
+    n(&|| "camera.eye".into(), &c.eye.to_array());
+    n(&|| "camera.look_at".into(), &c.look_at.to_array());
+    n(&|| "camera.up".into(), &c.up.to_array());
+    match c.projection {
+        ProjectionDesc::Pinhole { fov } | ProjectionDesc::Fisheye { fov } => {
+            n(&|| "camera.fov".into(), &[fov]);
+        }
+        ProjectionDesc::Spherical { h_fov, v_fov } => {
+            n(&|| "camera.h_fov".into(), &[h_fov]);
+            n(&|| "camera.v_fov".into(), &[v_fov]);
+        }
+    }
+    let r = &desc.render;
+    n(&|| "render.exposure".into(), &[r.exposure]);
+    n(&|| "render.background".into(), &r.background.to_array());
+    if let Some(a) = r.adaptive {
+        n(&|| "render.adaptive.threshold".into(), &[a.threshold]);
+    }
+    n(&|| "ambient.ls".into(), &[desc.ambient.ls]);
+    n(&|| "ambient.color".into(), &desc.ambient.color.to_array());
+    for (i, l) in desc.lights.iter().enumerate() {
+        let (point, point_name, ls, color) = match *l {
+            LightDesc::Directional {
+                direction,
+                ls,
+                color,
+                ..
+            } => (direction, "direction", ls, color),
+            LightDesc::Point {
+                position,
+                ls,
+                color,
+                ..
+            } => (position, "position", ls, color),
+        };
+        n(&|| format!("lights[{i}].{point_name}"), &point.to_array());
+        n(&|| format!("lights[{i}].ls"), &[ls]);
+        n(&|| format!("lights[{i}].color"), &color.to_array());
+    }
+    for (i, o) in desc.objects.iter().enumerate() {
+        let at = |field: &str| format!("objects[{i}].{field}");
+        let t = &o.transform;
+        n(&|| at("transform.translate"), &t.translate.to_array());
+        n(&|| at("transform.rotate"), &t.rotate.to_array());
+        n(&|| at("transform.scale"), &t.scale.to_array());
+        let (coefficients, cs): (Vec<(&str, f32)>, _) = match &o.material {
+            MaterialDesc::Matte { ka, kd, .. } => (vec![("ka", *ka), ("kd", *kd)], None),
+            MaterialDesc::Phong {
+                ka, kd, ks, cs, exp, ..
+            } => (
+                vec![("ka", *ka), ("kd", *kd), ("ks", *ks), ("exp", *exp)],
+                Some(*cs),
+            ),
+            MaterialDesc::Emissive { ls, .. } => (vec![("ls", *ls)], None),
+        };
+        for (name, v) in coefficients {
+            n(&|| at(&format!("material.{name}")), &[v]);
+        }
+        if let Some(cs) = cs {
+            n(&|| at("material.cs"), &cs.to_array());
+        }
+        let tex = || {
+            let field = match o.material {
+                MaterialDesc::Emissive { .. } => "ce",
+                _ => "cd",
+            };
+            at(&format!("material.{field}"))
+        };
+        match o.material.texture() {
+            TextureDesc::Constant(c) => n(&tex, &c.to_array()),
+            TextureDesc::Image {
+                scale,
+                max_anisotropy,
+                ..
+            } => {
+                n(&|| format!("{}.scale", tex()), &[*scale]);
+                n(&|| format!("{}.max_anisotropy", tex()), &[*max_anisotropy]);
+            }
+            TextureDesc::Checker {
+                squares, colors, ..
+            } => {
+                n(&|| format!("{}.squares", tex()), &[squares.0, squares.1]);
+                n(
+                    &|| format!("{}.colors", tex()),
+                    &[colors.0.to_array(), colors.1.to_array()].concat(),
+                );
+            }
+            TextureDesc::MeshMaterial { max_anisotropy, .. }
+            | TextureDesc::UvGrid { max_anisotropy, .. } => {
+                n(&|| format!("{}.max_anisotropy", tex()), &[*max_anisotropy]);
+            }
+        }
+    }
+    bad.map_or(Ok(()), Err)
+}
+
+/// Why a non-finite number is refused.
+fn not_finite(v: f32) -> String {
+    if v.is_nan() {
+        "NaN is not a number".into()
+    } else {
+        format!("{v} is not finite")
+    }
 }
 
 /// Decoded images shared between builds, so an edit in the GUI does not decode the Earth again.
@@ -196,10 +323,12 @@ pub struct Overrides {
 pub fn build_scene(desc: &SceneDesc, preset_path: &Path, cache: &mut AssetCache) -> Result<Scene> {
     let base = preset_path.parent().unwrap_or(Path::new("."));
     let bad = |msg: String| Error::invalid(preset_path, msg);
+    check_numbers(desc).map_err(bad)?;
     let settings = render_settings(&desc.render).map_err(bad)?;
     let camera = camera(&desc.camera, settings.width, settings.height).map_err(bad)?;
+    finite_non_negative("ambient.ls", &[desc.ambient.ls]).map_err(bad)?;
+    finite_non_negative("ambient.color", &desc.ambient.color.to_array()).map_err(bad)?;
     let ambient = desc.ambient.color * desc.ambient.ls;
-    finite_non_negative("ambient", &[desc.ambient.ls]).map_err(bad)?;
 
     let mut lights = Vec::with_capacity(desc.lights.len());
     for (i, l) in desc.lights.iter().enumerate() {

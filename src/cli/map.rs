@@ -3,7 +3,7 @@
 use crate::mapping::{Mapping, explain_mapping_f64};
 use crate::names::value_parser;
 use crate::texture::{Lookup, Wrap, explain_lookup, explain_wrap};
-use anyhow::{Result, bail};
+use anyhow::Result;
 use glam::DVec3;
 
 /// `texplore map`.
@@ -45,17 +45,6 @@ pub fn run(a: &MapArgs) -> Result<()> {
     let p = DVec3::new(a.x, a.y, a.z);
     let lookup = a.lookup;
     let (mapping_lines, uv) = explain_mapping_f64(a.mapping, p);
-    if !uv.is_finite() {
-        bail!(
-            "the point ({}, {}, {}) is too large for the {} mapping: (u, v) = ({}, {})",
-            shortest(a.x),
-            shortest(a.y),
-            shortest(a.z),
-            a.mapping,
-            uv.x,
-            uv.y
-        );
-    }
     // The wraps the renderer applies: the texture's, except across a periodic mapping's seam
     // (repeat) and at the spherical map's poles (clamp).
     let wraps = Wrap::for_mapping(a.mapping, a.wrap);

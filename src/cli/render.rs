@@ -41,7 +41,7 @@ pub struct RenderArgs {
     #[arg(long, value_parser = value_parser::<Filter>())]
     pub filter: Option<Filter>,
     /// Largest anisotropy the EWA filter follows, 1 to 64 (overrides the preset; default 8).
-    #[arg(long = "max-aniso", value_name = "RATIO", value_parser = super::parse_max_aniso)]
+    #[arg(long = "max-aniso", value_name = "RATIO", allow_hyphen_values = true, value_parser = super::parse_max_aniso)]
     pub max_aniso: Option<f32>,
     /// Pixel sampler (overrides the preset).
     #[arg(long, value_parser = value_parser::<PixelSampler>())]
@@ -51,7 +51,7 @@ pub struct RenderArgs {
     pub pixel_filter: Option<PixelFilter>,
     /// Adaptive sampling: after --spp samples everywhere, up to MAX_SPP where the estimated
     /// error exceeds THRESHOLD (display units, default 0.01). E.g. `--spp 1 --adaptive 16`.
-    #[arg(long, value_name = "MAX_SPP[,THRESHOLD]", value_parser = parse_adaptive)]
+    #[arg(long, value_name = "MAX_SPP[,THRESHOLD]", allow_hyphen_values = true, value_parser = parse_adaptive)]
     pub adaptive: Option<AdaptiveDesc>,
     /// Turn off the preset's adaptive sampling.
     #[arg(long, conflicts_with = "adaptive")]

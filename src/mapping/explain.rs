@@ -100,7 +100,7 @@ fn worked(mapping: Mapping, p: DVec3, out: &mut Option<Vec<String>>) -> DVec2 {
             DVec2::new(u, v)
         }
         Mapping::Spherical | Mapping::Uv => {
-            let Some((q, _)) = rescaled(p) else {
+            let Some((q, scale)) = rescaled(p) else {
                 line!(
                     out,
                     "p = (0, 0, 0) or not finite: no direction, (u, v) = (0, 0.5) as the renderer"
@@ -109,11 +109,13 @@ fn worked(mapping: Mapping, p: DVec3, out: &mut Option<Vec<String>>) -> DVec2 {
             };
             let len = q.length();
             let nq = q / len;
-            if ((p.length() - 1.0).abs()) >= 1e-4 || !p.length().is_finite() {
+            // |p| from the rescaled point: p.length() squares 1e300 into infinity.
+            let length = len * scale;
+            if ((length - 1.0).abs()) >= 1e-4 {
                 line!(
                     out,
                     "|p| = {}: normalised to the unit sphere, ({}, {}, {})",
-                    n(p.length()),
+                    n(length),
                     n(nq.x),
                     n(nq.y),
                     n(nq.z)
@@ -188,7 +190,7 @@ fn azimuth(x: f64, z: f64, out: &mut Option<Vec<String>>) -> f64 {
 /// / 2) for the mirror ball), u = (1 + r cos beta) / 2, v = (1 + r sin beta) / 2.
 fn probe(mapping: Mapping, p: DVec3, out: &mut Option<Vec<String>>) -> DVec2 {
     let n = explain_number;
-    let Some((q, _)) = rescaled(p) else {
+    let Some((q, scale)) = rescaled(p) else {
         line!(
             out,
             "p = (0, 0, 0) or not finite: no direction, (u, v) = (0.5, 0.5) as the renderer"
@@ -196,11 +198,13 @@ fn probe(mapping: Mapping, p: DVec3, out: &mut Option<Vec<String>>) -> DVec2 {
         return DVec2::splat(0.5);
     };
     let nq = q / q.length();
-    if ((p.length() - 1.0).abs()) >= 1e-4 || !p.length().is_finite() {
+    // |p| from the rescaled point: p.length() squares 1e300 into infinity.
+    let length = q.length() * scale;
+    if ((length - 1.0).abs()) >= 1e-4 {
         line!(
             out,
             "|p| = {}: normalised to the unit sphere, ({}, {}, {})",
-            n(p.length()),
+            n(length),
             n(nq.x),
             n(nq.y),
             n(nq.z)

@@ -183,8 +183,14 @@ pub fn material_bytes(data: &[u8], dir: &Path) -> Result<()> {
     std::fs::write(&mtl, data).expect("the fuzz harness cannot write its scratch file");
     std::fs::write(&obj, MATERIAL_OBJ).expect("the fuzz harness cannot write its scratch file");
     if !label.exists() {
-        crate::texture::save_png(&label, 2, 2, &[200, 10, 10, 10, 200, 10, 10, 10, 200, 90, 90, 90], &[])
-            .expect("the fuzz harness cannot write its scratch image");
+        crate::texture::save_png(
+            &label,
+            2,
+            2,
+            &[200, 10, 10, 10, 200, 10, 10, 10, 200, 90, 90, 90],
+            &[],
+        )
+        .expect("the fuzz harness cannot write its scratch image");
     }
     let data = crate::meshio::read_obj(&obj).inspect_err(|e| assert_names(e, &obj))?;
     if let Some(problem) = data.material_problem.as_deref() {
@@ -200,7 +206,10 @@ pub fn material_bytes(data: &[u8], dir: &Path) -> Result<()> {
     match build_scene(&desc, &preset, &mut AssetCache::new()) {
         Ok(scene) => {
             let film = render_blocking(&scene, |_| {});
-            assert!(film.is_finite(), "a material that built rendered NaN or Inf");
+            assert!(
+                film.is_finite(),
+                "a material that built rendered NaN or Inf"
+            );
             Ok(())
         }
         Err(e) => {

@@ -165,12 +165,13 @@ fn read_golden(path: &Path) -> Result<Option<image::RgbImage>> {
         Err(Error::Io { io, .. }) if io.kind() == std::io::ErrorKind::NotFound => return Ok(None),
         Err(e) => return Err(e),
     };
-    let img = image::load_from_memory_with_format(&bytes, image::ImageFormat::Png).map_err(|e| {
-        Error::Image {
-            path: path.to_path_buf(),
-            message: format!("the golden image cannot be read: {e}"),
-        }
-    })?;
+    let img =
+        image::load_from_memory_with_format(&bytes, image::ImageFormat::Png).map_err(|e| {
+            Error::Image {
+                path: path.to_path_buf(),
+                message: format!("the golden image cannot be read: {e}"),
+            }
+        })?;
     Ok(Some(img.to_rgb8()))
 }
 

@@ -117,7 +117,11 @@ fn preset_with(field: Option<&str>, hostile: &str) -> String {
     let mut fields: Vec<_> = FIELDS.to_vec();
     fields.sort_by_key(|f| std::cmp::Reverse(f.0.len()));
     for (name, default, _) in fields {
-        let v = if Some(name) == field { hostile } else { default };
+        let v = if Some(name) == field {
+            hostile
+        } else {
+            default
+        };
         text = text.replace(name, v);
     }
     // The files last: `@mesh` is the start of `@mesh_aniso`.
@@ -256,23 +260,77 @@ fn every_count_of_zero_is_refused_naming_the_option() {
     let out = tmp.path().join("o.png");
     let o = s(&out);
     let cases: &[(&[&str], &str)] = &[
-        (&["report", "presets/checker.ron", "-o", o, "--reference-spp", "0"], "--reference-spp"),
-        (&["report", "presets/checker.ron", "-o", o, "--repeat", "0"], "--repeat"),
-        (&["report", "presets/checker.ron", "-o", o, "--spp", "1,0"], "--spp"),
-        (&["report", "presets/checker.ron", "-o", o, "--width", "0"], "--width"),
-        (&["report", "presets/checker.ron", "-o", o, "--heatmap-spp", "0"], "--heatmap-spp"),
-        (&["render", "presets/checker.ron", "-o", o, "--width", "0"], "--width"),
-        (&["render", "presets/checker.ron", "-o", o, "--height", "0"], "--height"),
-        (&["render", "presets/checker.ron", "-o", o, "--spp", "0"], "--spp"),
-        (&["render", "presets/checker.ron", "-o", o, "--adaptive", "0"], "--adaptive"),
+        (
+            &[
+                "report",
+                "presets/checker.ron",
+                "-o",
+                o,
+                "--reference-spp",
+                "0",
+            ],
+            "--reference-spp",
+        ),
+        (
+            &["report", "presets/checker.ron", "-o", o, "--repeat", "0"],
+            "--repeat",
+        ),
+        (
+            &["report", "presets/checker.ron", "-o", o, "--spp", "1,0"],
+            "--spp",
+        ),
+        (
+            &["report", "presets/checker.ron", "-o", o, "--width", "0"],
+            "--width",
+        ),
+        (
+            &[
+                "report",
+                "presets/checker.ron",
+                "-o",
+                o,
+                "--heatmap-spp",
+                "0",
+            ],
+            "--heatmap-spp",
+        ),
+        (
+            &["render", "presets/checker.ron", "-o", o, "--width", "0"],
+            "--width",
+        ),
+        (
+            &["render", "presets/checker.ron", "-o", o, "--height", "0"],
+            "--height",
+        ),
+        (
+            &["render", "presets/checker.ron", "-o", o, "--spp", "0"],
+            "--spp",
+        ),
+        (
+            &["render", "presets/checker.ron", "-o", o, "--adaptive", "0"],
+            "--adaptive",
+        ),
         (&["bench", "presets/checker.ron", "--width", "0"], "--width"),
-        (&["bench", "presets/checker.ron", "--repeat", "0"], "--repeat"),
-        (&["probe", "assets/courtyard_1024x512.hdr", "-o", o, "--size", "0"], "--size"),
+        (
+            &["bench", "presets/checker.ron", "--repeat", "0"],
+            "--repeat",
+        ),
+        (
+            &[
+                "probe",
+                "assets/courtyard_1024x512.hdr",
+                "-o",
+                o,
+                "--size",
+                "0",
+            ],
+            "--size",
+        ),
         (&["map", "uv", "0", "0", "0", "--res", "0", "4"], "--res"),
     ];
     for (args, option) in cases {
         let r = texplore(args);
-        assert_refused(&r, &[&format!("invalid value '"), option, "out of range"]);
+        assert_refused(&r, &["invalid value '", option, "out of range"]);
     }
     assert!(!out.exists());
 }
@@ -293,7 +351,14 @@ fn no_float_option_accepts_nan_or_infinities() {
                 "--adaptive",
             ),
             (
-                vec!["report", "presets/checker.ron", "-o", o, "--time-budget", bad],
+                vec![
+                    "report",
+                    "presets/checker.ron",
+                    "-o",
+                    o,
+                    "--time-budget",
+                    bad,
+                ],
                 "--time-budget",
             ),
         ];
@@ -307,7 +372,14 @@ fn no_float_option_accepts_nan_or_infinities() {
             assert_refused(&r, &["invalid value '", option]);
         }
     }
-    let r = texplore(&["render", "presets/checker.ron", "-o", o, "--max-aniso", "0.5"]);
+    let r = texplore(&[
+        "render",
+        "presets/checker.ron",
+        "-o",
+        o,
+        "--max-aniso",
+        "0.5",
+    ]);
     assert_refused(&r, &["0.5 is out of range (1 to 64)"]);
     assert!(!out.exists());
 }
@@ -370,7 +442,10 @@ fn a_ply_element_of_no_properties_and_a_huge_count_is_read_at_once() {
     let o = child.wait_with_output().unwrap();
     assert!(o.status.success(), "{}", stderr(&o));
     let out = stdout(&o);
-    assert!(out.contains("vertices   3") && out.contains("triangles  1"), "{out}");
+    assert!(
+        out.contains("vertices   3") && out.contains("triangles  1"),
+        "{out}"
+    );
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -437,17 +512,22 @@ fn rmse(out: &Path) -> Vec<String> {
     let mut lines = csv.lines();
     let header: Vec<&str> = lines.next().unwrap().split(',').collect();
     let col = header.iter().position(|h| *h == "rmse").unwrap();
-    lines.map(|l| l.split(',').nth(col).unwrap().to_string()).collect()
+    lines
+        .map(|l| l.split(',').nth(col).unwrap().to_string())
+        .collect()
 }
 
 fn reference_line(o: &Output) -> String {
-    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(o.status.success(), "{}", stderr(o));
     stderr(o)
         .lines()
         .find(|l| l.contains("reference"))
         .unwrap_or_default()
         .to_string()
 }
+
+/// A change to the files of [`soup_can_scene`]'s folder.
+type Edit = dyn Fn(&Path);
 
 #[test]
 fn editing_the_mesh_its_mtl_or_its_map_kd_renders_the_reference_again() {
@@ -458,10 +538,13 @@ fn editing_the_mesh_its_mtl_or_its_map_kd_renders_the_reference_again() {
     let run = || reference_line(&report(&[&preset], &out, Some(&cache)));
     assert!(run().contains("rendered"));
     assert!(run().contains("from the cache"));
-    let edits: [(&str, &dyn Fn(&Path)); 3] = [
+    let edits: [(&str, &Edit); 3] = [
         ("the map_Kd image", &|d: &Path| {
-            std::fs::copy(root().join("assets/checker_512.png"), d.join("soup-can-label.png"))
-                .unwrap();
+            std::fs::copy(
+                root().join("assets/checker_512.png"),
+                d.join("soup-can-label.png"),
+            )
+            .unwrap();
         }),
         ("the .mtl", &|d: &Path| {
             let mtl = std::fs::read_to_string(d.join("soup-can.mtl")).unwrap();
@@ -478,7 +561,10 @@ fn editing_the_mesh_its_mtl_or_its_map_kd_renders_the_reference_again() {
                 .lines()
                 .map(|l| match l.strip_prefix("v ") {
                     Some(rest) => {
-                        let v: Vec<f64> = rest.split_whitespace().map(|x| x.parse().unwrap()).collect();
+                        let v: Vec<f64> = rest
+                            .split_whitespace()
+                            .map(|x| x.parse().unwrap())
+                            .collect();
                         format!("v {} {} {}\n", v[0], v[1] + 0.5, v[2])
                     }
                     None => format!("{l}\n"),
@@ -534,7 +620,10 @@ fn two_reports_sharing_a_cache_both_succeed() {
     let preset = root().join("presets/checker.ron");
     for round in 0..3 {
         let cache = tmp.path().join(format!("cache{round}"));
-        let outs = [tmp.path().join(format!("a{round}")), tmp.path().join(format!("b{round}"))];
+        let outs = [
+            tmp.path().join(format!("a{round}")),
+            tmp.path().join(format!("b{round}")),
+        ];
         let (a, b) = std::thread::scope(|scope| {
             let a = scope.spawn(|| report(&[&preset], &outs[0], Some(&cache)));
             let b = scope.spawn(|| report(&[&preset], &outs[1], Some(&cache)));
@@ -569,7 +658,10 @@ fn two_presets_with_one_file_stem_keep_their_own_plots() {
     }
     assert!(!out.join("scene").exists());
     let csv = std::fs::read_to_string(out.join("report.csv")).unwrap();
-    assert!(csv.contains("\na-scene,") && csv.contains("\nb-scene,"), "{csv}");
+    assert!(
+        csv.contains("\na-scene,") && csv.contains("\nb-scene,"),
+        "{csv}"
+    );
     let md = std::fs::read_to_string(out.join("report.md")).unwrap();
     assert!(md.contains("a-scene/error_vs_time.svg") && md.contains("b-scene/error_vs_time.svg"));
 }

@@ -197,11 +197,17 @@ mod tests {
             assert!(parse_time_budget(bad).is_err(), "{bad}");
         }
         assert_eq!(parse_time_budget("0.5"), Ok(0.5));
-        assert_eq!(parse_resolution("0"), Err("0 is out of range (1 to 16384)".into()));
+        assert_eq!(
+            parse_resolution("0"),
+            Err("0 is out of range (1 to 16384)".into())
+        );
         assert_eq!(parse_finite("NaN"), Err("'NaN' is not a number".into()));
         assert_eq!(parse_finite("-inf"), Err("'-inf' is not finite".into()));
         assert_eq!(parse_finite("-7e-1"), Ok(-0.7));
         assert_eq!(parse_max_aniso("nan"), Err("'nan' is not a number".into()));
-        assert_eq!(parse_max_aniso("0.5"), Err("0.5 is out of range (1 to 64)".into()));
+        assert_eq!(
+            parse_max_aniso("0.5"),
+            Err("0.5 is out of range (1 to 64)".into())
+        );
     }
 }

@@ -231,9 +231,12 @@ pub fn run(a: &ReportArgs) -> Result<()> {
                 if rep.reference_cached {
                     "from the cache".to_string()
                 } else {
-                    let again = rep.reference_problem.as_ref().map_or_else(String::new, |p| {
-                        format!(" (the cached one was not used: {p})")
-                    });
+                    let again = rep
+                        .reference_problem
+                        .as_ref()
+                        .map_or_else(String::new, |p| {
+                            format!(" (the cached one was not used: {p})")
+                        });
                     format!(
                         "rendered in {:.1} s{again}",
                         rep.reference_time.as_secs_f64()
@@ -262,9 +265,11 @@ fn scene_names(presets: &[PathBuf]) -> Vec<String> {
             if stems.iter().filter(|t| *t == s).count() == 1 {
                 return s.clone();
             }
-            let folder = std::path::absolute(p)
-                .ok()
-                .and_then(|a| a.parent()?.file_name().map(|f| f.to_string_lossy().into_owned()));
+            let folder = std::path::absolute(p).ok().and_then(|a| {
+                a.parent()?
+                    .file_name()
+                    .map(|f| f.to_string_lossy().into_owned())
+            });
             folder.map_or_else(|| s.clone(), |f| format!("{f}-{s}"))
         })
         .collect();

@@ -134,7 +134,12 @@ impl CachedReference {
     /// Why a cached reference for this key cannot be used: "FILE: checksum mismatch (stored
     /// ..., read ...)", a truncated or unreadable EXR, a wrong size. The caller renders the
     /// reference again (and stores it over the damaged one).
-    pub fn load(&self, key: &CacheKey, width: u32, height: u32) -> Result<Option<Vec<Rgb>>, String> {
+    pub fn load(
+        &self,
+        key: &CacheKey,
+        width: u32,
+        height: u32,
+    ) -> Result<Option<Vec<Rgb>>, String> {
         let max_key = key.text.len() as u64 + 256;
         let stored = match crate::input::read_input_text(&self.key_file, max_key) {
             Ok(t) => t,
@@ -224,7 +229,10 @@ fn split_key_file(stored: &str) -> Option<(&str, (u64, u64))> {
     let at = body.rfind('\n')?;
     let (text, last) = (&body[..at], &body[at + 1..]);
     let (len, hash) = last.strip_prefix(CHECKSUM_PREFIX)?.split_once(' ')?;
-    Some((text, (len.parse().ok()?, u64::from_str_radix(hash, 16).ok()?)))
+    Some((
+        text,
+        (len.parse().ok()?, u64::from_str_radix(hash, 16).ok()?),
+    ))
 }
 
 #[cfg(test)]

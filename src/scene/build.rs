@@ -79,9 +79,7 @@ pub fn to_ron(desc: &SceneDesc) -> String {
 /// A value is not a finite number ("FILE: not saved: ambient.color: NaN is not a number"), or
 /// the file is refused or cannot be written: "cannot write FILE: reason".
 pub fn save_preset(desc: &SceneDesc, path: &Path) -> Result<()> {
-    check_numbers(desc).map_err(|m| {
-        Error::invalid(path, format!("not saved: {m}"))
-    })?;
+    check_numbers(desc).map_err(|m| Error::invalid(path, format!("not saved: {m}")))?;
     let folder = path
         .parent()
         .filter(|p| !p.as_os_str().is_empty())
@@ -102,10 +100,10 @@ pub fn save_preset(desc: &SceneDesc, path: &Path) -> Result<()> {
 pub fn check_numbers(desc: &SceneDesc) -> std::result::Result<(), String> {
     let mut bad = None;
     let mut n = |what: &dyn Fn() -> String, values: &[f32]| {
-        if bad.is_none() {
-            if let Some(v) = values.iter().find(|v| !v.is_finite()) {
-                bad = Some(format!("{}: {}", what(), not_finite(*v)));
-            }
+        if bad.is_none()
+            && let Some(v) = values.iter().find(|v| !v.is_finite())
+        {
+            bad = Some(format!("{}: {}", what(), not_finite(*v)));
         }
     };
     let c = &desc.camera;
@@ -157,7 +155,12 @@ pub fn check_numbers(desc: &SceneDesc) -> std::result::Result<(), String> {
         let (coefficients, cs): (Vec<(&str, f32)>, _) = match &o.material {
             MaterialDesc::Matte { ka, kd, .. } => (vec![("ka", *ka), ("kd", *kd)], None),
             MaterialDesc::Phong {
-                ka, kd, ks, cs, exp, ..
+                ka,
+                kd,
+                ks,
+                cs,
+                exp,
+                ..
             } => (
                 vec![("ka", *ka), ("kd", *kd), ("ks", *ks), ("exp", *exp)],
                 Some(*cs),

@@ -380,7 +380,7 @@ fn no_float_option_accepts_nan_or_infinities() {
         "--max-aniso",
         "0.5",
     ]);
-    assert_refused(&r, &["0.5 is out of range (1 to 64)"]);
+    assert_refused(&r, &["0.5 is out of range: max_anisotropy is 1 to 64"]);
     assert!(!out.exists());
 }
 

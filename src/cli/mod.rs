@@ -167,7 +167,8 @@ pub fn parse_max_aniso(s: &str) -> Result<f32, String> {
     let max = crate::texture::MAX_ANISOTROPY_LIMIT;
     let v = parse_finite(s)?;
     if !(1.0..=f64::from(max)).contains(&v) {
-        return Err(format!("{v} is out of range (1 to {max})"));
+        // Named as in a preset, where the same bound applies.
+        return Err(format!("{v} is out of range: max_anisotropy is 1 to {max}"));
     }
     Ok(v as f32)
 }
@@ -207,7 +208,7 @@ mod tests {
         assert_eq!(parse_max_aniso("nan"), Err("'nan' is not a number".into()));
         assert_eq!(
             parse_max_aniso("0.5"),
-            Err("0.5 is out of range (1 to 64)".into())
+            Err("0.5 is out of range: max_anisotropy is 1 to 64".into())
         );
     }
 }

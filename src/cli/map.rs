@@ -3,7 +3,6 @@
 use crate::mapping::{Mapping, explain_mapping_f64};
 use crate::names::value_parser;
 use crate::texture::{Lookup, Wrap, explain_lookup, explain_wrap};
-use anyhow::Result;
 use glam::DVec3;
 
 /// `texplore map`.
@@ -39,7 +38,9 @@ pub struct MapArgs {
     pub json: bool,
 }
 
-pub fn run(a: &MapArgs) -> Result<()> {
+/// Prints the mapping's formulas and the texel (or the JSON object); every input was checked
+/// by the argument parsers, so nothing here fails.
+pub fn run(a: &MapArgs) {
     let (hres, vres) = (a.res[0], a.res[1]);
     // f64 throughout: the lecture's arithmetic as written, not the renderer's f32 rounding.
     let p = DVec3::new(a.x, a.y, a.z);
@@ -64,7 +65,7 @@ pub fn run(a: &MapArgs) -> Result<()> {
             "res": [hres, vres],
         });
         println!("{out}");
-        return Ok(());
+        return;
     }
     println!(
         "{} mapping of the local hit point ({}, {}, {}):",
@@ -95,7 +96,6 @@ pub fn run(a: &MapArgs) -> Result<()> {
         }
         _ => println!("  none: the texture reads black outside [0, 1] under wrap black"),
     }
-    Ok(())
 }
 
 /// A coordinate as typed, in the shortest form that reads back the same (5e-324 stays 5e-324,

@@ -110,6 +110,28 @@ fn check_output_dir(dir: &Path, presets: &[PathBuf]) -> Result<()> {
     Ok(())
 }
 
+/// The lists and numbers clap cannot check one by one: a non-empty `--spp`, a
+/// `--heatmap-spp` among it, a finite `--time-budget`.
+fn check_numbers(a: &ReportArgs) -> Result<()> {
+    if a.spp.is_empty() || a.spp.contains(&0) {
+        bail!("--spp needs a list of positive numbers, like 1,4,16");
+    }
+    if let Some(h) = a.heatmap_spp.filter(|h| !a.spp.contains(h)) {
+        bail!(
+            "--heatmap-spp {h} is not among --spp {}: the heat map shows one of the renders",
+            a.spp
+                .iter()
+                .map(u32::to_string)
+                .collect::<Vec<_>>()
+                .join(",")
+        );
+    }
+    if !(a.time_budget.is_finite() && a.time_budget >= 0.0) {
+        bail!("--time-budget must be a non-negative number of seconds");
+    }
+    Ok(())
+}
+
 /// Runs the report.
 ///
 /// # Errors
@@ -131,22 +153,7 @@ pub fn run(a: &ReportArgs) -> Result<()> {
     };
     check_output_dir(&a.output, &presets)?;
     let modes = Mode::parse_list(&a.modes)?;
-    if a.spp.is_empty() || a.spp.contains(&0) {
-        bail!("--spp needs a list of positive numbers, like 1,4,16");
-    }
-    if let Some(h) = a.heatmap_spp.filter(|h| !a.spp.contains(h)) {
-        bail!(
-            "--heatmap-spp {h} is not among --spp {}: the heat map shows one of the renders",
-            a.spp
-                .iter()
-                .map(u32::to_string)
-                .collect::<Vec<_>>()
-                .join(",")
-        );
-    }
-    if !(a.time_budget.is_finite() && a.time_budget >= 0.0) {
-        bail!("--time-budget must be a non-negative number of seconds");
-    }
+    check_numbers(a)?;
     let cache_dir = if a.no_cache {
         None
     } else {

@@ -442,16 +442,15 @@ pub fn run_scene(
         Some(Err(problem)) => (None, Some(problem)),
         None => (None, None),
     };
-    let (reference_linear, reference_cached) = match stored {
-        Some(img) => (img, true),
-        None => {
-            let ref_scene = build_scene(&ref_desc, preset_path, &mut assets)?;
-            let img = render_reference(&ref_scene, r.spp, &mut tally, cancel)?;
-            if let Some(c) = &cached {
-                c.store(&key, width, height, &img)?;
-            }
-            (img, false)
+    let (reference_linear, reference_cached) = if let Some(img) = stored {
+        (img, true)
+    } else {
+        let ref_scene = build_scene(&ref_desc, preset_path, &mut assets)?;
+        let img = render_reference(&ref_scene, r.spp, &mut tally, cancel)?;
+        if let Some(c) = &cached {
+            c.store(&key, width, height, &img)?;
         }
+        (img, false)
     };
     let reference_time = if reference_cached {
         Duration::ZERO

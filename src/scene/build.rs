@@ -98,35 +98,28 @@ pub fn save_preset(desc: &SceneDesc, path: &Path) -> Result<()> {
 /// # Errors
 /// The first field that is not a finite number.
 pub fn check_numbers(desc: &SceneDesc) -> std::result::Result<(), String> {
-    let mut bad = None;
-    let mut n = |what: &dyn Fn() -> String, values: &[f32]| {
-        if bad.is_none()
-            && let Some(v) = values.iter().find(|v| !v.is_finite())
-        {
-            bad = Some(format!("{}: {}", what(), not_finite(*v)));
-        }
-    };
+    let mut n = Numbers(None);
     let c = &desc.camera;
-    n(&|| "camera.eye".into(), &c.eye.to_array());
-    n(&|| "camera.look_at".into(), &c.look_at.to_array());
-    n(&|| "camera.up".into(), &c.up.to_array());
+    n.check(|| "camera.eye".into(), &c.eye.to_array());
+    n.check(|| "camera.look_at".into(), &c.look_at.to_array());
+    n.check(|| "camera.up".into(), &c.up.to_array());
     match c.projection {
         ProjectionDesc::Pinhole { fov } | ProjectionDesc::Fisheye { fov } => {
-            n(&|| "camera.fov".into(), &[fov]);
+            n.check(|| "camera.fov".into(), &[fov]);
         }
         ProjectionDesc::Spherical { h_fov, v_fov } => {
-            n(&|| "camera.h_fov".into(), &[h_fov]);
-            n(&|| "camera.v_fov".into(), &[v_fov]);
+            n.check(|| "camera.h_fov".into(), &[h_fov]);
+            n.check(|| "camera.v_fov".into(), &[v_fov]);
         }
     }
     let r = &desc.render;
-    n(&|| "render.exposure".into(), &[r.exposure]);
-    n(&|| "render.background".into(), &r.background.to_array());
+    n.check(|| "render.exposure".into(), &[r.exposure]);
+    n.check(|| "render.background".into(), &r.background.to_array());
     if let Some(a) = r.adaptive {
-        n(&|| "render.adaptive.threshold".into(), &[a.threshold]);
+        n.check(|| "render.adaptive.threshold".into(), &[a.threshold]);
     }
-    n(&|| "ambient.ls".into(), &[desc.ambient.ls]);
-    n(&|| "ambient.color".into(), &desc.ambient.color.to_array());
+    n.check(|| "ambient.ls".into(), &[desc.ambient.ls]);
+    n.check(|| "ambient.color".into(), &desc.ambient.color.to_array());
     for (i, l) in desc.lights.iter().enumerate() {
         let (point, point_name, ls, color) = match *l {
             LightDesc::Directional {
@@ -142,18 +135,41 @@ pub fn check_numbers(desc: &SceneDesc) -> std::result::Result<(), String> {
                 ..
             } => (position, "position", ls, color),
         };
-        n(&|| format!("lights[{i}].{point_name}"), &point.to_array());
-        n(&|| format!("lights[{i}].ls"), &[ls]);
-        n(&|| format!("lights[{i}].color"), &color.to_array());
+        n.check(|| format!("lights[{i}].{point_name}"), &point.to_array());
+        n.check(|| format!("lights[{i}].ls"), &[ls]);
+        n.check(|| format!("lights[{i}].color"), &color.to_array());
     }
     for (i, o) in desc.objects.iter().enumerate() {
-        let at = |field: &str| format!("objects[{i}].{field}");
+        n.object(&format!("objects[{i}]"), o);
+    }
+    n.0.map_or(Ok(()), Err)
+}
+
+/// The first non-finite number [`check_numbers`] met, as its message.
+struct Numbers(Option<String>);
+
+impl Numbers {
+    /// Notes the first of `values` that is not finite, unless one was noted before; `what`
+    /// names the field.
+    fn check(&mut self, what: impl FnOnce() -> String, values: &[f32]) {
+        if self.0.is_none()
+            && let Some(v) = values.iter().find(|v| !v.is_finite())
+        {
+            self.0 = Some(format!("{}: {}", what(), not_finite(*v)));
+        }
+    }
+
+    /// Every number of one object: its transform, material and texture.
+    fn object(&mut self, at: &str, o: &super::ObjectDesc) {
         let t = &o.transform;
-        n(&|| at("transform.translate"), &t.translate.to_array());
-        n(&|| at("transform.rotate"), &t.rotate.to_array());
-        n(&|| at("transform.scale"), &t.scale.to_array());
-        let (coefficients, cs): (Vec<(&str, f32)>, _) = match &o.material {
-            MaterialDesc::Matte { ka, kd, .. } => (vec![("ka", *ka), ("kd", *kd)], None),
+        self.check(
+            || format!("{at}.transform.translate"),
+            &t.translate.to_array(),
+        );
+        self.check(|| format!("{at}.transform.rotate"), &t.rotate.to_array());
+        self.check(|| format!("{at}.transform.scale"), &t.scale.to_array());
+        let (coefficients, cs, tex): (Vec<(&str, f32)>, _, _) = match &o.material {
+            MaterialDesc::Matte { ka, kd, .. } => (vec![("ka", *ka), ("kd", *kd)], None, "cd"),
             MaterialDesc::Phong {
                 ka,
                 kd,
@@ -164,48 +180,42 @@ pub fn check_numbers(desc: &SceneDesc) -> std::result::Result<(), String> {
             } => (
                 vec![("ka", *ka), ("kd", *kd), ("ks", *ks), ("exp", *exp)],
                 Some(*cs),
+                "cd",
             ),
-            MaterialDesc::Emissive { ls, .. } => (vec![("ls", *ls)], None),
+            MaterialDesc::Emissive { ls, .. } => (vec![("ls", *ls)], None, "ce"),
         };
         for (name, v) in coefficients {
-            n(&|| at(&format!("material.{name}")), &[v]);
+            self.check(|| format!("{at}.material.{name}"), &[v]);
         }
         if let Some(cs) = cs {
-            n(&|| at("material.cs"), &cs.to_array());
+            self.check(|| format!("{at}.material.cs"), &cs.to_array());
         }
-        let tex = || {
-            let field = match o.material {
-                MaterialDesc::Emissive { .. } => "ce",
-                _ => "cd",
-            };
-            at(&format!("material.{field}"))
-        };
+        let tex = format!("{at}.material.{tex}");
         match o.material.texture() {
-            TextureDesc::Constant(c) => n(&tex, &c.to_array()),
+            TextureDesc::Constant(c) => self.check(|| tex.clone(), &c.to_array()),
             TextureDesc::Image {
                 scale,
                 max_anisotropy,
                 ..
             } => {
-                n(&|| format!("{}.scale", tex()), &[*scale]);
-                n(&|| format!("{}.max_anisotropy", tex()), &[*max_anisotropy]);
+                self.check(|| format!("{tex}.scale"), &[*scale]);
+                self.check(|| format!("{tex}.max_anisotropy"), &[*max_anisotropy]);
             }
             TextureDesc::Checker {
                 squares, colors, ..
             } => {
-                n(&|| format!("{}.squares", tex()), &[squares.0, squares.1]);
-                n(
-                    &|| format!("{}.colors", tex()),
+                self.check(|| format!("{tex}.squares"), &[squares.0, squares.1]);
+                self.check(
+                    || format!("{tex}.colors"),
                     &[colors.0.to_array(), colors.1.to_array()].concat(),
                 );
             }
             TextureDesc::MeshMaterial { max_anisotropy, .. }
             | TextureDesc::UvGrid { max_anisotropy, .. } => {
-                n(&|| format!("{}.max_anisotropy", tex()), &[*max_anisotropy]);
+                self.check(|| format!("{tex}.max_anisotropy"), &[*max_anisotropy]);
             }
         }
     }
-    bad.map_or(Ok(()), Err)
 }
 
 /// Why a non-finite number is refused.

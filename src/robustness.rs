@@ -160,3 +160,63 @@ pub fn mesh_bytes(data: &[u8], path: &Path) -> Result<()> {
     }
     Ok(())
 }
+
+/// The OBJ [`material_bytes`] pairs with the fuzzed library: a textured quad using material
+/// `m` from `fuzzed.mtl`.
+const MATERIAL_OBJ: &str = "mtllib fuzzed.mtl\nusemtl m\nv -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\n\
+                            vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3 4/4\n";
+
+/// Writes `data` as the material library `fuzzed.mtl` in `dir`, beside an OBJ quad that uses its
+/// material `m` and a 2x2 image `label.png` a `map_Kd` may name; loads the OBJ, then builds
+/// and renders (8x6, 1 spp) a scene showing the quad through its `MeshMaterial`, as a preset
+/// naming an OBJ does.
+///
+/// # Errors
+/// The library's refusal (naming `fuzzed.mtl`), or the scene's (naming the preset or the image).
+///
+/// # Panics
+/// When an invariant breaks (see the module docs), or the scratch files cannot be written.
+pub fn material_bytes(data: &[u8], dir: &Path) -> Result<()> {
+    let mtl = dir.join("fuzzed.mtl");
+    let obj = dir.join("fuzzed.obj");
+    let label = dir.join("label.png");
+    std::fs::write(&mtl, data).expect("the fuzz harness cannot write its scratch file");
+    std::fs::write(&obj, MATERIAL_OBJ).expect("the fuzz harness cannot write its scratch file");
+    if !label.exists() {
+        crate::texture::save_png(
+            &label,
+            2,
+            2,
+            &[200, 10, 10, 10, 200, 10, 10, 10, 200, 90, 90, 90],
+            &[],
+        )
+        .expect("the fuzz harness cannot write its scratch image");
+    }
+    let data = crate::meshio::read_obj(&obj).inspect_err(|e| assert_names(e, &obj))?;
+    if let Some(problem) = data.material_problem.as_deref() {
+        assert!(
+            problem.contains("fuzzed.mtl"),
+            "a material problem that does not name the library: {problem}"
+        );
+    }
+    let preset = dir.join("fuzzed.ron");
+    let text = "(version: 1, camera: (eye: (0, 3, 0.01)), render: (width: 8, height: 6, spp: 1), \
+                objects: [(shape: Mesh(path: \"fuzzed.obj\"), material: Matte(cd: MeshMaterial()))])";
+    let desc = parse_preset(text, &preset).expect("the harness's own preset parses");
+    match build_scene(&desc, &preset, &mut AssetCache::new()) {
+        Ok(scene) => {
+            let film = render_blocking(&scene, |_| {});
+            assert!(
+                film.is_finite(),
+                "a material that built rendered NaN or Inf"
+            );
+            Ok(())
+        }
+        Err(e) => {
+            if !matches!(e, Error::Image { .. } | Error::Io { .. }) {
+                assert_names(&e, &preset);
+            }
+            Err(e)
+        }
+    }
+}

@@ -127,8 +127,8 @@ pub fn check_preset(
         let _ = std::fs::remove_file(&diff);
         return Ok(Outcome::Updated);
     }
-    let old = match image::open(&golden) {
-        Ok(img) if img.width() == w && img.height() == h => img.to_rgb8().into_raw(),
+    let old = match read_golden(&golden)? {
+        Some(img) if img.width() == w && img.height() == h => img.into_raw(),
         _ => {
             save_png(&new, w, h, &rgb, &[])?;
             return Ok(Outcome::Missing { new });
@@ -152,6 +152,27 @@ pub fn check_preset(
         new,
         diff,
     })
+}
+
+/// The golden image at `path` as 8-bit RGB, read through [`crate::input`] (a regular file of at
+/// most [`crate::texture::MAX_IMAGE_BYTES`]); `None` when there is none yet.
+///
+/// # Errors
+/// The path is not a regular file, or the file is not a readable image.
+fn read_golden(path: &Path) -> Result<Option<image::RgbImage>> {
+    let bytes = match crate::input::read_input(path, crate::texture::MAX_IMAGE_BYTES) {
+        Ok(b) => b,
+        Err(Error::Io { io, .. }) if io.kind() == std::io::ErrorKind::NotFound => return Ok(None),
+        Err(e) => return Err(e),
+    };
+    let img =
+        image::load_from_memory_with_format(&bytes, image::ImageFormat::Png).map_err(|e| {
+            Error::Image {
+                path: path.to_path_buf(),
+                message: format!("the golden image cannot be read: {e}"),
+            }
+        })?;
+    Ok(Some(img.to_rgb8()))
 }
 
 #[cfg(test)]

@@ -13,7 +13,9 @@ use common::{root, success, texplore};
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
 use std::path::Path;
-use texplore::robustness::{image_bytes, mesh_bytes, preset_bytes, screenshot_bytes};
+use texplore::robustness::{
+    image_bytes, material_bytes, mesh_bytes, preset_bytes, screenshot_bytes,
+};
 use texplore::scene::AssetCache;
 
 fn cases() -> u32 {
@@ -321,6 +323,32 @@ fn mutated_meshes_never_panic() {
     assert!(ok > 0 && refused > 0, "ok {ok}, refused {refused}");
 }
 
+/// Seeds for the material library: the `fuzz/seeds/material` files (a `map_Kd` library and a
+/// colour-only one with other statements).
+fn material_seeds() -> Vec<Vec<u8>> {
+    let dir = root().join("fuzz/seeds/material");
+    let mut seeds: Vec<Vec<u8>> = std::fs::read_dir(&dir)
+        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
+        .map(|e| std::fs::read(e.unwrap().path()).unwrap())
+        .collect();
+    seeds.sort();
+    seeds
+}
+
+#[test]
+fn mutated_material_libraries_never_panic() {
+    let dir = tempfile::tempdir().unwrap();
+    let seeds = material_seeds();
+    assert!(seeds.len() >= 2);
+    let (mut ok, mut refused) = (0, 0);
+    fuzz(&seeds, |data| match material_bytes(data, dir.path()) {
+        Ok(()) => ok += 1,
+        Err(_) => refused += 1,
+    });
+    eprintln!("material libraries: {ok} built and rendered, {refused} refused");
+    assert!(ok > 0 && refused > 0, "ok {ok}, refused {refused}");
+}
+
 /// Every input that once broke a parser, replayed: `tests/fuzz_regressions/<target>-<name>`.
 #[test]
 fn fuzz_regressions_stay_fixed() {
@@ -349,6 +377,8 @@ fn fuzz_regressions_stay_fixed() {
         } else if let Some(rest) = name.strip_prefix("mesh-") {
             let ext = if rest.ends_with(".obj") { "obj" } else { "ply" };
             let _ = mesh_bytes(&data, &scratch.path().join(format!("fuzzed.{ext}")));
+        } else if name.starts_with("material-") {
+            let _ = material_bytes(&data, scratch.path());
         } else if name.starts_with("screenshot-") {
             let _ = screenshot_bytes(&data, &scratch.path().join("fuzzed.png"));
         } else if name != "README.md" {

@@ -24,10 +24,10 @@ pub struct BenchArgs {
     #[arg(long, requires = "mesh")]
     pub shadows: bool,
     /// Image width.
-    #[arg(long, default_value_t = 800)]
+    #[arg(long, default_value_t = 800, value_parser = super::parse_resolution)]
     pub width: u32,
     /// Image height.
-    #[arg(long, default_value_t = 800)]
+    #[arg(long, default_value_t = 800, value_parser = super::parse_resolution)]
     pub height: u32,
     /// Thread counts to measure.
     #[arg(long, value_delimiter = ',', default_values_t = [1, 2], value_parser = super::parse_threads)]

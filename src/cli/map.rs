@@ -4,7 +4,6 @@ use crate::mapping::{Mapping, explain_mapping_f64};
 use crate::names::Named as _;
 use crate::names::value_parser;
 use crate::texture::{Lookup, Wrap, explain_lookup, explain_wrap};
-use anyhow::{Result, bail};
 use glam::DVec3;
 
 /// `texplore map`.
@@ -15,16 +14,16 @@ pub struct MapArgs {
     #[arg(value_parser = value_parser::<Mapping>())]
     pub mapping: Mapping,
     /// Local hit point x (read as f64: the formulas are worked in f64).
-    #[arg(allow_hyphen_values = true)]
+    #[arg(allow_hyphen_values = true, value_parser = super::parse_finite)]
     pub x: f64,
     /// Local hit point y.
-    #[arg(allow_hyphen_values = true)]
+    #[arg(allow_hyphen_values = true, value_parser = super::parse_finite)]
     pub y: f64,
     /// Local hit point z.
-    #[arg(allow_hyphen_values = true)]
+    #[arg(allow_hyphen_values = true, value_parser = super::parse_finite)]
     pub z: f64,
     /// Texture resolution for the column and row (hres vres).
-    #[arg(long, num_args = 2, value_names = ["W", "H"], default_values_t = [2048, 1024])]
+    #[arg(long, num_args = 2, value_names = ["W", "H"], default_values_t = [2048, 1024], value_parser = super::parse_resolution)]
     pub res: Vec<u32>,
     /// How u and v become the printed column and row.
     #[arg(long, default_value_t = Lookup::Centred, value_parser = value_parser::<Lookup>())]
@@ -40,11 +39,10 @@ pub struct MapArgs {
     pub json: bool,
 }
 
-pub fn run(a: &MapArgs) -> Result<()> {
+/// Prints the mapping's formulas and the texel (or the JSON object); every input was checked
+/// by the argument parsers, so nothing here fails.
+pub fn run(a: &MapArgs) {
     let (hres, vres) = (a.res[0], a.res[1]);
-    if hres == 0 || vres == 0 {
-        bail!("--res must be at least 1 x 1");
-    }
     // f64 throughout: the lecture's arithmetic as written, not the renderer's f32 rounding.
     let p = DVec3::new(a.x, a.y, a.z);
     let lookup = a.lookup;
@@ -68,7 +66,7 @@ pub fn run(a: &MapArgs) -> Result<()> {
             "res": [hres, vres],
         });
         println!("{out}");
-        return Ok(());
+        return;
     }
     println!(
         "{} mapping of the local hit point ({}, {}, {}):",
@@ -99,7 +97,6 @@ pub fn run(a: &MapArgs) -> Result<()> {
         }
         _ => println!("  none: the texture reads black outside [0, 1] under wrap black"),
     }
-    Ok(())
 }
 
 /// A coordinate as typed, in the shortest form that reads back the same (5e-324 stays 5e-324,

@@ -55,7 +55,10 @@ pub fn run(command: Command) -> Result<()> {
     match command {
         Command::Render(a) => render::run(&a),
         Command::Snapshot(a) => snapshot::run(&a),
-        Command::Map(a) => map::run(&a),
+        Command::Map(a) => {
+            map::run(&a);
+            Ok(())
+        }
         Command::Probe(a) => probe::run(&a),
         Command::Bench(a) => bench::run(&a),
         Command::MeshInfo(a) => mesh_info::run(&a),
@@ -135,6 +138,44 @@ pub fn parse_time_budget(s: &str) -> Result<f64, String> {
     Ok(t)
 }
 
+/// `--width`, `--height`, `--size`, `--res`: 1 to [`crate::scene::MAX_RESOLUTION`] pixels.
+///
+/// # Errors
+/// Not a number, or out of range.
+pub fn parse_resolution(s: &str) -> Result<u32, String> {
+    parse_in_range(s, 1, crate::scene::MAX_RESOLUTION)
+}
+
+/// A number that must be finite: "NaN is not a number", "inf is not finite".
+///
+/// # Errors
+/// Not a number, NaN or an infinity.
+pub fn parse_finite(s: &str) -> Result<f64, String> {
+    let t = s.trim();
+    let v: f64 = t.parse().map_err(|_| format!("'{s}' is not a number"))?;
+    if v.is_nan() {
+        Err(format!("'{t}' is not a number"))
+    } else if v.is_infinite() {
+        Err(format!("'{t}' is not finite"))
+    } else {
+        Ok(v)
+    }
+}
+
+/// `render --max-aniso`: 1 to [`crate::texture::MAX_ANISOTROPY_LIMIT`].
+///
+/// # Errors
+/// Not a finite number, or out of range.
+pub fn parse_max_aniso(s: &str) -> Result<f32, String> {
+    let max = crate::texture::MAX_ANISOTROPY_LIMIT;
+    let v = parse_finite(s)?;
+    if !(1.0..=f64::from(max)).contains(&v) {
+        // Named as in a preset, where the same bound applies.
+        return Err(format!("{v} is out of range: max_anisotropy is 1 to {max}"));
+    }
+    Ok(v as f32)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -160,5 +201,17 @@ mod tests {
             assert!(parse_time_budget(bad).is_err(), "{bad}");
         }
         assert_eq!(parse_time_budget("0.5"), Ok(0.5));
+        assert_eq!(
+            parse_resolution("0"),
+            Err("0 is out of range (1 to 16384)".into())
+        );
+        assert_eq!(parse_finite("NaN"), Err("'NaN' is not a number".into()));
+        assert_eq!(parse_finite("-inf"), Err("'-inf' is not finite".into()));
+        assert_eq!(parse_finite("-7e-1"), Ok(-0.7));
+        assert_eq!(parse_max_aniso("nan"), Err("'nan' is not a number".into()));
+        assert_eq!(
+            parse_max_aniso("0.5"),
+            Err("0.5 is out of range: max_anisotropy is 1 to 64".into())
+        );
     }
 }

@@ -14,7 +14,7 @@ pub struct ProbeArgs {
     #[arg(short, long)]
     pub output: PathBuf,
     /// Width and height of the probe in pixels.
-    #[arg(long, default_value_t = 512)]
+    #[arg(long, default_value_t = 512, value_parser = super::parse_resolution)]
     pub size: u32,
     /// Probe layout.
     #[arg(long, value_enum, default_value_t = ProbeFormat::Angular)]

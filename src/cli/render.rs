@@ -26,13 +26,13 @@ pub struct RenderArgs {
     #[arg(short, long)]
     pub output: PathBuf,
     /// Image width (overrides the preset).
-    #[arg(long)]
+    #[arg(long, value_parser = super::parse_resolution)]
     pub width: Option<u32>,
     /// Image height (overrides the preset).
-    #[arg(long)]
+    #[arg(long, value_parser = super::parse_resolution)]
     pub height: Option<u32>,
     /// Samples per pixel (overrides the preset).
-    #[arg(long)]
+    #[arg(long, value_parser = super::parse_spp)]
     pub spp: Option<u32>,
     /// Random seed (overrides the preset).
     #[arg(long)]
@@ -41,7 +41,7 @@ pub struct RenderArgs {
     #[arg(long, value_parser = value_parser::<Filter>())]
     pub filter: Option<Filter>,
     /// Largest anisotropy the EWA filter follows, 1 to 64 (overrides the preset; default 8).
-    #[arg(long = "max-aniso", value_name = "RATIO")]
+    #[arg(long = "max-aniso", value_name = "RATIO", allow_hyphen_values = true, value_parser = super::parse_max_aniso)]
     pub max_aniso: Option<f32>,
     /// Pixel sampler (overrides the preset).
     #[arg(long, value_parser = value_parser::<PixelSampler>())]
@@ -51,7 +51,7 @@ pub struct RenderArgs {
     pub pixel_filter: Option<PixelFilter>,
     /// Adaptive sampling: after --spp samples everywhere, up to MAX_SPP where the estimated
     /// error exceeds THRESHOLD (display units, default 0.01). E.g. `--spp 1 --adaptive 16`.
-    #[arg(long, value_name = "MAX_SPP[,THRESHOLD]", value_parser = parse_adaptive)]
+    #[arg(long, value_name = "MAX_SPP[,THRESHOLD]", allow_hyphen_values = true, value_parser = parse_adaptive)]
     pub adaptive: Option<AdaptiveDesc>,
     /// Turn off the preset's adaptive sampling.
     #[arg(long, conflicts_with = "adaptive")]
@@ -147,15 +147,15 @@ fn parse_adaptive(s: &str) -> std::result::Result<AdaptiveDesc, String> {
         Some((a, b)) => (a, Some(b)),
         None => (s, None),
     };
-    let max_spp = spp
-        .trim()
-        .parse::<u32>()
-        .map_err(|e| format!("MAX_SPP '{spp}': {e}"))?;
+    let max_spp = super::parse_spp(spp).map_err(|e| format!("MAX_SPP: {e}"))?;
     let threshold = match threshold {
-        Some(t) => t
-            .trim()
-            .parse::<f32>()
-            .map_err(|e| format!("THRESHOLD '{t}': {e}"))?,
+        Some(t) => {
+            let v = super::parse_finite(t).map_err(|e| format!("THRESHOLD: {e}"))?;
+            if !(v > 0.0 && v <= 1.0) {
+                return Err(format!("THRESHOLD: {v} is out of range (0, 1]"));
+            }
+            v as f32
+        }
         None => DEFAULT_ADAPTIVE_THRESHOLD,
     };
     Ok(AdaptiveDesc { max_spp, threshold })

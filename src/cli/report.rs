@@ -34,13 +34,13 @@ pub struct ReportArgs {
     #[arg(long, default_value_t = 5, value_parser = super::parse_repeat)]
     pub repeat: usize,
     /// Seconds the timed runs of one render may take before fewer are made (at least one).
-    #[arg(long, default_value_t = 2.0, value_parser = super::parse_time_budget)]
+    #[arg(long, default_value_t = 2.0, allow_hyphen_values = true, value_parser = super::parse_time_budget)]
     pub time_budget: f64,
     /// Image width (overrides the presets).
-    #[arg(long)]
+    #[arg(long, value_parser = super::parse_resolution)]
     pub width: Option<u32>,
     /// Image height (overrides the presets).
-    #[arg(long)]
+    #[arg(long, value_parser = super::parse_resolution)]
     pub height: Option<u32>,
     /// Samples per pixel of the reference.
     #[arg(long, default_value_t = 4096, value_parser = super::parse_spp)]
@@ -110,6 +110,28 @@ fn check_output_dir(dir: &Path, presets: &[PathBuf]) -> Result<()> {
     Ok(())
 }
 
+/// The lists and numbers clap cannot check one by one: a non-empty `--spp`, a
+/// `--heatmap-spp` among it, a finite `--time-budget`.
+fn check_numbers(a: &ReportArgs) -> Result<()> {
+    if a.spp.is_empty() || a.spp.contains(&0) {
+        bail!("--spp needs a list of positive numbers, like 1,4,16");
+    }
+    if let Some(h) = a.heatmap_spp.filter(|h| !a.spp.contains(h)) {
+        bail!(
+            "--heatmap-spp {h} is not among --spp {}: the heat map shows one of the renders",
+            a.spp
+                .iter()
+                .map(u32::to_string)
+                .collect::<Vec<_>>()
+                .join(",")
+        );
+    }
+    if !(a.time_budget.is_finite() && a.time_budget >= 0.0) {
+        bail!("--time-budget must be a non-negative number of seconds");
+    }
+    Ok(())
+}
+
 /// Runs the report.
 ///
 /// # Errors
@@ -131,12 +153,7 @@ pub fn run(a: &ReportArgs) -> Result<()> {
     };
     check_output_dir(&a.output, &presets)?;
     let modes = Mode::parse_list(&a.modes)?;
-    if a.spp.is_empty() || a.spp.contains(&0) {
-        bail!("--spp needs a list of positive numbers, like 1,4,16");
-    }
-    if !(a.time_budget.is_finite() && a.time_budget >= 0.0) {
-        bail!("--time-budget must be a non-negative number of seconds");
-    }
+    check_numbers(a)?;
     let cache_dir = if a.no_cache {
         None
     } else {
@@ -180,11 +197,8 @@ pub fn run(a: &ReportArgs) -> Result<()> {
     };
     let cancel = AtomicBool::new(false);
     let mut reports = Vec::new();
-    for path in &presets {
+    for (path, name) in presets.iter().zip(scene_names(&presets)) {
         let desc = read_preset_or_png(path)?;
-        let name = path
-            .file_stem()
-            .map_or_else(|| "scene".to_string(), |s| s.to_string_lossy().into_owned());
         let mut on_progress = |p: &ProgressUpdate<'_>| {
             bar.set_length(p.total);
             bar.set_position(p.done);
@@ -221,11 +235,77 @@ pub fn run(a: &ReportArgs) -> Result<()> {
                 if rep.reference_cached {
                     "from the cache".to_string()
                 } else {
-                    format!("rendered in {:.1} s", rep.reference_time.as_secs_f64())
+                    let again = rep
+                        .reference_problem
+                        .as_ref()
+                        .map_or_else(String::new, |p| {
+                            format!(" (the cached one was not used: {p})")
+                        });
+                    format!(
+                        "rendered in {:.1} s{again}",
+                        rep.reference_time.as_secs_f64()
+                    )
                 }
             );
         }
         eprintln!("wrote {} files into {}", written.len(), a.output.display());
     }
     Ok(())
+}
+
+/// Each preset's scene name: its file stem, or where two presets share a stem, the folder
+/// and the stem (`a-earth`, `b-earth`), numbered if those still repeat (the same file twice).
+/// The name names the scene's rows and its folder of plots, so no two may be equal.
+fn scene_names(presets: &[PathBuf]) -> Vec<String> {
+    let stem = |p: &Path| {
+        p.file_stem()
+            .map_or_else(|| "scene".to_string(), |s| s.to_string_lossy().into_owned())
+    };
+    let stems: Vec<String> = presets.iter().map(|p| stem(p)).collect();
+    let named: Vec<String> = presets
+        .iter()
+        .zip(&stems)
+        .map(|(p, s)| {
+            if stems.iter().filter(|t| *t == s).count() == 1 {
+                return s.clone();
+            }
+            let folder = std::path::absolute(p).ok().and_then(|a| {
+                a.parent()?
+                    .file_name()
+                    .map(|f| f.to_string_lossy().into_owned())
+            });
+            folder.map_or_else(|| s.clone(), |f| format!("{f}-{s}"))
+        })
+        .collect();
+    named
+        .iter()
+        .enumerate()
+        .map(|(i, n)| {
+            if named.iter().filter(|m| *m == n).count() == 1 {
+                n.clone()
+            } else {
+                let k = named[..=i].iter().filter(|m| *m == n).count();
+                format!("{n}-{k}")
+            }
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::scene_names;
+    use std::path::PathBuf;
+
+    #[test]
+    fn presets_sharing_a_stem_get_their_folder_or_a_number() {
+        let p = |s: &str| PathBuf::from(s);
+        assert_eq!(
+            scene_names(&[p("a/earth.ron"), p("b/earth.ron"), p("b/checker.ron")]),
+            ["a-earth", "b-earth", "checker"]
+        );
+        assert_eq!(
+            scene_names(&[p("a/earth.ron"), p("a/earth.ron")]),
+            ["a-earth-1", "a-earth-2"]
+        );
+    }
 }

@@ -82,13 +82,16 @@ fn is_image(p: &Path) -> bool {
     })
 }
 
+/// Largest recent-files list read (a list of paths takes a few kilobytes).
+const MAX_RECENT_BYTES: u64 = 1 << 20;
+
 impl Files {
     /// Reads the recent-files list from `recent_file` (a missing or bad file is an empty list).
     #[must_use]
     pub fn new(recent_file: Option<PathBuf>) -> Self {
         let recent = recent_file
             .as_deref()
-            .and_then(|f| std::fs::read_to_string(f).ok())
+            .and_then(|f| crate::input::read_input_text(f, MAX_RECENT_BYTES).ok())
             .and_then(|t| ron::from_str::<Vec<PathBuf>>(&t).ok())
             .unwrap_or_default();
         Self {

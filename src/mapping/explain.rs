@@ -99,14 +99,14 @@ fn worked(mapping: Mapping, p: DVec3, out: &mut Option<Vec<String>>) -> DVec2 {
             DVec2::new(u, v)
         }
         Mapping::Spherical | Mapping::Uv => {
-            let Some((q, _)) = rescaled(p) else {
+            let Some((q, scale)) = rescaled(p) else {
                 line!(
                     out,
                     "p = (0, 0, 0) or not finite: no direction, (u, v) = (0, 0.5) as the renderer"
                 );
                 return DVec2::new(0.0, 0.5);
             };
-            let nq = unit_direction(p, q, out);
+            let nq = unit_direction(q, scale, out);
             let u = azimuth(nq.x, nq.z, out);
             // theta = acos(y / |p|), computed as atan2(sqrt(x^2 + z^2), y) (exact off the
             // sphere, as the renderer).
@@ -176,14 +176,14 @@ fn azimuth(x: f64, z: f64, out: &mut Option<Vec<String>>) -> f64 {
 /// / 2) for the mirror ball), u = (1 + r cos beta) / 2, v = (1 + r sin beta) / 2.
 fn probe(mapping: Mapping, p: DVec3, out: &mut Option<Vec<String>>) -> DVec2 {
     let n = explain_number;
-    let Some((q, _)) = rescaled(p) else {
+    let Some((q, scale)) = rescaled(p) else {
         line!(
             out,
             "p = (0, 0, 0) or not finite: no direction, (u, v) = (0.5, 0.5) as the renderer"
         );
         return DVec2::splat(0.5);
     };
-    let nq = unit_direction(p, q, out);
+    let nq = unit_direction(q, scale, out);
     let flip = mapping == Mapping::Panoramic;
     let z = if flip { -nq.z } else { nq.z };
     let d = nq.x.hypot(nq.y);
@@ -245,16 +245,19 @@ fn probe(mapping: Mapping, p: DVec3, out: &mut Option<Vec<String>>) -> DVec2 {
 
 /// `p` divided by its largest component (squares neither overflow nor underflow), `None` for
 /// the origin and for NaN or infinite input: the renderer's `rescaled`.
-/// The unit direction of `p` from its rescaled copy `q` (see [`rescaled`]), saying so when `p` was
-/// off the unit sphere.
-fn unit_direction(p: DVec3, q: DVec3, out: &mut Option<Vec<String>>) -> DVec3 {
+/// The unit direction of a point from its rescaled copy `q` and the scale [`rescaled`] divided
+/// it by, saying so when the point was off the unit sphere. |p| comes from the rescaled point:
+/// `p.length()` would square 1e300 into infinity.
+fn unit_direction(q: DVec3, scale: f64, out: &mut Option<Vec<String>>) -> DVec3 {
     let n = explain_number;
-    let nq = q / q.length();
-    if ((p.length() - 1.0).abs()) >= 1e-4 || !p.length().is_finite() {
+    let len = q.length();
+    let nq = q / len;
+    let length = len * scale;
+    if ((length - 1.0).abs()) >= 1e-4 {
         line!(
             out,
             "|p| = {}: normalised to the unit sphere, ({}, {}, {})",
-            n(p.length()),
+            n(length),
             n(nq.x),
             n(nq.y),
             n(nq.z)

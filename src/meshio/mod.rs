@@ -9,7 +9,7 @@ mod obj;
 mod ply;
 
 pub use generate::{bumpy_sphere, torus};
-pub use obj::read_obj;
+pub use obj::{material_files, read_obj};
 pub use ply::{MAX_HEADER_BYTES, PlyFormat, UV_NAMES, read_ply, read_ply_from, write_ply};
 
 use crate::error::{Error, Result};

@@ -308,6 +308,26 @@ pub fn read_obj(path: &Path) -> Result<MeshData> {
     Ok(data)
 }
 
+/// The material libraries (`mtllib`) an OBJ file names and the images (`map_Kd`) those
+/// libraries name, resolved as [`read_obj`] resolves them: every file besides the OBJ itself
+/// that loading it reads. Unreadable files are listed but not followed (an OBJ that cannot be
+/// read lists nothing, a library that cannot be parsed lists no images).
+#[must_use]
+pub fn material_files(path: &Path) -> Vec<PathBuf> {
+    let dir = path.parent().unwrap_or(Path::new("."));
+    let Ok(prepared) = prepare(path, dir) else {
+        return Vec::new();
+    };
+    let mut out = Vec::new();
+    for library in prepared.libraries.into_iter().flatten() {
+        let images = read_mtl(&library).map(|m| m.into_iter().filter_map(|m| m.texture));
+        out.push(library);
+        out.extend(images.into_iter().flatten());
+    }
+    out.dedup();
+    out
+}
+
 /// Reads and parses a material library.
 ///
 /// # Errors

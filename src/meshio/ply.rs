@@ -323,6 +323,12 @@ fn read_body<B: Body, R: BufRead>(
     for (e, el) in header.elements.iter().enumerate() {
         let is_vertex = e == layout.vertex;
         let is_face = e == layout.face;
+        if el.props.is_empty() {
+            // Its items take no bytes: nothing to read, however many the header claims (a loop
+            // over them would read nothing per item and, for a count of 2^64 - 1, never end).
+            // Every other item reads at least one value, so each pass below makes progress.
+            continue;
+        }
         for i in 0..el.count {
             // Built only on the error paths: where reading stopped, and in which element.
             let at = |pos: At| format!("{pos} ({} {i})", el.name);

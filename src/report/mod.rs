@@ -369,6 +369,9 @@ pub struct SceneReport {
     pub reference_cached: bool,
     /// The reference's EXR, when cached on disk.
     pub reference_file: Option<PathBuf>,
+    /// Why a cached reference for this key was not used and the reference was rendered again
+    /// ("FILE: checksum mismatch ..."); `None` when the cache held none or it was used.
+    pub reference_problem: Option<String>,
     /// Time spent rendering the reference (zero when it came from the cache).
     pub reference_time: Duration,
     /// Error maps kept for heat maps.
@@ -435,18 +438,21 @@ pub fn run_scene(
         .as_ref()
         .map(|dir| CachedReference::new(dir, &key));
     let t0 = Instant::now();
-    let (reference_linear, reference_cached) =
-        match cached.as_ref().and_then(|c| c.load(&key, width, height)) {
-            Some(img) => (img, true),
-            None => {
-                let ref_scene = build_scene(&ref_desc, preset_path, &mut assets)?;
-                let img = render_reference(&ref_scene, r.spp, &mut tally, cancel)?;
-                if let Some(c) = &cached {
-                    c.store(&key, width, height, &img)?;
-                }
-                (img, false)
-            }
-        };
+    let (stored, reference_problem) = match cached.as_ref().map(|c| c.load(&key, width, height)) {
+        Some(Ok(img)) => (img, None),
+        Some(Err(problem)) => (None, Some(problem)),
+        None => (None, None),
+    };
+    let (reference_linear, reference_cached) = if let Some(img) = stored {
+        (img, true)
+    } else {
+        let ref_scene = build_scene(&ref_desc, preset_path, &mut assets)?;
+        let img = render_reference(&ref_scene, r.spp, &mut tally, cancel)?;
+        if let Some(c) = &cached {
+            c.store(&key, width, height, &img)?;
+        }
+        (img, false)
+    };
     let reference_time = if reference_cached {
         Duration::ZERO
     } else {
@@ -487,6 +493,7 @@ pub fn run_scene(
         reference: r.clone(),
         reference_cached,
         reference_file: cached.map(|c| c.exr),
+        reference_problem,
         reference_time,
         error_maps,
     })

@@ -25,6 +25,22 @@ pub fn file_safe(name: &str) -> String {
     }
 }
 
+/// `names` with a repeated one numbered (`earth`, `earth_2`), so no two scenes write into
+/// one folder (two names can become one file name, `a b` and `a_b`).
+fn unique(names: Vec<String>) -> Vec<String> {
+    let mut out: Vec<String> = Vec::with_capacity(names.len());
+    for n in names {
+        let mut candidate = n.clone();
+        let mut k = 1;
+        while out.contains(&candidate) {
+            k += 1;
+            candidate = format!("{n}_{k}");
+        }
+        out.push(candidate);
+    }
+    out
+}
+
 /// Every report file goes through the one atomic writer (see [`crate::output`]).
 fn write(path: &Path, bytes: &[u8]) -> Result<(), ReportError> {
     crate::output::write_bytes(path, &[], bytes).map_err(ReportError::Scene)
@@ -57,8 +73,8 @@ pub fn write_outputs(
     write(&csv, text.as_bytes())?;
     written.push(csv);
     let mut md = format!("# Speed against error\n\n{header}\n");
-    for rep in reports {
-        let name = file_safe(&rep.scene);
+    let names = unique(reports.iter().map(|r| file_safe(&r.scene)).collect());
+    for (rep, name) in reports.iter().zip(names) {
         let sub = dir.join(&name);
         std::fs::create_dir_all(&sub).map_err(|e| ReportError::io(&sub, e))?;
         let chart = plot::error_vs_time(rep);
@@ -103,7 +119,7 @@ pub fn write_outputs(
 
 #[cfg(test)]
 mod tests {
-    use super::file_safe;
+    use super::{file_safe, unique};
 
     #[test]
     fn names_become_safe_file_names() {
@@ -111,5 +127,14 @@ mod tests {
         assert_eq!(file_safe("a b/../c"), "a_b_.._c");
         assert_eq!(file_safe(".."), "_..");
         assert_eq!(file_safe(""), "_");
+    }
+
+    #[test]
+    fn scenes_with_one_file_name_get_numbered_folders() {
+        let v = |s: &[&str]| s.iter().map(ToString::to_string).collect::<Vec<_>>();
+        assert_eq!(
+            unique(v(&["a_b", "a_b", "c", "a_b"])),
+            v(&["a_b", "a_b_2", "c", "a_b_3"])
+        );
     }
 }

@@ -451,6 +451,7 @@ mod tests {
             reference: crate::report::ReferenceSettings::default(),
             reference_cached: true,
             reference_file: None,
+            reference_problem: None,
             reference_time: Duration::ZERO,
             error_maps: vec![],
         };

@@ -76,8 +76,10 @@ pub fn to_ron(desc: &SceneDesc) -> String {
 /// of the preset's own images or meshes, whose paths are relative to `path`'s folder).
 ///
 /// # Errors
-/// The file is refused or cannot be written: "cannot write FILE: reason".
+/// A value is not a finite number ("FILE: not saved: ambient.color: NaN is not a number"), or
+/// the file is refused or cannot be written: "cannot write FILE: reason".
 pub fn save_preset(desc: &SceneDesc, path: &Path) -> Result<()> {
+    check_numbers(desc).map_err(|m| Error::invalid(path, format!("not saved: {m}")))?;
     let folder = path
         .parent()
         .filter(|p| !p.as_os_str().is_empty())
@@ -85,6 +87,144 @@ pub fn save_preset(desc: &SceneDesc, path: &Path) -> Result<()> {
     let assets = super::files::asset_paths(desc, folder);
     let inputs: Vec<&Path> = assets.iter().map(PathBuf::as_path).collect();
     crate::output::write_bytes(path, &inputs, to_ron(desc).as_bytes())
+}
+
+/// Refuses a preset holding a NaN or an infinity anywhere (every `f32`, point and colour),
+/// naming the field: `ambient.color: NaN is not a number`,
+/// `objects[2].material.cd.scale: inf is not finite`. Ranges are checked by [`build_scene`];
+/// this check needs no files, so it also guards every preset written out (a saved preset or
+/// the one a PNG carries never holds a value that does not read back).
+///
+/// # Errors
+/// The first field that is not a finite number.
+pub fn check_numbers(desc: &SceneDesc) -> std::result::Result<(), String> {
+    let mut n = Numbers(None);
+    let c = &desc.camera;
+    n.check(|| "camera.eye".into(), &c.eye.to_array());
+    n.check(|| "camera.look_at".into(), &c.look_at.to_array());
+    n.check(|| "camera.up".into(), &c.up.to_array());
+    match c.projection {
+        ProjectionDesc::Pinhole { fov } | ProjectionDesc::Fisheye { fov } => {
+            n.check(|| "camera.fov".into(), &[fov]);
+        }
+        ProjectionDesc::Spherical { h_fov, v_fov } => {
+            n.check(|| "camera.h_fov".into(), &[h_fov]);
+            n.check(|| "camera.v_fov".into(), &[v_fov]);
+        }
+    }
+    let r = &desc.render;
+    n.check(|| "render.exposure".into(), &[r.exposure]);
+    n.check(|| "render.background".into(), &r.background.to_array());
+    if let Some(a) = r.adaptive {
+        n.check(|| "render.adaptive.threshold".into(), &[a.threshold]);
+    }
+    n.check(|| "ambient.ls".into(), &[desc.ambient.ls]);
+    n.check(|| "ambient.color".into(), &desc.ambient.color.to_array());
+    for (i, l) in desc.lights.iter().enumerate() {
+        let (point, point_name, ls, color) = match *l {
+            LightDesc::Directional {
+                direction,
+                ls,
+                color,
+                ..
+            } => (direction, "direction", ls, color),
+            LightDesc::Point {
+                position,
+                ls,
+                color,
+                ..
+            } => (position, "position", ls, color),
+        };
+        n.check(|| format!("lights[{i}].{point_name}"), &point.to_array());
+        n.check(|| format!("lights[{i}].ls"), &[ls]);
+        n.check(|| format!("lights[{i}].color"), &color.to_array());
+    }
+    for (i, o) in desc.objects.iter().enumerate() {
+        n.object(&format!("objects[{i}]"), o);
+    }
+    n.0.map_or(Ok(()), Err)
+}
+
+/// The first non-finite number [`check_numbers`] met, as its message.
+struct Numbers(Option<String>);
+
+impl Numbers {
+    /// Notes the first of `values` that is not finite, unless one was noted before; `what`
+    /// names the field.
+    fn check(&mut self, what: impl FnOnce() -> String, values: &[f32]) {
+        if self.0.is_none()
+            && let Some(v) = values.iter().find(|v| !v.is_finite())
+        {
+            self.0 = Some(format!("{}: {}", what(), not_finite(*v)));
+        }
+    }
+
+    /// Every number of one object: its transform, material and texture.
+    fn object(&mut self, at: &str, o: &super::ObjectDesc) {
+        let t = &o.transform;
+        self.check(
+            || format!("{at}.transform.translate"),
+            &t.translate.to_array(),
+        );
+        self.check(|| format!("{at}.transform.rotate"), &t.rotate.to_array());
+        self.check(|| format!("{at}.transform.scale"), &t.scale.to_array());
+        let (coefficients, cs, tex): (Vec<(&str, f32)>, _, _) = match &o.material {
+            MaterialDesc::Matte { ka, kd, .. } => (vec![("ka", *ka), ("kd", *kd)], None, "cd"),
+            MaterialDesc::Phong {
+                ka,
+                kd,
+                ks,
+                cs,
+                exp,
+                ..
+            } => (
+                vec![("ka", *ka), ("kd", *kd), ("ks", *ks), ("exp", *exp)],
+                Some(*cs),
+                "cd",
+            ),
+            MaterialDesc::Emissive { ls, .. } => (vec![("ls", *ls)], None, "ce"),
+        };
+        for (name, v) in coefficients {
+            self.check(|| format!("{at}.material.{name}"), &[v]);
+        }
+        if let Some(cs) = cs {
+            self.check(|| format!("{at}.material.cs"), &cs.to_array());
+        }
+        let tex = format!("{at}.material.{tex}");
+        match o.material.texture() {
+            TextureDesc::Constant(c) => self.check(|| tex.clone(), &c.to_array()),
+            TextureDesc::Image {
+                scale,
+                max_anisotropy,
+                ..
+            } => {
+                self.check(|| format!("{tex}.scale"), &[*scale]);
+                self.check(|| format!("{tex}.max_anisotropy"), &[*max_anisotropy]);
+            }
+            TextureDesc::Checker {
+                squares, colors, ..
+            } => {
+                self.check(|| format!("{tex}.squares"), &[squares.0, squares.1]);
+                self.check(
+                    || format!("{tex}.colors"),
+                    &[colors.0.to_array(), colors.1.to_array()].concat(),
+                );
+            }
+            TextureDesc::MeshMaterial { max_anisotropy, .. }
+            | TextureDesc::UvGrid { max_anisotropy, .. } => {
+                self.check(|| format!("{tex}.max_anisotropy"), &[*max_anisotropy]);
+            }
+        }
+    }
+}
+
+/// Why a non-finite number is refused.
+fn not_finite(v: f32) -> String {
+    if v.is_nan() {
+        "NaN is not a number".into()
+    } else {
+        format!("{v} is not finite")
+    }
 }
 
 /// Decoded images shared between builds, so an edit in the GUI does not decode the Earth again.
@@ -196,10 +336,12 @@ pub struct Overrides {
 pub fn build_scene(desc: &SceneDesc, preset_path: &Path, cache: &mut AssetCache) -> Result<Scene> {
     let base = preset_path.parent().unwrap_or(Path::new("."));
     let bad = |msg: String| Error::invalid(preset_path, msg);
+    check_numbers(desc).map_err(bad)?;
     let settings = render_settings(&desc.render).map_err(bad)?;
     let camera = camera(&desc.camera, settings.width, settings.height).map_err(bad)?;
+    finite_non_negative("ambient.ls", &[desc.ambient.ls]).map_err(bad)?;
+    finite_non_negative("ambient.color", &desc.ambient.color.to_array()).map_err(bad)?;
     let ambient = desc.ambient.color * desc.ambient.ls;
-    finite_non_negative("ambient", &[desc.ambient.ls]).map_err(bad)?;
 
     let mut lights = Vec::with_capacity(desc.lights.len());
     for (i, l) in desc.lights.iter().enumerate() {

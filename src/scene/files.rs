@@ -157,6 +157,8 @@ pub fn save_render_png_checked(
         .copied()
         .chain(assets.iter().map(PathBuf::as_path))
         .collect();
+    super::check_numbers(desc)
+        .map_err(|m| Error::invalid(path, format!("not saved: the preset's {m}")))?;
     let mut desc = desc.clone();
     rebase_assets(&mut desc, preset_dir, png_dir);
     save_png_checked(
@@ -169,17 +171,33 @@ pub fn save_render_png_checked(
     )
 }
 
-/// The files `desc` reads (images and meshes), with its asset paths taken relative to
-/// `preset_dir`.
+/// The files `desc` reads (images, meshes, and an OBJ's material libraries and their
+/// `map_Kd` images), with its asset paths taken relative to `preset_dir`; each once, in the
+/// order the preset names them.
 #[must_use]
 pub fn asset_paths(desc: &SceneDesc, preset_dir: &Path) -> Vec<PathBuf> {
-    let mut out = Vec::new();
+    let mut out: Vec<PathBuf> = Vec::new();
+    let mut add = |p: PathBuf| {
+        if !out.contains(&p) {
+            out.push(p);
+        }
+    };
     for o in &desc.objects {
         if let TextureDesc::Image { path, .. } = o.material.texture() {
-            out.push(preset_dir.join(path));
+            add(preset_dir.join(path));
         }
         if let ShapeDesc::Mesh { path, .. } = &o.shape {
-            out.push(preset_dir.join(path));
+            let mesh = preset_dir.join(path);
+            let is_obj = mesh
+                .extension()
+                .is_some_and(|e| e.eq_ignore_ascii_case("obj"));
+            let materials = if is_obj {
+                crate::meshio::material_files(&mesh)
+            } else {
+                Vec::new()
+            };
+            add(mesh);
+            materials.into_iter().for_each(&mut add);
         }
     }
     out

@@ -7,8 +7,8 @@ mod files;
 mod mesh;
 
 pub use build::{
-    AssetCache, MAX_RESOLUTION, MAX_SPP, Overrides, apply_overrides, build_scene, load_preset,
-    parse_preset, save_preset, to_ron,
+    AssetCache, MAX_RESOLUTION, MAX_SPP, Overrides, apply_overrides, build_scene, check_numbers,
+    load_preset, parse_preset, save_preset, to_ron,
 };
 pub use desc::*;
 pub use files::{

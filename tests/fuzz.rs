@@ -375,7 +375,10 @@ fn fuzz_regressions_stay_fixed() {
                 .map_or("bin".into(), |x| x.to_string_lossy().into_owned());
             let _ = image_bytes(&data, &scratch.path().join(format!("fuzzed.{ext}")));
         } else if let Some(rest) = name.strip_prefix("mesh-") {
-            let ext = if rest.ends_with(".obj") { "obj" } else { "ply" };
+            let is_obj = Path::new(rest)
+                .extension()
+                .is_some_and(|x| x.eq_ignore_ascii_case("obj"));
+            let ext = if is_obj { "obj" } else { "ply" };
             let _ = mesh_bytes(&data, &scratch.path().join(format!("fuzzed.{ext}")));
         } else if name.starts_with("material-") {
             let _ = material_bytes(&data, scratch.path());

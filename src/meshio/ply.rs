@@ -499,15 +499,9 @@ fn read_header(r: &mut impl BufRead, path: &Path) -> Result<Header> {
             continue;
         }
         match words.as_slice() {
-            [] => {}
-            ["comment" | "obj_info", ..] => {}
+            [] | ["comment" | "obj_info", ..] => {}
             ["format", f, _version] => {
-                format = Some(match *f {
-                    "ascii" => PlyFormat::Ascii,
-                    "binary_little_endian" => PlyFormat::BinaryLittleEndian,
-                    "binary_big_endian" => PlyFormat::BinaryBigEndian,
-                    other => return Err(fail(line_no, format!("unknown format '{other}'"))),
-                });
+                format = Some(f.parse::<PlyFormat>().map_err(|e| fail(line_no, e))?);
             }
             ["element", name, count] => {
                 let count = count.parse::<u64>().map_err(|_| {

@@ -1,26 +1,18 @@
 //! Closed sets of options named on the command line and in menus.
 //!
 //! Each such enum derives strum's `VariantArray` (every variant, in menu order),
-//! `IntoStaticStr` (its name), `EnumString` (parsing, with [`unknown`] as the error, which lists
-//! the valid names), `EnumMessage` (one sentence on the variant, for tooltips and `--help`) and
-//! `Display`, and implements [`Named`]. Menus and the command line read the variants from
-//! `VARIANTS`, so a variant can be missing from neither; the names are the derive's, so they
-//! cannot drift from the parser's.
+//! `IntoStaticStr` (its name), `EnumString` (parsing; [`Named::from_name`] turns its error into
+//! [`unknown`], which lists the valid names), `EnumMessage` (one sentence on the variant, for
+//! tooltips and `--help`) and `Display`, and implements [`Named`]. Menus and the command line
+//! read the variants from `VARIANTS`, so a variant can be missing from neither; the names are
+//! the derive's, so they cannot drift from the parser's.
 
 use std::str::FromStr;
 use strum::{EnumMessage, VariantArray};
 
 /// An enum whose variants have stable names and one-sentence descriptions.
 pub trait Named:
-    Copy
-    + PartialEq
-    + Send
-    + Sync
-    + 'static
-    + VariantArray
-    + EnumMessage
-    + Into<&'static str>
-    + FromStr<Err = String>
+    Copy + PartialEq + Send + Sync + 'static + VariantArray + EnumMessage + Into<&'static str> + FromStr
 {
     /// What one option is called in messages ("filter", "wrap mode").
     const WHAT: &'static str;
@@ -33,6 +25,14 @@ pub trait Named:
     /// One sentence on the variant, for tooltips and `--help`.
     fn description(self) -> &'static str {
         self.get_message().unwrap_or_default()
+    }
+
+    /// The variant called `s`, or an error that lists the valid names ([`unknown`]).
+    ///
+    /// # Errors
+    /// `s` names no variant.
+    fn from_name(s: &str) -> Result<Self, String> {
+        s.parse().map_err(|_| unknown::<Self>(s))
     }
 }
 
@@ -62,7 +62,7 @@ pub fn value_parser<T: Named>() -> impl clap::builder::TypedValueParser<Value = 
             .iter()
             .map(|v| PossibleValue::new(v.name()).help(v.description())),
     )
-    .try_map(|s| s.parse::<T>())
+    .try_map(|s| T::from_name(&s))
 }
 
 #[cfg(test)]
@@ -78,7 +78,7 @@ mod tests {
     /// Every variant parses back from its name and prints as it, and has a description.
     fn round_trips<T: Named + std::fmt::Debug + std::fmt::Display>() -> Vec<&'static str> {
         for &v in T::VARIANTS {
-            assert_eq!(v.name().parse::<T>(), Ok(v), "{} {v:?}", T::WHAT);
+            assert_eq!(T::from_name(v.name()), Ok(v), "{} {v:?}", T::WHAT);
             assert_eq!(v.to_string(), v.name());
             assert!(
                 !v.description().is_empty(),
@@ -86,7 +86,7 @@ mod tests {
                 T::WHAT
             );
         }
-        let err = "no-such-name".parse::<T>().unwrap_err();
+        let err = T::from_name("no-such-name").unwrap_err();
         assert_eq!(
             err,
             format!(

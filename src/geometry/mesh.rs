@@ -16,11 +16,7 @@ use std::path::{Path, PathBuf};
 #[derive(Serialize, Deserialize)]
 #[derive(strum::VariantArray, strum::IntoStaticStr, strum::Display)]
 #[derive(strum::EnumString, strum::EnumMessage)]
-#[strum(
-    serialize_all = "kebab-case",
-    parse_err_ty = String,
-    parse_err_fn = crate::names::unknown::<Shading>
-)]
+#[strum(serialize_all = "kebab-case")]
 pub enum Shading {
     /// The lecture's `FlatUVMeshTriangle`: each triangle's own normal (facets show).
     #[strum(message = "One normal per triangle: facets show.")]

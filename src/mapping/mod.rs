@@ -18,11 +18,7 @@ use serde::{Deserialize, Serialize};
 #[derive(Serialize, Deserialize)]
 #[derive(strum::VariantArray, strum::IntoStaticStr, strum::Display)]
 #[derive(strum::EnumString, strum::EnumMessage)]
-#[strum(
-    serialize_all = "kebab-case",
-    parse_err_ty = String,
-    parse_err_fn = crate::names::unknown::<Mapping>
-)]
+#[strum(serialize_all = "kebab-case")]
 pub enum Mapping {
     /// The generic rectangle: u = (z + 1) / 2, v = (x + 1) / 2. Points off the rectangle give
     /// coordinates outside [0, 1] and the texture's wrap mode decides (so a plane tiles).

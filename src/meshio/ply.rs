@@ -32,11 +32,7 @@ pub const UV_NAMES: [(&str, &str); 4] = [
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[derive(strum::VariantArray, strum::IntoStaticStr, strum::Display)]
 #[derive(strum::EnumString, strum::EnumMessage)]
-#[strum(
-    serialize_all = "snake_case",
-    parse_err_ty = String,
-    parse_err_fn = crate::names::unknown::<PlyFormat>
-)]
+#[strum(serialize_all = "snake_case")]
 pub enum PlyFormat {
     /// Numbers as decimal text, one element per line.
     #[strum(message = "Text: one element per line.")]
@@ -501,7 +497,7 @@ fn read_header(r: &mut impl BufRead, path: &Path) -> Result<Header> {
         match words.as_slice() {
             [] | ["comment" | "obj_info", ..] => {}
             ["format", f, _version] => {
-                format = Some(f.parse::<PlyFormat>().map_err(|e| fail(line_no, e))?);
+                format = Some(PlyFormat::from_name(f).map_err(|e| fail(line_no, e))?);
             }
             ["element", name, count] => {
                 let count = count.parse::<u64>().map_err(|_| {

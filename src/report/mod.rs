@@ -183,12 +183,12 @@ impl Mode {
             let filters: Vec<Filter> = if f == "*" {
                 Filter::VARIANTS.to_vec()
             } else {
-                vec![f.parse().map_err(ReportError::Invalid)?]
+                vec![Filter::from_name(f).map_err(ReportError::Invalid)?]
             };
             let samplers: Vec<PixelSampler> = if smp == "*" {
                 PixelSampler::VARIANTS.to_vec()
             } else {
-                vec![smp.parse().map_err(ReportError::Invalid)?]
+                vec![PixelSampler::from_name(smp).map_err(ReportError::Invalid)?]
             };
             for &filter in &filters {
                 for &sampler in &samplers {

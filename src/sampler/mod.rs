@@ -14,11 +14,7 @@ use serde::{Deserialize, Serialize};
 #[derive(Serialize, Deserialize)]
 #[derive(strum::VariantArray, strum::IntoStaticStr, strum::Display)]
 #[derive(strum::EnumString, strum::EnumMessage)]
-#[strum(
-    serialize_all = "kebab-case",
-    parse_err_ty = String,
-    parse_err_fn = crate::names::unknown::<PixelSampler>
-)]
+#[strum(serialize_all = "kebab-case")]
 pub enum PixelSampler {
     /// A grid of cell centres (aliases like one sample, just finer).
     #[strum(

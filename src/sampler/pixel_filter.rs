@@ -17,11 +17,7 @@ pub const GAUSSIAN_RADIUS: f32 = 1.5;
 #[derive(Serialize, Deserialize)]
 #[derive(strum::VariantArray, strum::IntoStaticStr, strum::Display)]
 #[derive(strum::EnumString, strum::EnumMessage)]
-#[strum(
-    serialize_all = "kebab-case",
-    parse_err_ty = String,
-    parse_err_fn = crate::names::unknown::<PixelFilter>
-)]
+#[strum(serialize_all = "kebab-case")]
 pub enum PixelFilter {
     /// Every point of the pixel square weighs the same (the lecture's average).
     #[default]

@@ -556,7 +556,6 @@ impl MaterialDesc {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[derive(strum::VariantArray, strum::IntoStaticStr, strum::Display)]
 #[derive(strum::EnumString, strum::EnumMessage)]
-#[strum(parse_err_ty = String, parse_err_fn = crate::names::unknown::<ShapeKind>)]
 pub enum ShapeKind {
     /// [`ShapeDesc::Sphere`].
     #[strum(message = "The unit sphere at the origin (place it with the transform).")]
@@ -588,7 +587,6 @@ impl crate::names::Named for ShapeKind {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[derive(strum::VariantArray, strum::IntoStaticStr, strum::Display)]
 #[derive(strum::EnumString, strum::EnumMessage)]
-#[strum(parse_err_ty = String, parse_err_fn = crate::names::unknown::<TextureKind>)]
 pub enum TextureKind {
     /// [`TextureDesc::Constant`].
     #[strum(message = "One colour everywhere.")]
@@ -621,7 +619,6 @@ impl crate::names::Named for TextureKind {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[derive(strum::VariantArray, strum::IntoStaticStr, strum::Display)]
 #[derive(strum::EnumString, strum::EnumMessage)]
-#[strum(parse_err_ty = String, parse_err_fn = crate::names::unknown::<MaterialKind>)]
 pub enum MaterialKind {
     /// [`MaterialDesc::Matte`].
     #[strum(
@@ -644,7 +641,6 @@ impl crate::names::Named for MaterialKind {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[derive(strum::VariantArray, strum::IntoStaticStr, strum::Display)]
 #[derive(strum::EnumString, strum::EnumMessage)]
-#[strum(parse_err_ty = String, parse_err_fn = crate::names::unknown::<LightKind>)]
 pub enum LightKind {
     /// [`LightDesc::Directional`].
     #[strum(
@@ -668,7 +664,6 @@ impl crate::names::Named for LightKind {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[derive(strum::VariantArray, strum::IntoStaticStr, strum::Display)]
 #[derive(strum::EnumString, strum::EnumMessage)]
-#[strum(parse_err_ty = String, parse_err_fn = crate::names::unknown::<ProjectionKind>)]
 pub enum ProjectionKind {
     /// [`ProjectionDesc::Pinhole`].
     #[strum(message = "Perspective with a vertical field of view.")]

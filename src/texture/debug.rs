@@ -11,11 +11,7 @@ use serde::{Deserialize, Serialize};
 #[derive(Serialize, Deserialize)]
 #[derive(strum::VariantArray, strum::IntoStaticStr, strum::Display)]
 #[derive(strum::EnumString, strum::EnumMessage)]
-#[strum(
-    serialize_all = "kebab-case",
-    parse_err_ty = String,
-    parse_err_fn = crate::names::unknown::<View>
-)]
+#[strum(serialize_all = "kebab-case")]
 pub enum View {
     /// The lit, textured image (the default): what a render shows unless a debug view is picked.
     #[default]

@@ -97,11 +97,7 @@ impl Texture {
 #[derive(Serialize, Deserialize)]
 #[derive(strum::VariantArray, strum::IntoStaticStr, strum::Display)]
 #[derive(strum::EnumString, strum::EnumMessage)]
-#[strum(
-    serialize_all = "kebab-case",
-    parse_err_ty = String,
-    parse_err_fn = crate::names::unknown::<Lookup>
-)]
+#[strum(serialize_all = "kebab-case")]
 pub enum Lookup {
     /// The lecture's `column = (int)((hres - 1) u)`: stretches the image by hres / (hres - 1) and
     /// reaches the last column only at u == 1 exactly. What the book renders.
@@ -141,11 +137,7 @@ impl Lookup {
 #[derive(Serialize, Deserialize)]
 #[derive(strum::VariantArray, strum::IntoStaticStr, strum::Display)]
 #[derive(strum::EnumString, strum::EnumMessage)]
-#[strum(
-    serialize_all = "kebab-case",
-    parse_err_ty = String,
-    parse_err_fn = crate::names::unknown::<Wrap>
-)]
+#[strum(serialize_all = "kebab-case")]
 pub enum Wrap {
     /// Tile the texture.
     #[default]
@@ -221,11 +213,7 @@ impl Wrap {
 #[derive(Serialize, Deserialize)]
 #[derive(strum::VariantArray, strum::IntoStaticStr, strum::Display)]
 #[derive(strum::EnumString, strum::EnumMessage)]
-#[strum(
-    serialize_all = "kebab-case",
-    parse_err_ty = String,
-    parse_err_fn = crate::names::unknown::<Filter>
-)]
+#[strum(serialize_all = "kebab-case")]
 pub enum Filter {
     /// One texel, chosen by the [`Lookup`].
     #[default]

@@ -103,7 +103,7 @@ impl ExplorerApp {
                 if self.restart() {
                     self.home_camera = Some(desc.camera);
                     self.saved_desc = Some(desc);
-                    self.scene_panel.selected = 0;
+                    self.scene_panel.scene_replaced();
                     self.inspector.clear();
                     self.files.add_recent(path);
                 } else {

@@ -16,19 +16,62 @@ mod texture;
 use crate::geometry::Shading;
 use crate::names::Named;
 use crate::scene::{ObjectDesc, SceneDesc, ShapeDesc, TextureDesc, TextureKind};
+use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
-/// What the scene panel keeps between frames (the selection, half-typed paths, the asset
-/// list); the scene itself is the [`SceneDesc`] passed to it.
+/// What the scene panel keeps between frames (the selection, half-typed paths, a mesh being
+/// chosen, the images the objects had, the asset list); the scene itself is the [`SceneDesc`]
+/// passed to it.
 #[derive(Default)]
 pub struct ScenePanel {
     /// Index into `SceneDesc::objects` of the object the panel edits.
     pub selected: usize,
     /// The image path being typed, applied with Enter or "Load".
-    path_text: Option<(usize, String)>,
+    path_text: Option<PathText>,
     /// The mesh path being typed.
-    mesh_text: Option<(usize, String)>,
+    mesh_text: Option<PathText>,
+    /// Shape -> Mesh was chosen for this object: the file asked for before the shape changes.
+    mesh_prompt: Option<(usize, String)>,
+    /// Per object, the image texture it had before its kind was switched away from Image, its
+    /// path absolute (so a "Save as" into another folder does not break it).
+    last_image: HashMap<usize, TextureDesc>,
     assets: Option<Vec<PathBuf>>,
+}
+
+/// The text of a path field: a view of one object's path in one preset, read again from the
+/// scene whenever the object, the path or the preset changes, so it never shows a path the
+/// scene does not have (after "Save as", opening another file, picking an asset).
+struct PathText {
+    object: usize,
+    path: String,
+    preset: PathBuf,
+    text: String,
+}
+
+impl PathText {
+    /// The text for `object`'s `path` in `preset`: the typing kept in `slot` while it is about
+    /// that same path, else the path itself.
+    fn synced<'a>(
+        slot: &'a mut Option<Self>,
+        object: usize,
+        path: &str,
+        preset: &Path,
+    ) -> &'a mut String {
+        if slot
+            .as_ref()
+            .is_some_and(|t| t.object != object || t.path != path || t.preset != preset)
+        {
+            *slot = None;
+        }
+        &mut slot
+            .get_or_insert_with(|| Self {
+                object,
+                path: path.to_owned(),
+                preset: preset.to_path_buf(),
+                text: path.to_owned(),
+            })
+            .text
+    }
 }
 
 fn object_label(i: usize, o: &ObjectDesc) -> String {
@@ -56,6 +99,17 @@ impl ScenePanel {
         self.path_text = None;
     }
 
+    /// Forgets everything typed or remembered about the previous scene: called when another
+    /// scene opens, so no field shows a file of the old one.
+    pub fn scene_replaced(&mut self) {
+        self.selected = 0;
+        self.path_text = None;
+        self.mesh_text = None;
+        self.mesh_prompt = None;
+        self.last_image.clear();
+        self.assets = None;
+    }
+
     /// Makes the selected object the mesh at `path` (relative to the preset).
     pub fn use_mesh(&mut self, desc: &mut SceneDesc, path: String) {
         if let Some(obj) = desc.objects.get_mut(self.selected) {
@@ -64,6 +118,7 @@ impl ScenePanel {
                 shading: Shading::default(),
             };
             self.mesh_text = None;
+            self.mesh_prompt = None;
         }
     }
 
@@ -86,6 +141,7 @@ impl ScenePanel {
                 self.selected = i;
                 self.path_text = None;
                 self.mesh_text = None;
+                self.mesh_prompt = None;
             }
         }
         ui.horizontal(|ui| {
@@ -113,6 +169,13 @@ impl ScenePanel {
         });
         if let Some(i) = remove {
             desc.objects.remove(i);
+            self.mesh_prompt = None;
+            // The remembered images follow their objects down the list.
+            self.last_image = std::mem::take(&mut self.last_image)
+                .into_iter()
+                .filter(|(k, _)| *k != i)
+                .map(|(k, t)| (if k > i { k - 1 } else { k }, t))
+                .collect();
             self.selected = self.selected.min(desc.objects.len().saturating_sub(1));
             changed = true;
         }
@@ -130,15 +193,17 @@ impl ScenePanel {
     }
 }
 
-/// A labelled path field applied with Enter or "Load"; `text` holds the typing (keyed by
-/// nothing more than being present: cleared when the path is applied).
+/// A labelled path field for `object`'s `path` in `preset`, applied with Enter or "Load";
+/// `text` holds the typing while it is about that path (see [`PathText`]).
 fn path_field(
     ui: &mut egui::Ui,
     label: &str,
     path: &mut String,
-    text: &mut Option<(usize, String)>,
+    text: &mut Option<PathText>,
+    object: usize,
+    preset: &Path,
 ) -> bool {
-    let buf = &mut text.get_or_insert_with(|| (0, path.clone())).1;
+    let buf = PathText::synced(text, object, path, preset);
     let mut changed = false;
     ui.horizontal(|ui| {
         let l = ui.label(label);

@@ -2,8 +2,10 @@
 //! transform, and the material and texture editors below them.
 
 use super::{ScenePanel, material::material_ui, path_field};
+use crate::geometry::Shading;
 use crate::gui::widgets::{enum_combo, vec3};
-use crate::scene::{ObjectDesc, ShapeDesc};
+use crate::names::Named;
+use crate::scene::{ObjectDesc, ShapeDesc, ShapeKind};
 use std::path::Path;
 
 impl ScenePanel {
@@ -17,7 +19,7 @@ impl ScenePanel {
         egui::CollapsingHeader::new("Shape and transform")
             .default_open(true)
             .show(ui, |ui| {
-                changed |= self.shape_ui(ui, &mut obj.shape);
+                changed |= self.shape_ui(ui, &mut obj.shape, preset);
                 let t = &mut obj.transform;
                 changed |= vec3(ui, "translate", &mut t.translate, 0.02);
                 changed |= vec3(ui, "rotate", &mut t.rotate, 0.5);
@@ -45,14 +47,35 @@ impl ScenePanel {
         changed
     }
 
-    /// The shape menu and the chosen shape's own settings.
-    fn shape_ui(&mut self, ui: &mut egui::Ui, shape: &mut ShapeDesc) -> bool {
+    /// The shape menu and the chosen shape's own settings. Choosing Mesh asks for the file
+    /// first: the shape stays as it is until a mesh path is loaded (a path that fails to load
+    /// is rolled back by the app, so the prompt stays with the error shown).
+    fn shape_ui(&mut self, ui: &mut egui::Ui, shape: &mut ShapeDesc, preset: &Path) -> bool {
         let mut changed = false;
+        let key = self.selected;
+        if matches!(shape, ShapeDesc::Mesh { .. }) {
+            // A mesh loaded (typed here or dropped on the window): the question is answered.
+            self.mesh_prompt = None;
+        }
         let mut kind = shape.kind();
         if enum_combo(ui, "Shape", &mut kind) {
-            *shape = kind.default_desc();
-            // An empty mesh path builds nothing: wait for a path before re-rendering.
-            changed = !matches!(shape, ShapeDesc::Mesh { path, .. } if path.is_empty());
+            if kind == ShapeKind::Mesh {
+                self.mesh_prompt = Some((key, String::new()));
+            } else {
+                *shape = kind.default_desc();
+                self.mesh_prompt = None;
+                changed = true;
+            }
+        }
+        if let Some((k, mut text)) = self.mesh_prompt.take() {
+            if k == key {
+                let (loaded, keep) = mesh_prompt_ui(ui, shape, &mut text);
+                if keep {
+                    self.mesh_prompt = Some((k, text));
+                }
+                return changed | loaded;
+            }
+            self.mesh_prompt = Some((k, text));
         }
         match shape {
             ShapeDesc::Cylinder { capped } => {
@@ -62,11 +85,49 @@ impl ScenePanel {
                     .changed();
             }
             ShapeDesc::Mesh { path, shading } => {
-                changed |= path_field(ui, "mesh file", path, &mut self.mesh_text);
+                changed |= path_field(ui, "mesh file", path, &mut self.mesh_text, key, preset);
                 changed |= enum_combo(ui, "Shading", shading);
             }
             ShapeDesc::Sphere | ShapeDesc::Plane | ShapeDesc::Rectangle | ShapeDesc::Disk => {}
         }
         changed
     }
+}
+
+/// The question Shape -> Mesh asks: which file. "Load" (or Enter) makes the shape that mesh;
+/// "Cancel" keeps the shape it was. Returns whether the shape changed and whether to keep
+/// asking.
+fn mesh_prompt_ui(ui: &mut egui::Ui, shape: &mut ShapeDesc, text: &mut String) -> (bool, bool) {
+    let mut changed = false;
+    let mut cancel = false;
+    ui.label(format!(
+        "Which mesh? Type the path of a PLY or OBJ file (relative to the preset's folder) \
+         and Load, or drop one on the window. The {} stays until it loads.",
+        shape.kind().name().to_lowercase()
+    ));
+    ui.horizontal(|ui| {
+        let l = ui.label("mesh file");
+        let r = ui
+            .add(egui::TextEdit::singleline(text).desired_width(150.0))
+            .labelled_by(l.id)
+            .on_hover_text("Path relative to the preset's folder; Enter loads it");
+        let enter = r.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
+        let ready = !text.trim().is_empty();
+        let load = ui
+            .add_enabled(ready, egui::Button::new("Load"))
+            .on_hover_text("Load the mesh at this path")
+            .clicked();
+        if (load || enter) && ready {
+            *shape = ShapeDesc::Mesh {
+                path: text.trim().to_owned(),
+                shading: Shading::default(),
+            };
+            changed = true;
+        }
+        cancel = ui
+            .button("Cancel")
+            .on_hover_text("Keep the current shape")
+            .clicked();
+    });
+    (changed, !cancel)
 }

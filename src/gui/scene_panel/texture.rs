@@ -2,9 +2,9 @@
 //! path, filter, lookup, wrap and scale; a checker's squares and colours), with the list of
 //! images in `assets/`.
 
-use super::ScenePanel;
+use super::{PathText, ScenePanel};
 use crate::gui::widgets::{colour, enum_combo, number};
-use crate::scene::{TextureDesc, relative_asset_path};
+use crate::scene::{TextureDesc, TextureKind, relative_asset_path};
 use crate::texture::MAX_ANISOTROPY_LIMIT;
 use std::path::{Path, PathBuf};
 
@@ -61,14 +61,7 @@ impl ScenePanel {
         let mut changed = false;
         let mut kind = tex.kind();
         if enum_combo(ui, "Texture", &mut kind) {
-            *tex = tex.converted(kind);
-            if let TextureDesc::Image { path, .. } = tex
-                && let Some(first) = self.assets(preset).first()
-            {
-                // A new image texture starts on the first image in assets/.
-                let dir = preset.parent().unwrap_or(Path::new("."));
-                *path = relative_asset_path(first, dir);
-            }
+            *tex = self.switched(tex, kind, preset);
             self.path_text = None;
             changed = true;
         }
@@ -142,6 +135,43 @@ impl ScenePanel {
         changed
     }
 
+    /// `tex` as a texture of `kind` ([`TextureDesc::converted`]), except that an image comes
+    /// back as the object had it before it was switched away (its file, filter, wrap...), and
+    /// a first image starts on the first file in assets/.
+    fn switched(&mut self, tex: &TextureDesc, kind: TextureKind, preset: &Path) -> TextureDesc {
+        let dir = preset.parent().unwrap_or(Path::new("."));
+        if let TextureDesc::Image { path, .. } = tex {
+            let mut kept = tex.clone();
+            if let TextureDesc::Image { path: p, .. } = &mut kept {
+                let abs = dir.join(path);
+                *p = std::path::absolute(&abs)
+                    .unwrap_or(abs)
+                    .to_string_lossy()
+                    .into_owned();
+            }
+            self.last_image.insert(self.selected, kept);
+        }
+        let mut new = tex.converted(kind);
+        if kind != TextureKind::Image {
+            return new;
+        }
+        if let Some(mut earlier) = self.last_image.get(&self.selected).cloned() {
+            if let Some(m) = new.mapping() {
+                earlier.set_mapping(m);
+            }
+            if let TextureDesc::Image { path, .. } = &mut earlier {
+                *path = relative_asset_path(Path::new(path.as_str()), dir);
+            }
+            return earlier;
+        }
+        if let TextureDesc::Image { path, .. } = &mut new
+            && let Some(first) = self.assets(preset).first()
+        {
+            *path = relative_asset_path(first, dir);
+        }
+        new
+    }
+
     fn assets(&mut self, preset: &Path) -> &[PathBuf] {
         self.assets.get_or_insert_with(|| list_images(preset))
     }
@@ -151,12 +181,7 @@ impl ScenePanel {
         let key = self.selected;
         let dir = preset.parent().unwrap_or(Path::new(".")).to_path_buf();
         let assets = self.assets(preset).to_vec();
-        if self.path_text.as_ref().is_none_or(|(k, _)| *k != key) {
-            self.path_text = Some((key, path.clone()));
-        }
-        let Some((_, text)) = &mut self.path_text else {
-            return false;
-        };
+        let text = PathText::synced(&mut self.path_text, key, path, preset);
         ui.horizontal(|ui| {
             let l = ui.label("image");
             let r = ui

@@ -188,6 +188,48 @@ pub fn dolly(eye: Vec3, look_at: Vec3, scale: f32, min_distance: f32) -> Vec3 {
     look_at + offset * ((dist * scale).max(min_distance) / dist)
 }
 
+/// Zooming in stops when the gap between the eye and the surface in front of it is this
+/// fraction of the eye's distance to the look-at point (see [`zoom_toward_surface`]).
+pub const ZOOM_MIN_GAP: f32 = 0.05;
+
+/// Where zooming by `scale` (below 1 comes closer) puts the eye, when the nearest surface on
+/// the line from `eye` to `look_at` is `surface` away (`None`: nothing lies between them).
+///
+/// As viewers do, the zoom slows down near the surface and stops short of it: it scales the gap
+/// to that surface rather than the distance to the look-at point, so each wheel notch covers
+/// the same fraction of what is left and the eye never reaches the surface. Zooming in stops
+/// once the gap is [`ZOOM_MIN_GAP`] of the eye's distance to the look-at point (a unit sphere
+/// looked at from its centre: 0.053 above its surface), and never below 1e-4 of the
+/// coordinates' magnitude (at least 1e-4), where f32 positions stop telling the eye from the
+/// surface. With nothing in between, the distance to the look-at point scales as [`dolly`]
+/// does, down to 1e-3.
+#[must_use]
+pub fn zoom_toward_surface(eye: Vec3, look_at: Vec3, surface: Option<f32>, scale: f32) -> Vec3 {
+    let to_target = look_at - eye;
+    let dist = to_target.length();
+    if dist <= 0.0 || !dist.is_finite() || scale <= 0.0 || !scale.is_finite() {
+        return eye;
+    }
+    let Some(gap) = surface.filter(|t| t.is_finite() && *t >= 0.0 && *t <= dist) else {
+        return dolly(eye, look_at, scale, 1e-3);
+    };
+    // The look-at point lies `behind` past the surface: gap >= f (gap + behind), solved for gap.
+    let behind = dist - gap;
+    let magnitude = eye
+        .abs()
+        .max_element()
+        .max(look_at.abs().max_element())
+        .max(1.0);
+    let floor = (ZOOM_MIN_GAP * behind / (1.0 - ZOOM_MIN_GAP)).max(1e-4 * magnitude);
+    let new_gap = if scale < 1.0 {
+        // Never backwards: an eye already nearer than the floor stays where it is.
+        (gap * scale).max(floor.min(gap))
+    } else {
+        gap * scale
+    };
+    eye + to_target * ((gap - new_gap) / dist)
+}
+
 /// The world-space shift of eye and look-at that moves the view by (`dx`, `dy`) of the distance
 /// to the look-at point, along the camera's right and up axes.
 #[must_use]
@@ -293,5 +335,53 @@ mod tests {
         assert!((dolly(eye, Vec3::ZERO, 1e-9, 0.1).length() - 0.1).abs() < 1e-6);
         let p = pan_offset(eye, Vec3::ZERO, Vec3::Y, 0.25, 0.0);
         assert!((p - Vec3::new(1.0, 0.0, 0.0)).length() < 1e-5, "{p}");
+    }
+
+    #[test]
+    fn zoom_slows_down_near_the_surface_and_stops_short_of_it() {
+        // The unit sphere looked at from its centre, 3.6 away (the Earth preset).
+        let (mut eye, look_at) = (Vec3::new(0.0, 0.0, 3.6), Vec3::ZERO);
+        let gap = |e: Vec3| e.length() - 1.0;
+        let mut steps = Vec::new();
+        for _ in 0..200 {
+            let next = zoom_toward_surface(eye, look_at, Some(gap(eye)), 0.9);
+            steps.push((eye - next).length());
+            eye = next;
+        }
+        // Each notch covers 10 % of the gap left, so the steps shrink near the surface...
+        assert!((steps[0] - 0.26).abs() < 1e-5, "{}", steps[0]);
+        assert!(steps[10] < steps[0] * 0.4, "{steps:?}");
+        // ... and the eye stops 5 % of its distance to the centre above the surface.
+        let stop = 1.0 / (1.0 - ZOOM_MIN_GAP);
+        assert!((eye.length() - stop).abs() < 1e-4, "{eye}");
+        assert!(eye.x == 0.0 && eye.y == 0.0, "{eye}");
+        // Zooming out doubles the gap.
+        let out = zoom_toward_surface(eye, look_at, Some(gap(eye)), 2.0);
+        assert!((gap(out) - 2.0 * gap(eye)).abs() < 1e-5, "{out}");
+    }
+
+    #[test]
+    fn zoom_with_no_surface_before_the_look_at_point_goes_toward_it() {
+        let eye = Vec3::new(0.0, 0.0, 4.0);
+        // Nothing in between, or a surface past the look-at point: the distance halves.
+        for surface in [None, Some(6.0), Some(f32::INFINITY), Some(f32::NAN)] {
+            let e = zoom_toward_surface(eye, Vec3::ZERO, surface, 0.5);
+            assert!(
+                (e - Vec3::new(0.0, 0.0, 2.0)).length() < 1e-6,
+                "{surface:?}: {e}"
+            );
+        }
+        // The look-at point on the surface (a plane's): the eye stops 1e-4 above it.
+        let mut e = Vec3::new(0.0, 2.0, 0.0);
+        for _ in 0..500 {
+            e = zoom_toward_surface(e, Vec3::ZERO, Some(e.y), 0.9);
+        }
+        assert!(e.y >= 0.99e-4 && e.y < 1.1e-4, "{e}");
+        // Nothing to zoom toward, or no factor: the eye stays.
+        assert_eq!(zoom_toward_surface(eye, eye, Some(1.0), 0.5), eye);
+        assert_eq!(
+            zoom_toward_surface(eye, Vec3::ZERO, Some(1.0), f32::NAN),
+            eye
+        );
     }
 }

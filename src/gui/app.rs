@@ -263,7 +263,9 @@ impl ExplorerApp {
                 c.eye += shift;
                 c.look_at += shift;
             }
-            ViewEdit::Zoom(f) => c.eye = crate::camera::dolly(c.eye, c.look_at, f, 1e-3),
+            ViewEdit::Zoom(f) => {
+                c.eye = viewport::zoomed_eye(self.scene.as_deref(), c.eye, c.look_at, f);
+            }
             ViewEdit::Reset => {
                 if let Some(home) = self.home_camera {
                     *c = home;

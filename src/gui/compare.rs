@@ -270,6 +270,13 @@ pub struct SpeedPanel {
     error: Option<String>,
 }
 
+/// The colour of the `i`-th mode's curve: egui_plot's own automatic palette (hues a golden
+/// angle apart), given explicitly so a mode's line, points and legend entry share it.
+fn series_color(i: usize) -> egui::Color32 {
+    let hue = (i as f32 * (std::f32::consts::GOLDEN_RATIO - 1.0)).fract();
+    egui::ecolor::Hsva::new(hue, 0.85, 0.5, 1.0).into()
+}
+
 /// Sample counts measured per mode.
 const SPEED_SPP: [u32; 5] = [1, 2, 4, 8, 16];
 /// Resolution of the measurement renders.
@@ -392,11 +399,19 @@ impl SpeedPanel {
                     }
                 }
                 egui_plot::Plot::new("speed-error")
-                    .legend(egui_plot::Legend::default())
+                    .legend(
+                        // Small text in the bottom-left corner: fast and accurate, where no
+                        // mode's curve goes (curves fall from top left to bottom right), so the
+                        // eleven entries hide no point. In insertion order, the report's.
+                        egui_plot::Legend::default()
+                            .text_style(egui::TextStyle::Small)
+                            .position(egui_plot::Corner::LeftBottom)
+                            .follow_insertion_order(true),
+                    )
                     .x_axis_label("log10 time (ms)")
                     .y_axis_label("log10 RMSE")
                     .show(ui, |plot| {
-                        for mode in &modes {
+                        for (i, mode) in modes.iter().enumerate() {
                             let pts: Vec<[f64; 2]> = self
                                 .rows
                                 .iter()
@@ -411,8 +426,16 @@ impl SpeedPanel {
                             if pts.is_empty() {
                                 continue;
                             }
-                            plot.line(egui_plot::Line::new(mode.name(), pts.clone()));
-                            plot.points(egui_plot::Points::new(mode.name(), pts).radius(3.0));
+                            // One colour for the mode's line, points and legend entry: left
+                            // automatic, egui_plot gives the line and the points two colours
+                            // and draws their shared legend entry grey.
+                            let color = series_color(i);
+                            plot.line(egui_plot::Line::new(mode.name(), pts.clone()).color(color));
+                            plot.points(
+                                egui_plot::Points::new(mode.name(), pts)
+                                    .radius(3.0)
+                                    .color(color),
+                            );
                         }
                     });
             });

@@ -4,8 +4,14 @@
 
 use super::compare::AbSplit;
 use super::widgets::enum_combo;
-use crate::math::Vec2;
+use crate::math::{Ray, Vec2, Vec3};
+use crate::scene::Scene;
 use crate::texture::View;
+
+/// The accessible name of the viewport's image (the A/B pair's too).
+pub const IMAGE_LABEL: &str = "Rendered image";
+/// The accessible name of the A/B divider (a slider: its value is the fraction left of it).
+pub const DIVIDER_LABEL: &str = "A/B divider";
 
 /// A camera edit asked for by the pointer.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -35,6 +41,26 @@ pub struct ViewOutput {
 
 /// Wheel points to a zoom factor: one notch (about 50 points) is 10 %.
 const ZOOM_PER_POINT: f32 = 0.002;
+
+/// The eye after zooming by `scale` (below 1 comes closer) toward `look_at`.
+///
+/// One ray from the eye toward the look-at point finds the nearest surface in front of it
+/// ([`Scene::intersect`], so any scene works: spheres, planes, meshes), and
+/// [`crate::camera::zoom_toward_surface`] scales the gap to that surface instead of the
+/// distance to the look-at point, stopping 5 % of that distance short of it. A ray rather than
+/// the scene's bounds: a plane's bounds are infinite and a mesh's far too loose, while the
+/// surface the eye would run into is exactly the one on that line. Without a scene the zoom
+/// goes toward the look-at point as before.
+#[must_use]
+pub fn zoomed_eye(scene: Option<&Scene>, eye: Vec3, look_at: Vec3, scale: f32) -> Vec3 {
+    let dir = (look_at - eye).normalize_or_zero();
+    let surface = scene.filter(|_| dir != Vec3::ZERO).and_then(|s| {
+        // A unit direction, so the hit's t is the distance.
+        let ray = Ray::new(eye.into(), dir.into());
+        s.intersect(&ray, f32::INFINITY).map(|(_, hit)| hit.t)
+    });
+    crate::camera::zoom_toward_surface(eye, look_at, surface, scale)
+}
 
 fn toolbar(ui: &mut egui::Ui, out: &mut ViewOutput, view: Option<&mut View>) {
     ui.horizontal(|ui| {
@@ -77,6 +103,7 @@ fn interact(
     out: &mut ViewOutput,
 ) -> egui::Response {
     let response = ui.allocate_rect(rect, egui::Sense::click_and_drag());
+    response.widget_info(|| egui::WidgetInfo::labeled(egui::Role::Image, true, IMAGE_LABEL));
     let to_film = |p: egui::Pos2| {
         let f = (p - rect.min) / rect.size();
         Vec2::new(f.x * size.x, f.y * size.y)
@@ -149,10 +176,12 @@ pub fn show_split(
         return out;
     };
     let rect = fit(avail, size);
-    // The divider first, so it wins the drag over the orbit.
-    let x = rect.left() + rect.width() * ab.split;
+    // The images first, the divider after: egui gives a drag to the topmost widget under the
+    // pointer, and a widget registered later lies on top. Registered the other way round (as
+    // before issue 16), the images took every drag, the camera orbited and the divider stayed.
+    interact(ui, rect, size, &mut out);
     let handle = egui::Rect::from_center_size(
-        egui::pos2(x, rect.center().y),
+        egui::pos2(rect.left() + rect.width() * ab.split, rect.center().y),
         egui::vec2(12.0, rect.height()),
     );
     let divider = ui
@@ -162,9 +191,14 @@ pub fn show_split(
             egui::Sense::drag(),
         )
         .on_hover_cursor(egui::CursorIcon::ResizeHorizontal);
-    if divider.dragged() {
-        ab.split = (ab.split + divider.drag_delta().x / rect.width()).clamp(0.0, 1.0);
+    divider.widget_info(|| egui::WidgetInfo::slider(true, f64::from(ab.split), DIVIDER_LABEL));
+    if divider.dragged()
+        && let Some(p) = divider.interact_pointer_pos()
+    {
+        // Under the pointer, wherever the drag started on the handle.
+        ab.split = ((p.x - rect.left()) / rect.width()).clamp(0.0, 1.0);
     }
+    let x = rect.left() + rect.width() * ab.split;
     let left = egui::Rect::from_min_max(rect.min, egui::pos2(x, rect.max.y));
     let right = egui::Rect::from_min_max(egui::pos2(x, rect.min.y), rect.max);
     let painter = ui.painter();
@@ -210,9 +244,6 @@ pub fn show_split(
             egui::Color32::from_black_alpha(160),
         );
         painter.text(anchor, align, text, font.clone(), egui::Color32::WHITE);
-    }
-    if !divider.dragged() && !divider.hovered() {
-        interact(ui, rect, size, &mut out);
     }
     out
 }

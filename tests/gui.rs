@@ -1,48 +1,20 @@
 //! The window, headless: `egui_kittest` drives the real app and renders it with wgpu (Mesa's
 //! lavapipe on a machine without a GPU). Small renders keep these quick.
 
+#[path = "common/gui.rs"]
+mod gui_common;
+
 use egui::accesskit::Role;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable as _;
-use std::path::{Path, PathBuf};
+use gui_common::{WINDOW, harness, settle, small_earth};
 use strum::VariantArray;
-use texplore::gui::{AppOptions, ExplorerApp};
+use texplore::gui::ExplorerApp;
 use texplore::mapping::Mapping;
 use texplore::names::Named;
 use texplore::sampler::PixelSampler;
-use texplore::scene::{
-    LightKind, MaterialKind, ProjectionKind, ShapeKind, TextureDesc, TextureKind, load_preset,
-    save_preset,
-};
+use texplore::scene::{LightKind, MaterialKind, ProjectionKind, ShapeKind, TextureKind};
 use texplore::texture::{Filter, Lookup, View, Wrap};
-
-const WINDOW: [f32; 2] = [1280.0, 800.0];
-
-/// The Earth preset at 160 x 120 and 4 spp, written to `dir` with a copy of its texture (so
-/// the paths the window shows are the same on every machine).
-fn small_earth(dir: &Path) -> PathBuf {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let mut desc = load_preset(&root.join("presets/earth.ron")).expect("earth preset");
-    desc.render.width = 160;
-    desc.render.height = 120;
-    desc.render.spp = 4;
-    let texture = "earth_2048x1024.jpg";
-    std::fs::copy(root.join("assets").join(texture), dir.join(texture)).expect("copy texture");
-    if let TextureDesc::Image { path, .. } = desc.objects[0].material.texture_mut() {
-        texture.clone_into(path);
-    }
-    let path = dir.join("earth-small.ron");
-    save_preset(&desc, &path).expect("write preset");
-    path
-}
-
-fn harness(path: PathBuf) -> Harness<'static, ExplorerApp> {
-    let mut h = Harness::builder()
-        .with_size(WINDOW)
-        .build_eframe(move |_cc| ExplorerApp::with_options(path, AppOptions::default()));
-    settle(&mut h);
-    h
-}
 
 /// Picks the cylindrical mapping in the texture's combo box, as a user would, and lets the
 /// render finish.
@@ -51,18 +23,6 @@ fn choose_cylindrical_mapping(h: &mut Harness<'_, ExplorerApp>) {
     h.run_steps(3);
     h.get_by_label("cylindrical").click();
     settle(h);
-}
-
-/// Lets the render finish and the UI catch up with its last image.
-fn settle(h: &mut Harness<'_, ExplorerApp>) {
-    for _ in 0..3 {
-        h.step();
-        h.state()
-            .wait_for_render(std::time::Duration::from_mins(2))
-            .expect("the render ends");
-    }
-    h.step();
-    h.step();
 }
 
 fn texture_mapping(app: &ExplorerApp) -> Option<Mapping> {

@@ -3,17 +3,19 @@
 //! Shape -> Mesh asks for the file before it changes the shape, and switching a texture away
 //! from Image and back keeps the image.
 
+#[path = "common/gui.rs"]
+mod gui_common;
+
 use egui::accesskit::Role;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable as _;
+use gui_common::{harness, settle};
 use std::path::{Path, PathBuf};
-use texplore::gui::{AppOptions, ExplorerApp};
+use texplore::gui::ExplorerApp;
 use texplore::names::Named;
 use texplore::scene::{
     SceneDesc, ShapeDesc, ShapeKind, TextureDesc, TextureKind, load_preset, save_preset,
 };
-
-const WINDOW: [f32; 2] = [1280.0, 800.0];
 
 fn root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -59,26 +61,6 @@ fn copy_knot(dir: &Path) -> PathBuf {
     let to = dir.join("assets/torus-knot.ply");
     std::fs::copy(root().join("assets/torus-knot.ply"), &to).expect("copy mesh");
     to
-}
-
-fn harness(path: PathBuf) -> Harness<'static, ExplorerApp> {
-    let mut h = Harness::builder()
-        .with_size(WINDOW)
-        .build_eframe(move |_cc| ExplorerApp::with_options(path, AppOptions::default()));
-    settle(&mut h);
-    h
-}
-
-/// Lets the render finish and the UI catch up with its last image.
-fn settle(h: &mut Harness<'_, ExplorerApp>) {
-    for _ in 0..3 {
-        h.step();
-        h.state()
-            .wait_for_render(std::time::Duration::from_mins(2))
-            .expect("the render ends");
-    }
-    h.step();
-    h.step();
 }
 
 /// What the text field labelled `label` shows.

@@ -1,36 +1,22 @@
 //! The viewport, the A/B divider and the speed panel's legend, driven headless with
 //! `egui_kittest` as a user would (pointer, wheel, menus) and checked on what the window shows.
 
+#[path = "common/gui.rs"]
+mod gui_common;
+
 use egui::accesskit::Role;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable as _;
-use std::path::{Path, PathBuf};
+use gui_common::{WINDOW, small_earth};
+use std::path::PathBuf;
 use std::time::{Duration, Instant};
 use texplore::gui::{AppOptions, ExplorerApp};
 use texplore::report::Mode;
-use texplore::scene::{CameraDesc, TextureDesc, load_preset, save_preset};
+use texplore::scene::CameraDesc;
 
-const WINDOW: [f32; 2] = [1280.0, 800.0];
 /// The accessible names the viewport gives its image and the A/B divider.
 const IMAGE: &str = "Rendered image";
 const DIVIDER: &str = "A/B divider";
-
-/// The Earth preset at 160 x 120 and 4 spp, written to `dir` with a copy of its texture.
-fn small_earth(dir: &Path) -> PathBuf {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let mut desc = load_preset(&root.join("presets/earth.ron")).expect("earth preset");
-    desc.render.width = 160;
-    desc.render.height = 120;
-    desc.render.spp = 4;
-    let texture = "earth_2048x1024.jpg";
-    std::fs::copy(root.join("assets").join(texture), dir.join(texture)).expect("copy texture");
-    if let TextureDesc::Image { path, .. } = desc.objects[0].material.texture_mut() {
-        texture.clone_into(path);
-    }
-    let path = dir.join("earth-small.ron");
-    save_preset(&desc, &path).expect("write preset");
-    path
-}
 
 fn harness(path: PathBuf) -> Harness<'static, ExplorerApp> {
     let mut h = Harness::builder()

@@ -1,0 +1,55 @@
+//! Helpers the window's tests share (`tests/gui*.rs`): a small Earth preset, the harness that
+//! opens the real app on it, and waiting for its render. A window test declares
+//! `#[path = "common/gui.rs"] mod gui_common;` (kept out of `common/mod.rs` so the other test
+//! crates do not build the window).
+
+// Each test file is its own crate and uses a subset of these.
+#![allow(dead_code)]
+
+use egui_kittest::Harness;
+use std::path::{Path, PathBuf};
+use texplore::gui::{AppOptions, ExplorerApp};
+use texplore::scene::{TextureDesc, load_preset, save_preset};
+
+/// The window size every test opens.
+pub const WINDOW: [f32; 2] = [1280.0, 800.0];
+
+/// The Earth preset at 160 x 120 and 4 spp, written to `dir` with a copy of its texture (so
+/// the paths the window shows are the same on every machine).
+pub fn small_earth(dir: &Path) -> PathBuf {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut desc = load_preset(&root.join("presets/earth.ron")).expect("earth preset");
+    desc.render.width = 160;
+    desc.render.height = 120;
+    desc.render.spp = 4;
+    let texture = "earth_2048x1024.jpg";
+    std::fs::copy(root.join("assets").join(texture), dir.join(texture)).expect("copy texture");
+    if let TextureDesc::Image { path, .. } = desc.objects[0].material.texture_mut() {
+        texture.clone_into(path);
+    }
+    let path = dir.join("earth-small.ron");
+    save_preset(&desc, &path).expect("write preset");
+    path
+}
+
+/// The app on the preset at `path`, in a [`WINDOW`]-sized harness, with its first render done.
+pub fn harness(path: PathBuf) -> Harness<'static, ExplorerApp> {
+    let mut h = Harness::builder()
+        .with_size(WINDOW)
+        .build_eframe(move |_cc| ExplorerApp::with_options(path, AppOptions::default()));
+    settle(&mut h);
+    h
+}
+
+/// Lets the render finish (within two minutes, or the test fails) and the UI catch up with its
+/// last image.
+pub fn settle(h: &mut Harness<'_, ExplorerApp>) {
+    for _ in 0..3 {
+        h.step();
+        h.state()
+            .wait_for_render(std::time::Duration::from_mins(2))
+            .expect("the render ends");
+    }
+    h.step();
+    h.step();
+}

@@ -243,8 +243,10 @@ where
         .file_name()
         .map_or_else(|| "out".into(), |n| n.to_string_lossy().into_owned());
     let prefix = format!(".{name}.");
+    // `.NAME.<12 random characters>.tmp`, created with O_EXCL: never a name a user's file or a
+    // planted symlink can already hold (a clash is retried with new characters).
     let mut builder = tempfile::Builder::new();
-    builder.prefix(&prefix).suffix(".tmp");
+    builder.prefix(&prefix).rand_bytes(12).suffix(".tmp");
     #[cfg(unix)]
     {
         use std::os::unix::fs::PermissionsExt;

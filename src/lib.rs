@@ -12,6 +12,7 @@ pub mod error;
 pub mod geometry;
 pub mod input;
 pub mod inspect;
+pub mod lesson;
 pub mod mapping;
 pub mod material;
 pub mod math;

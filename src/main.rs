@@ -1,11 +1,14 @@
 //! The `texplore` binary: no subcommand opens the window; subcommands run headless.
 
 use clap::Parser;
-use texplore::cli::{Cli, run};
+use texplore::cli::{Cli, Command, run};
 
 fn main() -> std::process::ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
+        Some(Command::Lesson(a)) => {
+            texplore::cli::lesson::run(&a).and_then(|l| l.map_or(Ok(()), open_lesson))
+        }
         Some(command) => run(command),
         None => open_window(cli.open),
     };
@@ -21,6 +24,19 @@ fn main() -> std::process::ExitCode {
 #[cfg(feature = "gui")]
 fn open_window(open: Option<std::path::PathBuf>) -> anyhow::Result<()> {
     texplore::gui::run(open)
+}
+
+#[cfg(feature = "gui")]
+fn open_lesson(lesson: texplore::lesson::Lesson) -> anyhow::Result<()> {
+    texplore::gui::run_lesson(lesson)
+}
+
+#[cfg(not(feature = "gui"))]
+fn open_lesson(lesson: texplore::lesson::Lesson) -> anyhow::Result<()> {
+    anyhow::bail!(
+        "{}: this texplore was built without the `gui` feature, so it cannot open a lesson",
+        lesson.file.display()
+    )
 }
 
 #[cfg(not(feature = "gui"))]

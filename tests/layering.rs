@@ -30,7 +30,8 @@ const LAYERS: &[&[&str]] = &[
     // Both import only `math` (and `names`); the scene builds them and the renderer drives them.
     &["camera", "sampler"],
     &["scene"],
-    &["render"],
+    // Lessons edit presets (`scene`) and need nothing of the renderer.
+    &["render", "lesson"],
     // Tools over the renderer: speed against error, golden images, light-probe conversion, the
     // fuzz entry points.
     &["report", "snapshot", "probe", "robustness"],

@@ -2,6 +2,7 @@
 //! same scenes headless. One file per subcommand.
 
 mod bench;
+pub mod lesson;
 mod map;
 mod mesh_info;
 mod probe;
@@ -45,6 +46,8 @@ pub enum Command {
     MeshInfo(mesh_info::MeshInfoArgs),
     /// Speed against error: time each antialiasing mode and measure its error against a reference.
     Report(report::ReportArgs),
+    /// Open the window on a guided lesson (`lessons/*.toml`), or list them with `--list`.
+    Lesson(lesson::LessonArgs),
 }
 
 /// Runs a subcommand.
@@ -63,6 +66,11 @@ pub fn run(command: Command) -> Result<()> {
         Command::Bench(a) => bench::run(&a),
         Command::MeshInfo(a) => mesh_info::run(&a),
         Command::Report(a) => report::run(&a),
+        // The binary opens the window on the lesson; here only the list can be shown.
+        Command::Lesson(a) => match lesson::run(&a)? {
+            None => Ok(()),
+            Some(l) => anyhow::bail!("{}: opening a lesson needs the window", l.file.display()),
+        },
     }
 }
 

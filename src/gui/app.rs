@@ -4,6 +4,7 @@
 use super::compare::{AbSplit, SpeedPanel};
 use super::files::{FileAction, Files};
 use super::inspector::Inspector;
+use super::lessons::{LessonAction, LessonsPanel};
 use super::live::LiveImage;
 use super::scene_panel::ScenePanel;
 use super::viewport::{self, ViewEdit};
@@ -21,6 +22,8 @@ const FRAME_INTERVAL: std::time::Duration = std::time::Duration::from_millis(33)
 pub struct AppOptions {
     /// Where the recent-files list is kept (`None`: not kept, as in tests).
     pub recent_file: Option<PathBuf>,
+    /// Start on this lesson (its preset, the Lessons panel open on it).
+    pub lesson: Option<crate::lesson::Lesson>,
 }
 
 /// The explorer: the scene being edited, the render job showing it, and the panels.
@@ -49,6 +52,7 @@ pub struct ExplorerApp {
     pub(super) ab: AbSplit,
     pub(super) speed: SpeedPanel,
     pub(super) files: Files,
+    pub(super) lessons: LessonsPanel,
     /// Running mean of the time between frames while rendering (seconds).
     frame_time: f32,
     /// Running mean of the time `ui()` itself takes (seconds): the rest of a frame is painting.
@@ -83,9 +87,15 @@ impl ExplorerApp {
             ab: AbSplit::default(),
             speed: SpeedPanel::default(),
             files: Files::new(options.recent_file),
+            lessons: LessonsPanel::default(),
             frame_time: FRAME_INTERVAL.as_secs_f32(),
             layout_time: 0.0,
         };
+        if let Some(lesson) = &options.lesson {
+            let dir = lesson.file.parent().unwrap_or(Path::new("."));
+            app.lessons = LessonsPanel::new(dir.to_path_buf());
+            app.lessons.start(&lesson.name);
+        }
         let path = app.path.clone();
         app.open_file(&path);
         app
@@ -94,6 +104,11 @@ impl ExplorerApp {
     /// Opens a preset or a texplore PNG, replacing the scene; on an error the current scene
     /// stays and the message shows.
     pub fn open_file(&mut self, path: &Path) {
+        let ok = self.open_file_inner(path);
+        self.lessons.opened(path, ok, self.desc.as_ref());
+    }
+
+    fn open_file_inner(&mut self, path: &Path) -> bool {
         match read_preset_or_png(path) {
             Ok(desc) => {
                 // Try the new scene; if it does not build (a missing image), keep the old one.
@@ -106,13 +121,18 @@ impl ExplorerApp {
                     self.scene_panel.scene_replaced();
                     self.inspector.clear();
                     self.files.add_recent(path);
+                    true
                 } else {
                     self.desc = old_desc;
                     self.good_desc = old_good;
                     self.path = old_path;
+                    false
                 }
             }
-            Err(e) => self.error = Some(e.to_string()),
+            Err(e) => {
+                self.error = Some(e.to_string());
+                false
+            }
         }
     }
 
@@ -358,6 +378,7 @@ impl ExplorerApp {
                     (&mut self.inspector.open, "Inspector"),
                     (&mut self.ab.enabled, "A/B split"),
                     (&mut self.speed.open, "Speed and error"),
+                    (&mut self.lessons.open, "Lessons"),
                 ],
             );
         });
@@ -406,6 +427,28 @@ impl ExplorerApp {
         }
         if self.ab.enabled != ab_before {
             self.restart();
+        }
+
+        if self.lessons.open {
+            let dirty = self.is_dirty();
+            let action = egui::Panel::right("lessons")
+                .default_size(380.0)
+                .resizable(true)
+                .show(ui, |ui| self.lessons.ui(ui, self.desc.as_ref(), dirty))
+                .inner;
+            match action {
+                Some(LessonAction::Open { preset, force: true }) => self.open_file(&preset),
+                Some(LessonAction::Open { preset, .. }) => {
+                    self.files.request_open(preset);
+                    ctx.request_repaint();
+                }
+                Some(LessonAction::Apply(d)) => {
+                    self.desc = Some(d);
+                    self.restart();
+                }
+                Some(LessonAction::Error(e)) => self.error = Some(e),
+                None => {}
+            }
         }
 
         if self.inspector.open {

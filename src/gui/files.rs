@@ -250,6 +250,12 @@ impl Files {
         out
     }
 
+    /// Opens `path` as the Open menu does: through the unsaved-changes prompt if the scene
+    /// has changes.
+    pub fn request_open(&mut self, path: PathBuf) {
+        self.requested = Some(Pending::Open(path));
+    }
+
     /// Whether a close must be cancelled to ask about unsaved changes first.
     pub fn close_requested(&mut self, ctx: &egui::Context, dirty: bool) -> bool {
         let asked = ctx.input(|i| i.viewport().close_requested());

@@ -6,6 +6,7 @@ mod app;
 mod compare;
 mod files;
 mod inspector;
+mod lessons;
 mod live;
 mod scene_panel;
 mod viewport;
@@ -24,6 +25,19 @@ pub const DEFAULT_PRESET: &str = "presets/earth.ron";
 /// # Errors
 /// The window cannot be created (no display, no GPU adapter).
 pub fn run(open: Option<PathBuf>) -> anyhow::Result<()> {
+    let path = open.unwrap_or_else(|| PathBuf::from(DEFAULT_PRESET));
+    run_app(path, None)
+}
+
+/// Opens the window on `lesson`: its preset, with the Lessons panel open on it.
+///
+/// # Errors
+/// The window cannot be created (no display, no GPU adapter).
+pub fn run_lesson(lesson: crate::lesson::Lesson) -> anyhow::Result<()> {
+    run_app(lesson.preset.clone(), Some(lesson))
+}
+
+fn run_app(path: PathBuf, lesson: Option<crate::lesson::Lesson>) -> anyhow::Result<()> {
     let options = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()
             .with_title("texplore")
@@ -33,9 +47,9 @@ pub fn run(open: Option<PathBuf>) -> anyhow::Result<()> {
         renderer: eframe::Renderer::Wgpu,
         ..Default::default()
     };
-    let path = open.unwrap_or_else(|| PathBuf::from(DEFAULT_PRESET));
     let app_options = AppOptions {
         recent_file: config_dir().map(|d| d.join("recent.ron")),
+        lesson,
     };
     eframe::run_native(
         "texplore",

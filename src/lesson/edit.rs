@@ -1,0 +1,545 @@
+//! Generic edits of a preset: a path into the [`SceneDesc`] (`objects[0].material.cd.mapping`)
+//! and a value in the preset's own RON syntax (`Cylindrical`, `(0, 1, 4)`).
+//!
+//! The description is serialised to a `serde_json` tree only to find where the path goes;
+//! the new description is then deserialised from that tree through [`Splice`], a deserializer
+//! that hands the one value at the path to RON's deserializer. `SceneDesc`'s own `Deserialize`
+//! drives both, so the value is parsed as exactly the type the field has (an enum variant, a
+//! point, a number), every field of every preset works, including fields added later, and a
+//! value that does not fit gets the preset parser's own message.
+
+use crate::scene::{SceneDesc, check_numbers};
+use serde::de::{self, DeserializeSeed, Deserializer, IntoDeserializer, Visitor};
+use serde_json::Value;
+use std::fmt;
+
+/// One step of a path: a field (or enum variant) name, or an index into a list.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Step {
+    /// `.name`
+    Field(String),
+    /// `[n]`
+    Index(usize),
+}
+
+impl fmt::Display for Step {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Field(name) => f.write_str(name),
+            Self::Index(i) => write!(f, "[{i}]"),
+        }
+    }
+}
+
+/// Splits `objects[0].material.cd.mapping` into steps.
+///
+/// # Errors
+/// An empty path, an empty name (`a..b`), or a bad index (`objects[x]`), with the reason.
+pub fn parse_path(path: &str) -> Result<Vec<Step>, String> {
+    let mut steps = Vec::new();
+    if path.trim().is_empty() {
+        return Err("the path is empty".into());
+    }
+    for part in path.split('.') {
+        let (name, mut rest) = part.find('[').map_or((part, ""), |i| part.split_at(i));
+        let name = name.trim();
+        if !name.is_empty() {
+            if !name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') {
+                return Err(format!("`{name}` in `{path}` is not a field name"));
+            }
+            steps.push(Step::Field(name.to_owned()));
+        } else if rest.is_empty() || steps.is_empty() && !rest.is_empty() {
+            return Err(format!("`{path}` has an empty name"));
+        }
+        while !rest.is_empty() {
+            let Some(close) = rest.find(']').filter(|_| rest.starts_with('[')) else {
+                return Err(format!("`{path}`: expected `[number]` after `{name}`"));
+            };
+            let index = rest[1..close].trim();
+            let i = index
+                .parse::<usize>()
+                .map_err(|_| format!("`{path}`: `[{index}]` is not an index (0, 1, 2, ...)"))?;
+            steps.push(Step::Index(i));
+            rest = &rest[close + 1..];
+        }
+    }
+    Ok(steps)
+}
+
+/// Writes steps back as a path (`objects[0].material`).
+#[must_use]
+pub fn path_text(steps: &[Step]) -> String {
+    let mut s = String::new();
+    for step in steps {
+        if matches!(step, Step::Field(_)) && !s.is_empty() {
+            s.push('.');
+        }
+        s.push_str(&step.to_string());
+    }
+    s
+}
+
+/// The single-key object `{"Variant": ...}` serde writes for an enum's data variant.
+fn variant_of(map: &serde_json::Map<String, Value>) -> Option<&str> {
+    let mut keys = map.keys();
+    match (keys.next(), keys.next()) {
+        (Some(k), None) if k.starts_with(|c: char| c.is_ascii_uppercase()) => Some(k.as_str()),
+        _ => None,
+    }
+}
+
+/// Follows `steps` through the serialised description, stepping into enum variants the path
+/// does not name (`material.cd` means `material.Matte.cd` on a matte material). Returns the
+/// explicit steps. The last field may be absent from the tree (a field left at its default is
+/// not written); whether it exists is then up to the type's deserializer.
+fn resolve(tree: &Value, steps: &[Step]) -> Result<Vec<Step>, String> {
+    let mut out: Vec<Step> = Vec::new();
+    let mut node = tree;
+    for (i, step) in steps.iter().enumerate() {
+        let last = i + 1 == steps.len();
+        loop {
+            let here = || {
+                if out.is_empty() {
+                    "the scene".to_owned()
+                } else {
+                    format!("`{}`", path_text(&out))
+                }
+            };
+            match (step, node) {
+                (Step::Field(name), Value::Object(map)) => {
+                    if let Some(next) = map.get(name) {
+                        out.push(step.clone());
+                        node = next;
+                        break;
+                    }
+                    if let Some(variant) = variant_of(map) {
+                        out.push(Step::Field(variant.to_owned()));
+                        node = &map[variant];
+                        continue;
+                    }
+                    if last {
+                        out.push(step.clone());
+                        return Ok(out);
+                    }
+                    let fields: Vec<&str> = map.keys().map(String::as_str).collect();
+                    return Err(format!(
+                        "{} has no field `{name}` (it has {})",
+                        here(),
+                        fields.join(", ")
+                    ));
+                }
+                (Step::Index(n), Value::Array(items)) => {
+                    let Some(next) = items.get(*n) else {
+                        return Err(format!(
+                            "{} has {} item(s), so [{n}] is not one of them",
+                            here(),
+                            items.len()
+                        ));
+                    };
+                    out.push(step.clone());
+                    node = next;
+                    break;
+                }
+                (Step::Index(_), Value::Object(map)) if variant_of(map).is_some() => {
+                    let variant = variant_of(map).unwrap_or_default().to_owned();
+                    node = &map[&variant];
+                    out.push(Step::Field(variant));
+                }
+                (_, Value::Null) => {
+                    return Err(format!(
+                        "{} is None: set it whole, e.g. `Some(...)`",
+                        here()
+                    ));
+                }
+                (Step::Field(name), Value::String(s)) => {
+                    return Err(format!("{} is `{s}`, which has no field `{name}`", here()));
+                }
+                (Step::Field(name), _) => {
+                    return Err(format!("{} is a value, not something with a field `{name}`", here()));
+                }
+                (Step::Index(n), _) => {
+                    return Err(format!("{} is not a list, so it has no item [{n}]", here()));
+                }
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// The preset with the value at `path` replaced by `ron_value` (RON, as in a preset file).
+///
+/// # Errors
+/// The path does not lead into the preset ("`objects` has 1 item(s), so [3] is not one of
+/// them"), the value does not fit the field (RON's message: "Expected ..."), or it is not a
+/// finite number where one is needed. The message names the path.
+pub fn set_path(desc: &SceneDesc, path: &str, ron_value: &str) -> Result<SceneDesc, String> {
+    let steps = parse_path(path)?;
+    let tree = serde_json::to_value(desc).map_err(|e| e.to_string())?;
+    let explicit = resolve(&tree, &steps)?;
+    let new = SceneDesc::deserialize(Splice {
+        value: tree,
+        path: Some(&explicit),
+        raw: ron_value,
+    })
+    .map_err(|e| format!("`{path}` = {ron_value}: {}", e.0))?;
+    check_numbers(&new).map_err(|m| format!("`{path}` = {ron_value}: {m}"))?;
+    Ok(new)
+}
+
+use serde::Deserialize;
+
+/// The serialised value at `path` (`None` if the path does not lead anywhere): what a test or
+/// the window compares to see that an edit took effect.
+#[must_use]
+pub fn value_at(desc: &SceneDesc, path: &str) -> Option<Value> {
+    let steps = parse_path(path).ok()?;
+    let tree = serde_json::to_value(desc).ok()?;
+    let explicit = resolve(&tree, &steps).ok()?;
+    let mut node = &tree;
+    for step in &explicit {
+        node = match step {
+            Step::Field(f) => node.get(f)?,
+            Step::Index(i) => node.get(i)?,
+        };
+    }
+    Some(node.clone())
+}
+
+/// A deserialisation error: the message only (the caller names the file and line).
+#[derive(Debug)]
+pub struct SpliceError(String);
+
+impl fmt::Display for SpliceError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for SpliceError {}
+
+impl de::Error for SpliceError {
+    fn custom<T: fmt::Display>(msg: T) -> Self {
+        Self(msg.to_string())
+    }
+}
+
+fn json_err(e: serde_json::Error) -> SpliceError {
+    SpliceError(e.to_string())
+}
+
+/// A serialised value to deserialise again, with the part of the path still to follow:
+/// `None` off the path (the value as it was), `Some([])` at the target (parse `raw` as RON).
+struct Splice<'a, 'de> {
+    value: Value,
+    path: Option<&'a [Step]>,
+    raw: &'de str,
+}
+
+impl<'de> Splice<'_, 'de> {
+    /// Parses the RON text with the visitor of the target's type, requiring all of it used.
+    fn ron<V, F>(raw: &'de str, f: F) -> Result<V, SpliceError>
+    where
+        F: FnOnce(&mut ron::Deserializer<'de>) -> Result<V, ron::Error>,
+    {
+        let mut de = ron::Deserializer::from_str(raw).map_err(|e| SpliceError(e.to_string()))?;
+        let position = |de: &ron::Deserializer<'de>, e: ron::Error| {
+            let spanned = de.span_error(e);
+            let col = spanned.span.start.col;
+            SpliceError(format!("{} (at character {col} of the value)", spanned.code))
+        };
+        let v = f(&mut de).map_err(|e| position(&de, e))?;
+        de.end().map_err(|e| position(&de, e))?;
+        Ok(v)
+    }
+
+    /// On the path, not at its end: the next step's map, list or variant.
+    fn descend<V: Visitor<'de>>(self, rest: &[Step], visitor: V) -> Result<V::Value, SpliceError> {
+        match self.value {
+            Value::Object(map) => {
+                let mut entries: Vec<(String, Value)> = map.into_iter().collect();
+                let absent = matches!(&rest[0], Step::Field(f) if !entries.iter().any(|(k, _)| k == f));
+                if let (true, Step::Field(f)) = (absent, &rest[0]) {
+                    entries.push((f.clone(), Value::Null));
+                }
+                visitor.visit_map(SpliceMap {
+                    entries: entries.into_iter(),
+                    pending: None,
+                    path: rest,
+                    raw: self.raw,
+                })
+            }
+            Value::Array(items) => visitor.visit_seq(SpliceSeq {
+                items: items.into_iter().enumerate(),
+                path: rest,
+                raw: self.raw,
+            }),
+            other => Err(SpliceError(format!("cannot go into {other}"))),
+        }
+    }
+}
+
+macro_rules! forward {
+    ($($method:ident $(($($arg:ident: $ty:ty),*))?;)*) => {
+        $(
+            fn $method<V: Visitor<'de>>(self, $($($arg: $ty,)*)? visitor: V) -> Result<V::Value, SpliceError> {
+                match self.path {
+                    None => self.value.$method($($($arg,)*)? visitor).map_err(json_err),
+                    Some([]) => Self::ron(self.raw, |de| de.$method($($($arg,)*)? visitor)),
+                    Some(rest) => self.descend(rest, visitor),
+                }
+            }
+        )*
+    };
+}
+
+impl<'de> Deserializer<'de> for Splice<'_, 'de> {
+    type Error = SpliceError;
+
+    forward! {
+        deserialize_any; deserialize_bool; deserialize_i8; deserialize_i16; deserialize_i32;
+        deserialize_i64; deserialize_u8; deserialize_u16; deserialize_u32; deserialize_u64;
+        deserialize_f32; deserialize_f64; deserialize_char; deserialize_str; deserialize_string;
+        deserialize_bytes; deserialize_byte_buf; deserialize_unit; deserialize_seq;
+        deserialize_map; deserialize_identifier; deserialize_ignored_any;
+        deserialize_unit_struct(name: &'static str);
+        deserialize_tuple(len: usize);
+        deserialize_tuple_struct(name: &'static str, len: usize);
+        deserialize_struct(name: &'static str, fields: &'static [&'static str]);
+    }
+
+    fn deserialize_option<V: Visitor<'de>>(self, visitor: V) -> Result<V::Value, SpliceError> {
+        match self.path {
+            None => self.value.deserialize_option(visitor).map_err(json_err),
+            Some([]) => Self::ron(self.raw, |de| de.deserialize_option(visitor)),
+            Some(_) => visitor.visit_some(self),
+        }
+    }
+
+    fn deserialize_newtype_struct<V: Visitor<'de>>(
+        self,
+        name: &'static str,
+        visitor: V,
+    ) -> Result<V::Value, SpliceError> {
+        match self.path {
+            None => self
+                .value
+                .deserialize_newtype_struct(name, visitor)
+                .map_err(json_err),
+            Some([]) => Self::ron(self.raw, |de| de.deserialize_newtype_struct(name, visitor)),
+            Some(_) => visitor.visit_newtype_struct(self),
+        }
+    }
+
+    fn deserialize_enum<V: Visitor<'de>>(
+        self,
+        name: &'static str,
+        variants: &'static [&'static str],
+        visitor: V,
+    ) -> Result<V::Value, SpliceError> {
+        match self.path {
+            None => self
+                .value
+                .deserialize_enum(name, variants, visitor)
+                .map_err(json_err),
+            Some([]) => Self::ron(self.raw, |de| de.deserialize_enum(name, variants, visitor)),
+            Some([Step::Field(variant), rest @ ..]) => {
+                let Value::Object(mut map) = self.value else {
+                    return Err(SpliceError(format!("`{variant}` has no fields")));
+                };
+                let inner = map.remove(variant).unwrap_or(Value::Null);
+                visitor.visit_enum(SpliceEnum {
+                    variant: variant.clone(),
+                    inner: Splice {
+                        value: inner,
+                        path: Some(rest),
+                        raw: self.raw,
+                    },
+                })
+            }
+            Some([Step::Index(i), ..]) => Err(SpliceError(format!("an enum has no item [{i}]"))),
+        }
+    }
+}
+
+struct SpliceMap<'a, 'de> {
+    entries: std::vec::IntoIter<(String, Value)>,
+    pending: Option<(bool, Value)>,
+    path: &'a [Step],
+    raw: &'de str,
+}
+
+impl<'de> de::MapAccess<'de> for SpliceMap<'_, 'de> {
+    type Error = SpliceError;
+
+    fn next_key_seed<K: DeserializeSeed<'de>>(
+        &mut self,
+        seed: K,
+    ) -> Result<Option<K::Value>, SpliceError> {
+        let Some((key, value)) = self.entries.next() else {
+            return Ok(None);
+        };
+        let on_path = matches!(&self.path[0], Step::Field(f) if *f == key);
+        self.pending = Some((on_path, value));
+        seed.deserialize(key.into_deserializer()).map(Some)
+    }
+
+    fn next_value_seed<V: DeserializeSeed<'de>>(&mut self, seed: V) -> Result<V::Value, SpliceError> {
+        let (on_path, value) = self
+            .pending
+            .take()
+            .ok_or_else(|| SpliceError("a value without a key".into()))?;
+        seed.deserialize(Splice {
+            value,
+            path: on_path.then(|| &self.path[1..]),
+            raw: self.raw,
+        })
+    }
+}
+
+struct SpliceSeq<'a, 'de> {
+    items: std::iter::Enumerate<std::vec::IntoIter<Value>>,
+    path: &'a [Step],
+    raw: &'de str,
+}
+
+impl<'de> de::SeqAccess<'de> for SpliceSeq<'_, 'de> {
+    type Error = SpliceError;
+
+    fn next_element_seed<T: DeserializeSeed<'de>>(
+        &mut self,
+        seed: T,
+    ) -> Result<Option<T::Value>, SpliceError> {
+        let Some((i, value)) = self.items.next() else {
+            return Ok(None);
+        };
+        let on_path = self.path[0] == Step::Index(i);
+        seed.deserialize(Splice {
+            value,
+            path: on_path.then(|| &self.path[1..]),
+            raw: self.raw,
+        })
+        .map(Some)
+    }
+}
+
+struct SpliceEnum<'a, 'de> {
+    variant: String,
+    inner: Splice<'a, 'de>,
+}
+
+impl<'a, 'de> de::EnumAccess<'de> for SpliceEnum<'a, 'de> {
+    type Error = SpliceError;
+    type Variant = Splice<'a, 'de>;
+
+    fn variant_seed<V: DeserializeSeed<'de>>(
+        self,
+        seed: V,
+    ) -> Result<(V::Value, Splice<'a, 'de>), SpliceError> {
+        let v = seed.deserialize(self.variant.into_deserializer())?;
+        Ok((v, self.inner))
+    }
+}
+
+impl<'de> de::VariantAccess<'de> for Splice<'_, 'de> {
+    type Error = SpliceError;
+
+    fn unit_variant(self) -> Result<(), SpliceError> {
+        Err(SpliceError("this variant has no fields".into()))
+    }
+
+    fn newtype_variant_seed<T: DeserializeSeed<'de>>(self, seed: T) -> Result<T::Value, SpliceError> {
+        seed.deserialize(self)
+    }
+
+    fn tuple_variant<V: Visitor<'de>>(self, len: usize, visitor: V) -> Result<V::Value, SpliceError> {
+        self.deserialize_tuple(len, visitor)
+    }
+
+    fn struct_variant<V: Visitor<'de>>(
+        self,
+        fields: &'static [&'static str],
+        visitor: V,
+    ) -> Result<V::Value, SpliceError> {
+        self.deserialize_struct("", fields, visitor)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn earth() -> SceneDesc {
+        crate::scene::parse_preset(
+            include_str!("../../presets/earth.ron"),
+            std::path::Path::new("presets/earth.ron"),
+        )
+        .expect("earth")
+    }
+
+    #[test]
+    fn paths_parse_and_print() {
+        let steps = parse_path("objects[0].material.cd.mapping").unwrap();
+        assert_eq!(steps.len(), 5);
+        assert_eq!(path_text(&steps), "objects[0].material.cd.mapping");
+        assert!(parse_path("").unwrap_err().contains("empty"));
+        assert!(parse_path("objects[x]").unwrap_err().contains("`[x]` is not an index"));
+        assert!(parse_path("a..b").unwrap_err().contains("empty name"));
+        assert!(parse_path("camera.ey e").unwrap_err().contains("not a field name"));
+    }
+
+    #[test]
+    fn a_unit_variant_deep_in_an_enum_is_set() {
+        let d = set_path(&earth(), "objects[0].material.cd.mapping", "Cylindrical").unwrap();
+        assert_eq!(
+            d.objects[0].material.texture().mapping(),
+            Some(crate::mapping::Mapping::Cylindrical)
+        );
+        // Nothing else changed.
+        let mut back = d.clone();
+        back.objects[0].material.texture_mut().set_mapping(crate::mapping::Mapping::Spherical);
+        assert_eq!(back, earth());
+    }
+
+    #[test]
+    fn points_numbers_whole_variants_and_defaulted_fields_are_set() {
+        let d = set_path(&earth(), "camera.eye", "(0, 0, 1.5)").unwrap();
+        assert_eq!(d.camera.eye, crate::math::Vec3::new(0.0, 0.0, 1.5));
+        let d = set_path(&earth(), "camera.eye[2]", "2.5").unwrap();
+        assert_eq!(d.camera.eye.z, 2.5);
+        let d = set_path(&earth(), "objects[0].material.cd", "Constant((0.2, 0.4, 0.8))").unwrap();
+        assert_eq!(
+            value_at(&d, "objects[0].material.cd"),
+            Some(serde_json::json!({"Constant": [0.2f32, 0.4f32, 0.8f32]}))
+        );
+        // `lookup` is not written in the preset (it is at its default) but is a field.
+        let d = set_path(&earth(), "objects[0].material.cd.lookup", "Lecture").unwrap();
+        assert_eq!(
+            value_at(&d, "objects[0].material.cd.lookup"),
+            Some(serde_json::json!("Lecture"))
+        );
+        let d = set_path(&earth(), "render.adaptive", "Some((max_spp: 64))").unwrap();
+        assert_eq!(d.render.adaptive.map(|a| a.max_spp), Some(64));
+        let d = set_path(&earth(), "objects[0].casts_shadows", "Some(false)").unwrap();
+        assert_eq!(d.objects[0].casts_shadows, Some(false));
+    }
+
+    #[test]
+    fn paths_and_values_that_do_not_fit_say_why() {
+        let e = set_path(&earth(), "objects[3].material", "Constant((1, 1, 1))").unwrap_err();
+        assert!(e.contains("`objects` has 1 item(s), so [3] is not one of them"), "{e}");
+        let e = set_path(&earth(), "objects[0].material.cd.maping", "Cylindrical").unwrap_err();
+        assert!(e.contains("unknown field") && e.contains("maping"), "{e}");
+        let e = set_path(&earth(), "camera.eyes.x", "1").unwrap_err();
+        assert!(e.contains("the scene") || e.contains("`camera` has no field `eyes`"), "{e}");
+        let e = set_path(&earth(), "objects[0].material.cd.mapping", "Cylindric").unwrap_err();
+        assert!(e.contains("Cylindric"), "{e}");
+        let e = set_path(&earth(), "camera.eye", "(0, 1)").unwrap_err();
+        assert!(e.starts_with("`camera.eye` = (0, 1): "), "{e}");
+        let e = set_path(&earth(), "objects[0].shape.radius", "2").unwrap_err();
+        assert!(e.contains("`objects[0].shape` is `Sphere`, which has no field `radius`"), "{e}");
+        let e = set_path(&earth(), "render.spp", "8 9").unwrap_err();
+        assert!(e.contains("render.spp"), "{e}");
+        let e = set_path(&earth(), "ambient.ls", "inf").unwrap_err();
+        assert!(e.contains("not finite"), "{e}");
+    }
+}

@@ -1,0 +1,444 @@
+//! Lessons: the lecture in order, one TOML file per topic in `lessons/` (ordered by file name).
+//!
+//! A lesson names the preset it starts from, says what it shows, offers *Try this* experiments
+//! (each a label, a *Look for* sentence and edits of the scene: a path into the preset and a
+//! value in the preset's own RON syntax, see [`edit`]) and asks a question with its answer:
+//!
+//! ```toml
+//! title = "Cylindrical mapping"
+//! preset = "../presets/cylinder.ron"
+//! text = "phi = atan2(x, z), u = phi / 2 pi, v = (y + 1) / 2."
+//!
+//! [[experiment]]
+//! label = "Show (u, v) as colour"
+//! look_for = "Red (u) grows around the can and drops to 0 at the seam."
+//! set = { "render.view" = "Uv" }
+//!
+//! [question]
+//! ask = "Where is the seam?"
+//! answer = "At x = 0, z = 1."
+//! ```
+//!
+//! Loading checks every edit of every experiment against the lesson's preset, so a lesson that
+//! loads applies. A lesson that does not load is one error naming its file and line; the others
+//! still load ([`load_dir`]).
+
+pub mod edit;
+
+use crate::error::{Error, Result};
+use crate::scene::{SceneDesc, load_preset};
+use serde::Deserialize;
+use std::path::{Path, PathBuf};
+use toml::Spanned;
+
+/// Where the shipped lessons live (relative to the working folder, like `presets/`).
+pub const LESSON_DIR: &str = "lessons";
+/// Largest lesson file read (a lesson is a few kilobytes of text).
+pub const MAX_LESSON_BYTES: u64 = 1 << 20;
+
+/// One lesson, loaded and checked against its preset.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Lesson {
+    /// The file's name without `.toml` (`05-cylindrical`): what `texplore lesson` takes.
+    pub name: String,
+    /// The lesson file.
+    pub file: PathBuf,
+    /// The heading.
+    pub title: String,
+    /// The preset the lesson starts from (resolved against the lesson's folder).
+    pub preset: PathBuf,
+    /// What the lesson explains, with its formulas (plain text, paragraphs split by blank lines).
+    pub text: String,
+    /// The *Try this* experiments, in the file's order.
+    pub experiments: Vec<Experiment>,
+    /// The question for the learner.
+    pub question: String,
+    /// Its answer, shown on request.
+    pub answer: String,
+}
+
+/// A *Try this* experiment: named edits of the scene, and what to look for once applied.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Experiment {
+    /// The button's text.
+    pub label: String,
+    /// What should change when the learner clicks.
+    pub look_for: String,
+    /// The edits, applied in order.
+    pub edits: Vec<Edit>,
+}
+
+/// One edit: the value at `path` (`objects[0].material.cd.mapping`) becomes `value` (RON text,
+/// as in a preset: `Cylindrical`, `(0, 1, 4)`, `"../assets/chelsea_451x300.png"`).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Edit {
+    /// Where in the preset.
+    pub path: String,
+    /// The new value, in RON.
+    pub value: String,
+}
+
+impl Experiment {
+    /// `desc` with this experiment's edits applied.
+    ///
+    /// # Errors
+    /// An edit does not fit `desc` (possible when the learner changed the scene first): the
+    /// message names the path.
+    pub fn apply(&self, desc: &SceneDesc) -> std::result::Result<SceneDesc, String> {
+        let mut d = desc.clone();
+        for e in &self.edits {
+            d = edit::set_path(&d, &e.path, &e.value)?;
+        }
+        Ok(d)
+    }
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct LessonFile {
+    title: String,
+    preset: Spanned<String>,
+    text: String,
+    #[serde(default, rename = "experiment")]
+    experiments: Vec<ExperimentFile>,
+    question: QuestionFile,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ExperimentFile {
+    label: String,
+    look_for: String,
+    set: Spanned<toml::Table>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct QuestionFile {
+    ask: String,
+    answer: String,
+}
+
+/// 1-based line and column of byte `offset` in `text`.
+fn line_col(text: &str, offset: usize) -> (usize, usize) {
+    let before = &text[..offset.min(text.len())];
+    let line = before.matches('\n').count() + 1;
+    let col = before.rfind('\n').map_or(before.len(), |i| before.len() - i - 1) + 1;
+    (line, col)
+}
+
+fn at(path: &Path, text: &str, offset: usize, message: impl Into<String>) -> Error {
+    let (line, column) = line_col(text, offset);
+    Error::Preset {
+        path: path.to_path_buf(),
+        line,
+        column,
+        message: message.into(),
+    }
+}
+
+/// A TOML value as RON text: strings are RON already; numbers and booleans are the same in
+/// both; a list of numbers is a point or colour `(x, y, z)`.
+fn ron_text(v: &toml::Value) -> std::result::Result<String, String> {
+    Ok(match v {
+        toml::Value::String(s) => s.clone(),
+        toml::Value::Integer(i) => i.to_string(),
+        toml::Value::Float(f) => format!("{f:?}"),
+        toml::Value::Boolean(b) => b.to_string(),
+        toml::Value::Array(items) => {
+            let parts: std::result::Result<Vec<String>, String> =
+                items.iter().map(ron_text).collect();
+            format!("({})", parts?.join(", "))
+        }
+        toml::Value::Table(_) | toml::Value::Datetime(_) => {
+            return Err(
+                "write this value as RON text in a string, as in a preset: \"Image(path: ...)\""
+                    .into(),
+            );
+        }
+    })
+}
+
+/// Parses a lesson's text (`file` names it in errors, and its folder is where `preset` is
+/// found) and checks every edit against the preset.
+///
+/// # Errors
+/// One error naming the file, line and column: TOML syntax, an unknown or missing field, a
+/// preset that does not load, an empty `set`, or an edit whose path or value does not fit
+/// the preset.
+pub fn parse_lesson(text: &str, file: &Path) -> Result<Lesson> {
+    let raw: LessonFile = toml::from_str(text).map_err(|e| {
+        let offset = e.span().map_or(0, |s| s.start);
+        at(file, text, offset, e.message().trim().to_owned())
+    })?;
+    let folder = file.parent().unwrap_or(Path::new("."));
+    let preset = folder.join(raw.preset.get_ref());
+    let base = load_preset(&preset).map_err(|e| {
+        at(
+            file,
+            text,
+            raw.preset.span().start,
+            format!("preset {:?} does not load: {e}", raw.preset.get_ref()),
+        )
+    })?;
+    let mut experiments = Vec::new();
+    for x in raw.experiments {
+        let span = x.set.span();
+        if x.set.get_ref().is_empty() {
+            return Err(at(
+                file,
+                text,
+                span.start,
+                format!("experiment \"{}\": `set` is empty", x.label),
+            ));
+        }
+        let mut edits = Vec::new();
+        let mut desc = base.clone();
+        for (key, value) in x.set.get_ref() {
+            // The line of this key inside the `set` table (its span covers the whole table).
+            let slice = &text[span.clone()];
+            let offset = span.start + slice.find(key.as_str()).unwrap_or(0);
+            let fail = |m: String| at(file, text, offset, format!("experiment \"{}\": {m}", x.label));
+            let value = ron_text(value).map_err(|m| fail(format!("`{key}`: {m}")))?;
+            desc = edit::set_path(&desc, key, &value).map_err(fail)?;
+            edits.push(Edit {
+                path: key.clone(),
+                value,
+            });
+        }
+        if desc == base {
+            return Err(at(
+                file,
+                text,
+                span.start,
+                format!(
+                    "experiment \"{}\" changes nothing: the preset already has these values",
+                    x.label
+                ),
+            ));
+        }
+        experiments.push(Experiment {
+            label: x.label,
+            look_for: x.look_for,
+            edits,
+        });
+    }
+    Ok(Lesson {
+        name: lesson_name(file),
+        file: file.to_path_buf(),
+        title: raw.title.trim().to_owned(),
+        preset,
+        text: raw.text.trim().to_owned(),
+        experiments,
+        question: raw.question.ask.trim().to_owned(),
+        answer: raw.question.answer.trim().to_owned(),
+    })
+}
+
+/// Reads (at most [`MAX_LESSON_BYTES`], through [`crate::input`]) and parses one lesson.
+///
+/// # Errors
+/// As [`parse_lesson`], or the file cannot be read.
+pub fn load_lesson(file: &Path) -> Result<Lesson> {
+    let text = crate::input::read_input_text(file, MAX_LESSON_BYTES)?;
+    parse_lesson(&text, file)
+}
+
+fn lesson_name(file: &Path) -> String {
+    file.file_stem()
+        .map_or_else(String::new, |s| s.to_string_lossy().into_owned())
+}
+
+/// The lessons of a folder, and the files that did not load.
+#[derive(Debug, Default)]
+pub struct Lessons {
+    /// The lessons that loaded, in file-name order.
+    pub lessons: Vec<Lesson>,
+    /// One error per file that did not.
+    pub errors: Vec<Error>,
+}
+
+/// Loads every `*.toml` in `dir`, in file-name order; a file that fails is one entry of
+/// `errors` and the rest still load.
+///
+/// # Errors
+/// The folder cannot be read.
+pub fn load_dir(dir: &Path) -> Result<Lessons> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
+        .map_err(|e| Error::io(dir, e))?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    files.sort();
+    let mut out = Lessons::default();
+    for f in files {
+        match load_lesson(&f) {
+            Ok(l) => out.lessons.push(l),
+            Err(e) => out.errors.push(e),
+        }
+    }
+    Ok(out)
+}
+
+/// The lesson `name` names: its file name without `.toml` (`05-cylindrical`), that name
+/// without its number (`cylindrical`), or its number (`5`).
+///
+/// # Errors
+/// No lesson matches: the message lists the names.
+pub fn find<'a>(lessons: &'a [Lesson], name: &str) -> std::result::Result<&'a Lesson, String> {
+    let name = name.trim().trim_end_matches(".toml");
+    let number = |l: &Lesson| -> Option<u32> {
+        let digits: String = l.name.chars().take_while(char::is_ascii_digit).collect();
+        digits.parse().ok()
+    };
+    let bare = |l: &Lesson| {
+        l.name
+            .trim_start_matches(|c: char| c.is_ascii_digit())
+            .trim_start_matches(['-', '_'])
+            .to_owned()
+    };
+    lessons
+        .iter()
+        .find(|l| l.name == name)
+        .or_else(|| lessons.iter().find(|l| bare(l) == name))
+        .or_else(|| {
+            let n: u32 = name.parse().ok()?;
+            lessons.iter().find(|l| number(l) == Some(n))
+        })
+        .ok_or_else(|| {
+            let names: Vec<&str> = lessons.iter().map(|l| l.name.as_str()).collect();
+            if names.is_empty() {
+                format!("no lesson named `{name}`: no lesson loaded")
+            } else {
+                format!("no lesson named `{name}`; the lessons are: {}", names.join(", "))
+            }
+        })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A lesson file beside a copy of the Earth preset's folder layout: the text is written to
+    /// `lessons/x.toml` under the crate root, so `../presets/earth.ron` resolves.
+    fn parse(text: &str) -> Result<Lesson> {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        parse_lesson(text, &root.join("lessons/test-lesson.toml"))
+    }
+
+    const GOOD: &str = r#"
+title = "Cylindrical"
+preset = "../presets/earth.ron"
+text = "u = phi / 2 pi"
+
+[[experiment]]
+label = "Cylinder map"
+look_for = "The poles stretch."
+set = { "objects[0].material.cd.mapping" = "Cylindrical", "camera.eye" = [0, 0, 3] }
+
+[question]
+ask = "Why?"
+answer = "Because."
+"#;
+
+    fn message(e: &Error) -> (String, usize, String) {
+        match e {
+            Error::Preset {
+                path,
+                line,
+                message,
+                ..
+            } => (path.display().to_string(), *line, message.clone()),
+            other => panic!("not a located error: {other}"),
+        }
+    }
+
+    #[test]
+    fn a_lesson_loads_with_its_edits_in_ron() {
+        let l = parse(GOOD).unwrap();
+        assert_eq!(l.name, "test-lesson");
+        assert_eq!(l.title, "Cylindrical");
+        assert!(l.preset.ends_with("presets/earth.ron"));
+        assert_eq!(
+            l.experiments[0].edits,
+            vec![
+                Edit {
+                    path: "objects[0].material.cd.mapping".into(),
+                    value: "Cylindrical".into()
+                },
+                Edit {
+                    path: "camera.eye".into(),
+                    value: "(0, 0, 3)".into()
+                }
+            ]
+        );
+        let base = load_preset(&l.preset).unwrap();
+        let d = l.experiments[0].apply(&base).unwrap();
+        assert_eq!(d.camera.eye, crate::math::Vec3::new(0.0, 0.0, 3.0));
+        assert_eq!((l.question.as_str(), l.answer.as_str()), ("Why?", "Because."));
+    }
+
+    #[test]
+    fn every_kind_of_error_names_the_file_and_line() {
+        let cases: [(String, usize, &str); 8] = [
+            // TOML syntax: an unclosed string on line 3.
+            (GOOD.replace("text = \"u = phi / 2 pi\"", "text = \"u = phi"), 4, "string"),
+            // An unknown field.
+            (GOOD.replace("look_for", "look_fro"), 8, "look_fro"),
+            // A missing field.
+            (GOOD.replace("answer = \"Because.\"", ""), 11, "answer"),
+            // A path that is not in the preset.
+            (GOOD.replace("cd.mapping", "cd.maping"), 9, "maping"),
+            // A value that does not fit the field.
+            (GOOD.replace("\"Cylindrical\"", "\"Cylindric\""), 9, "Cylindric"),
+            // A preset that does not exist.
+            (GOOD.replace("earth.ron", "mars.ron"), 3, "mars.ron"),
+            // An experiment that changes nothing.
+            (
+                GOOD.replace("\"Cylindrical\", \"camera.eye\" = [0, 0, 3]", "\"Spherical\""),
+                9,
+                "changes nothing",
+            ),
+            // An empty `set`.
+            (
+                GOOD.replace(
+                    "{ \"objects[0].material.cd.mapping\" = \"Cylindrical\", \"camera.eye\" = [0, 0, 3] }",
+                    "{}",
+                ),
+                9,
+                "`set` is empty",
+            ),
+        ];
+        for (text, line, needle) in cases {
+            let e = parse(&text).expect_err(needle);
+            let (path, got_line, msg) = message(&e);
+            assert!(path.ends_with("lessons/test-lesson.toml"), "{path}");
+            assert_eq!(got_line, line, "{needle}: {e}");
+            assert!(msg.contains(needle), "{needle}: {e}");
+            assert!(e.to_string().contains(&format!("test-lesson.toml:{line}:")), "{e}");
+        }
+    }
+
+    #[test]
+    fn a_bad_lesson_does_not_stop_the_others() {
+        let dir = tempfile::tempdir().unwrap();
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let preset = root.join("presets/earth.ron").display().to_string();
+        let good = GOOD.replace("../presets/earth.ron", &preset);
+        std::fs::write(dir.path().join("01-good.toml"), &good).unwrap();
+        std::fs::write(dir.path().join("02-bad.toml"), good.replace("title", "titel")).unwrap();
+        std::fs::write(dir.path().join("03-good.toml"), &good).unwrap();
+        std::fs::write(dir.path().join("notes.txt"), "not a lesson").unwrap();
+        let got = load_dir(dir.path()).unwrap();
+        let names: Vec<&str> = got.lessons.iter().map(|l| l.name.as_str()).collect();
+        assert_eq!(names, ["01-good", "03-good"]);
+        assert_eq!(got.errors.len(), 1);
+        assert!(got.errors[0].to_string().contains("02-bad.toml:2:"), "{}", got.errors[0]);
+        assert_eq!(find(&got.lessons, "3").unwrap().name, "03-good");
+        assert_eq!(find(&got.lessons, "good").unwrap().name, "01-good");
+        assert_eq!(
+            find(&got.lessons, "mars").unwrap_err(),
+            "no lesson named `mars`; the lessons are: 01-good, 03-good"
+        );
+    }
+}

@@ -1,0 +1,164 @@
+//! The shipped lessons: every one loads, in lecture order; every experiment applies to its
+//! preset and visibly changes the render; `texplore lesson --list` lists them and a bad name or
+//! a broken lesson file is an error naming it.
+
+mod common;
+
+use common::{failure, root, success, texplore, texplore_in};
+use texplore::lesson::{Lesson, find, load_dir};
+use texplore::scene::{AssetCache, SceneDesc, load_preset};
+use texplore::snapshot::render_snapshot;
+
+fn shipped() -> Vec<Lesson> {
+    let loaded = load_dir(&root().join("lessons")).unwrap();
+    let errors: Vec<String> = loaded.errors.iter().map(ToString::to_string).collect();
+    assert!(errors.is_empty(), "lessons that do not load: {errors:#?}");
+    loaded.lessons
+}
+
+/// The render at 64 x 48, 1 sample per pixel unless the description itself asks for a
+/// different count than `base` (an experiment about supersampling).
+fn small(desc: &SceneDesc, base: &SceneDesc, lesson: &Lesson, cache: &mut AssetCache) -> Vec<u8> {
+    let mut d = desc.clone();
+    d.snapshot.width = 64;
+    d.snapshot.height = 48;
+    d.snapshot.spp = if d.render.spp == base.render.spp {
+        1
+    } else {
+        d.render.spp.min(64)
+    };
+    render_snapshot(&d, &lesson.preset, cache)
+        .unwrap_or_else(|e| panic!("{}: {e}", lesson.file.display()))
+        .2
+}
+
+#[test]
+fn the_lessons_follow_the_lecture() {
+    let lessons = shipped();
+    let names: Vec<&str> = lessons.iter().map(|l| l.name.as_str()).collect();
+    assert_eq!(
+        names,
+        [
+            "01-constant-vs-image",
+            "02-texel-coordinates",
+            "03-spatially-varying-materials",
+            "04-rectangular-mapping",
+            "05-cylindrical-mapping",
+            "06-spherical-mapping",
+            "07-light-probes",
+            "08-aliasing",
+            "09-triangle-meshes",
+            "10-the-lectures-examples",
+        ]
+    );
+    for l in &lessons {
+        assert!(
+            (2..=4).contains(&l.experiments.len()),
+            "{}: {} experiments",
+            l.name,
+            l.experiments.len()
+        );
+        assert!(!l.title.is_empty() && !l.text.is_empty(), "{}", l.name);
+        assert!(!l.question.is_empty() && !l.answer.is_empty(), "{}", l.name);
+        for x in &l.experiments {
+            assert!(!x.label.is_empty() && !x.look_for.is_empty(), "{}", l.name);
+        }
+    }
+    assert_eq!(find(&lessons, "5").unwrap().name, "05-cylindrical-mapping");
+    assert_eq!(find(&lessons, "aliasing").unwrap().name, "08-aliasing");
+}
+
+#[test]
+fn every_experiment_changes_the_image() {
+    let mut cache = AssetCache::new();
+    for lesson in shipped() {
+        let base = load_preset(&lesson.preset).unwrap();
+        let before = small(&base, &base, &lesson, &mut cache);
+        for x in &lesson.experiments {
+            let desc = x.apply(&base).unwrap();
+            assert_ne!(desc, base, "{}: {}", lesson.name, x.label);
+            let after = small(&desc, &base, &lesson, &mut cache);
+            let pixels = before.len() / 3;
+            let changed = before
+                .chunks(3)
+                .zip(after.chunks(3))
+                .filter(|(a, b)| a.iter().zip(*b).any(|(p, q)| p.abs_diff(*q) > 12))
+                .count();
+            // At least 2 % of the pixels (61 of 3072) change visibly.
+            assert!(
+                changed * 50 >= pixels,
+                "{}: \"{}\" changes only {changed} of {pixels} pixels",
+                lesson.name,
+                x.label
+            );
+        }
+    }
+}
+
+#[test]
+fn the_lecture_lookup_never_shows_the_last_column() {
+    // The texel-coordinates lesson's claim, on its own scene: the yellow (last) column of the
+    // 4-texel image covers a quarter of the rectangle under the centred lookup, none under the
+    // lecture's.
+    let lessons = shipped();
+    let lesson = find(&lessons, "texel-coordinates").unwrap();
+    let base = load_preset(&lesson.preset).unwrap();
+    let lecture = lesson.experiments[0].apply(&base).unwrap();
+    let mut cache = AssetCache::new();
+    let yellow = |rgb: &[u8]| {
+        rgb.chunks(3)
+            .filter(|p| p[0] > 150 && p[1] > 120 && p[2] < 80)
+            .count()
+    };
+    let centred = yellow(&small(&base, &base, lesson, &mut cache));
+    let rect_pixels = 64 * 48 / 2; // roughly: the rectangle fills much of the frame
+    assert!(centred > rect_pixels / 8, "{centred} yellow pixels");
+    assert_eq!(yellow(&small(&lecture, &base, lesson, &mut cache)), 0);
+}
+
+#[test]
+fn lesson_list_names_and_titles() {
+    let out = success(&texplore(&["lesson", "--list"]));
+    let lines: Vec<&str> = out.lines().collect();
+    assert_eq!(lines.len(), 10, "{out}");
+    assert!(
+        lines[0].starts_with("01-constant-vs-image ")
+            && lines[0].ends_with("A texture is a colour that varies with location"),
+        "{out}"
+    );
+    assert!(lines[9].starts_with("10-the-lectures-examples "), "{out}");
+}
+
+#[test]
+fn an_unknown_lesson_lists_the_names() {
+    let err = failure(&texplore(&["lesson", "marmite"]));
+    assert!(
+        err.contains("no lesson named `marmite`; the lessons are: 01-constant-vs-image, 02-"),
+        "{err}"
+    );
+}
+
+#[test]
+fn a_broken_lesson_is_named_with_its_line_and_the_others_still_list() {
+    let dir = tempfile::tempdir().unwrap();
+    let lessons = dir.path().join("lessons");
+    std::fs::create_dir(&lessons).unwrap();
+    let good = std::fs::read_to_string(root().join("lessons/05-cylindrical-mapping.toml"))
+        .unwrap()
+        .replace("../presets/", &format!("{}/presets/", root().display()));
+    std::fs::write(lessons.join("01-good.toml"), &good).unwrap();
+    // A typo in a path of the preset, on the line of the second experiment's `set`.
+    let bad = good.replace("cd.path", "cd.pth");
+    let line = 1 + bad[..bad.find("cd.pth").unwrap()].matches('\n').count();
+    std::fs::write(lessons.join("02-typo.toml"), &bad).unwrap();
+    let out = texplore_in(dir.path(), &["lesson", "--list"]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let err = failure(&out);
+    assert_eq!(stdout.lines().count(), 1, "{stdout}");
+    assert!(stdout.starts_with("01-good "), "{stdout}");
+    assert!(
+        err.contains(&format!("lessons/02-typo.toml:{line}:")) && err.contains("pth"),
+        "{err}"
+    );
+    assert!(err.contains("1 of 2 lesson files in lessons did not load"), "{err}");
+}

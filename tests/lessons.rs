@@ -160,5 +160,47 @@ fn a_broken_lesson_is_named_with_its_line_and_the_others_still_list() {
         err.contains(&format!("lessons/02-typo.toml:{line}:")) && err.contains("pth"),
         "{err}"
     );
-    assert!(err.contains("1 of 2 lesson files in lessons did not load"), "{err}");
+    assert!(
+        err.contains("1 of 2 lesson files in lessons did not load"),
+        "{err}"
+    );
+}
+
+#[test]
+fn every_character_of_every_lesson_draws_in_the_window() {
+    // The window draws text in egui's bundled fonts: Ubuntu Light, and Hack for the formula
+    // paragraphs (indented), with egui's icon font as fallback. A character none of them has is
+    // an empty box (and a failure in the window tests).
+    use ab_glyph::{Font as _, FontRef};
+    let fonts: Vec<FontRef<'static>> = [
+        epaint_default_fonts::UBUNTU_LIGHT,
+        epaint_default_fonts::HACK_REGULAR,
+    ]
+    .iter()
+    .map(|f| FontRef::try_from_slice(f).unwrap())
+    .collect();
+    let mut missing = Vec::new();
+    for l in shipped() {
+        let x_text = l
+            .experiments
+            .iter()
+            .flat_map(|x| [x.label.as_str(), x.look_for.as_str()]);
+        let all = [l.title.as_str(), &l.text, &l.question, &l.answer]
+            .into_iter()
+            .chain(x_text);
+        for s in all {
+            for c in s.chars().filter(|c| !c.is_whitespace()) {
+                // Hack draws the formulas, Ubuntu the rest: a character must be in both.
+                if fonts.iter().any(|f| f.glyph_id(c).0 == 0)
+                    && !missing.contains(&(c, l.name.clone()))
+                {
+                    missing.push((c, l.name.clone()));
+                }
+            }
+        }
+    }
+    assert!(
+        missing.is_empty(),
+        "characters the window cannot draw: {missing:?}"
+    );
 }

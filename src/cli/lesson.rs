@@ -31,7 +31,12 @@ pub fn run(a: &LessonArgs) -> Result<Option<Lesson>> {
         eprintln!("error: {e}");
     }
     if a.list {
-        let width = loaded.lessons.iter().map(|l| l.name.len()).max().unwrap_or(0);
+        let width = loaded
+            .lessons
+            .iter()
+            .map(|l| l.name.len())
+            .max()
+            .unwrap_or(0);
         for l in &loaded.lessons {
             println!("{:width$}  {}", l.name, l.title);
         }

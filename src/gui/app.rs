@@ -437,7 +437,10 @@ impl ExplorerApp {
                 .show(ui, |ui| self.lessons.ui(ui, self.desc.as_ref(), dirty))
                 .inner;
             match action {
-                Some(LessonAction::Open { preset, force: true }) => self.open_file(&preset),
+                Some(LessonAction::Open {
+                    preset,
+                    force: true,
+                }) => self.open_file(&preset),
                 Some(LessonAction::Open { preset, .. }) => {
                     self.files.request_open(preset);
                     ctx.request_repaint();

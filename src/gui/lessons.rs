@@ -138,10 +138,9 @@ impl LessonsPanel {
     }
 
     fn go_to(&mut self, i: usize, desc: Option<&SceneDesc>, dirty: bool) -> Option<LessonAction> {
+        // The picker moves once the preset has opened (the prompt may be cancelled).
         let preset = self.loaded.as_ref()?.lessons.get(i)?.preset.clone();
-        self.selected = i;
         self.pending = Some(i);
-        self.show_answer = false;
         // The lesson's own experiments are not the learner's work: no prompt for them.
         let force = !dirty || (desc.is_some() && desc == self.lesson_desc.as_ref());
         Some(LessonAction::Open { preset, force })
@@ -159,7 +158,7 @@ impl LessonsPanel {
         ui.horizontal(|ui| {
             ui.heading("Lessons");
             if ui
-                .button("Rescan")
+                .button("Rescan lessons")
                 .on_hover_text(format!(
                     "Read {} again (a lesson file dropped there appears)",
                     self.dir.display()
@@ -193,8 +192,10 @@ impl LessonsPanel {
             })
             .unwrap_or_default();
         let mut pick = self.selected.min(count - 1);
-        egui::ComboBox::from_id_salt("lesson-picker")
-            .width(ui.available_width() - 8.0)
+        // Leaves room for the label on its right (a width from `available_width` alone would
+        // widen the panel every frame).
+        egui::ComboBox::from_label("Lesson")
+            .width((ui.available_width() - 64.0).max(160.0))
             .selected_text(titles[pick].clone())
             .show_ui(ui, |ui| {
                 for (i, t) in titles.iter().enumerate() {
@@ -207,13 +208,13 @@ impl LessonsPanel {
         ui.horizontal(|ui| {
             let i = self.selected;
             if ui
-                .add_enabled(i > 0, egui::Button::new("◀ Previous lesson"))
+                .add_enabled(i > 0, egui::Button::new("Previous lesson"))
                 .clicked()
             {
                 action = self.go_to(i - 1, desc, dirty);
             }
             if ui
-                .add_enabled(i + 1 < count, egui::Button::new("Next lesson ▶"))
+                .add_enabled(i + 1 < count, egui::Button::new("Next lesson"))
                 .clicked()
             {
                 action = self.go_to(i + 1, desc, dirty);

@@ -155,7 +155,10 @@ fn resolve(tree: &Value, steps: &[Step]) -> Result<Vec<Step>, String> {
                     return Err(format!("{} is `{s}`, which has no field `{name}`", here()));
                 }
                 (Step::Field(name), _) => {
-                    return Err(format!("{} is a value, not something with a field `{name}`", here()));
+                    return Err(format!(
+                        "{} is a value, not something with a field `{name}`",
+                        here()
+                    ));
                 }
                 (Step::Index(n), _) => {
                     return Err(format!("{} is not a list, so it has no item [{n}]", here()));
@@ -245,7 +248,10 @@ impl<'de> Splice<'_, 'de> {
         let position = |de: &ron::Deserializer<'de>, e: ron::Error| {
             let spanned = de.span_error(e);
             let col = spanned.span.start.col;
-            SpliceError(format!("{} (at character {col} of the value)", spanned.code))
+            SpliceError(format!(
+                "{} (at character {col} of the value)",
+                spanned.code
+            ))
         };
         let v = f(&mut de).map_err(|e| position(&de, e))?;
         de.end().map_err(|e| position(&de, e))?;
@@ -257,7 +263,8 @@ impl<'de> Splice<'_, 'de> {
         match self.value {
             Value::Object(map) => {
                 let mut entries: Vec<(String, Value)> = map.into_iter().collect();
-                let absent = matches!(&rest[0], Step::Field(f) if !entries.iter().any(|(k, _)| k == f));
+                let absent =
+                    matches!(&rest[0], Step::Field(f) if !entries.iter().any(|(k, _)| k == f));
                 if let (true, Step::Field(f)) = (absent, &rest[0]) {
                     entries.push((f.clone(), Value::Null));
                 }
@@ -383,7 +390,10 @@ impl<'de> de::MapAccess<'de> for SpliceMap<'_, 'de> {
         seed.deserialize(key.into_deserializer()).map(Some)
     }
 
-    fn next_value_seed<V: DeserializeSeed<'de>>(&mut self, seed: V) -> Result<V::Value, SpliceError> {
+    fn next_value_seed<V: DeserializeSeed<'de>>(
+        &mut self,
+        seed: V,
+    ) -> Result<V::Value, SpliceError> {
         let (on_path, value) = self
             .pending
             .take()
@@ -447,11 +457,18 @@ impl<'de> de::VariantAccess<'de> for Splice<'_, 'de> {
         Err(SpliceError("this variant has no fields".into()))
     }
 
-    fn newtype_variant_seed<T: DeserializeSeed<'de>>(self, seed: T) -> Result<T::Value, SpliceError> {
+    fn newtype_variant_seed<T: DeserializeSeed<'de>>(
+        self,
+        seed: T,
+    ) -> Result<T::Value, SpliceError> {
         seed.deserialize(self)
     }
 
-    fn tuple_variant<V: Visitor<'de>>(self, len: usize, visitor: V) -> Result<V::Value, SpliceError> {
+    fn tuple_variant<V: Visitor<'de>>(
+        self,
+        len: usize,
+        visitor: V,
+    ) -> Result<V::Value, SpliceError> {
         self.deserialize_tuple(len, visitor)
     }
 
@@ -482,9 +499,17 @@ mod tests {
         assert_eq!(steps.len(), 5);
         assert_eq!(path_text(&steps), "objects[0].material.cd.mapping");
         assert!(parse_path("").unwrap_err().contains("empty"));
-        assert!(parse_path("objects[x]").unwrap_err().contains("`[x]` is not an index"));
+        assert!(
+            parse_path("objects[x]")
+                .unwrap_err()
+                .contains("`[x]` is not an index")
+        );
         assert!(parse_path("a..b").unwrap_err().contains("empty name"));
-        assert!(parse_path("camera.ey e").unwrap_err().contains("not a field name"));
+        assert!(
+            parse_path("camera.ey e")
+                .unwrap_err()
+                .contains("not a field name")
+        );
     }
 
     #[test]
@@ -496,7 +521,10 @@ mod tests {
         );
         // Nothing else changed.
         let mut back = d.clone();
-        back.objects[0].material.texture_mut().set_mapping(crate::mapping::Mapping::Spherical);
+        back.objects[0]
+            .material
+            .texture_mut()
+            .set_mapping(crate::mapping::Mapping::Spherical);
         assert_eq!(back, earth());
     }
 
@@ -506,7 +534,12 @@ mod tests {
         assert_eq!(d.camera.eye, crate::math::Vec3::new(0.0, 0.0, 1.5));
         let d = set_path(&earth(), "camera.eye[2]", "2.5").unwrap();
         assert_eq!(d.camera.eye.z, 2.5);
-        let d = set_path(&earth(), "objects[0].material.cd", "Constant((0.2, 0.4, 0.8))").unwrap();
+        let d = set_path(
+            &earth(),
+            "objects[0].material.cd",
+            "Constant((0.2, 0.4, 0.8))",
+        )
+        .unwrap();
         assert_eq!(
             value_at(&d, "objects[0].material.cd"),
             Some(serde_json::json!({"Constant": [0.2f32, 0.4f32, 0.8f32]}))
@@ -526,17 +559,26 @@ mod tests {
     #[test]
     fn paths_and_values_that_do_not_fit_say_why() {
         let e = set_path(&earth(), "objects[3].material", "Constant((1, 1, 1))").unwrap_err();
-        assert!(e.contains("`objects` has 1 item(s), so [3] is not one of them"), "{e}");
+        assert!(
+            e.contains("`objects` has 1 item(s), so [3] is not one of them"),
+            "{e}"
+        );
         let e = set_path(&earth(), "objects[0].material.cd.maping", "Cylindrical").unwrap_err();
         assert!(e.contains("unknown field") && e.contains("maping"), "{e}");
         let e = set_path(&earth(), "camera.eyes.x", "1").unwrap_err();
-        assert!(e.contains("the scene") || e.contains("`camera` has no field `eyes`"), "{e}");
+        assert!(
+            e.contains("the scene") || e.contains("`camera` has no field `eyes`"),
+            "{e}"
+        );
         let e = set_path(&earth(), "objects[0].material.cd.mapping", "Cylindric").unwrap_err();
         assert!(e.contains("Cylindric"), "{e}");
         let e = set_path(&earth(), "camera.eye", "(0, 1)").unwrap_err();
         assert!(e.starts_with("`camera.eye` = (0, 1): "), "{e}");
         let e = set_path(&earth(), "objects[0].shape.radius", "2").unwrap_err();
-        assert!(e.contains("`objects[0].shape` is `Sphere`, which has no field `radius`"), "{e}");
+        assert!(
+            e.contains("`objects[0].shape` is `Sphere`, which has no field `radius`"),
+            "{e}"
+        );
         let e = set_path(&earth(), "render.spp", "8 9").unwrap_err();
         assert!(e.contains("render.spp"), "{e}");
         let e = set_path(&earth(), "ambient.ls", "inf").unwrap_err();

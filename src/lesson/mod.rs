@@ -123,7 +123,10 @@ struct QuestionFile {
 fn line_col(text: &str, offset: usize) -> (usize, usize) {
     let before = &text[..offset.min(text.len())];
     let line = before.matches('\n').count() + 1;
-    let col = before.rfind('\n').map_or(before.len(), |i| before.len() - i - 1) + 1;
+    let col = before
+        .rfind('\n')
+        .map_or(before.len(), |i| before.len() - i - 1)
+        + 1;
     (line, col)
 }
 
@@ -198,7 +201,14 @@ pub fn parse_lesson(text: &str, file: &Path) -> Result<Lesson> {
             // The line of this key inside the `set` table (its span covers the whole table).
             let slice = &text[span.clone()];
             let offset = span.start + slice.find(key.as_str()).unwrap_or(0);
-            let fail = |m: String| at(file, text, offset, format!("experiment \"{}\": {m}", x.label));
+            let fail = |m: String| {
+                at(
+                    file,
+                    text,
+                    offset,
+                    format!("experiment \"{}\": {m}", x.label),
+                )
+            };
             let value = ron_text(value).map_err(|m| fail(format!("`{key}`: {m}")))?;
             desc = edit::set_path(&desc, key, &value).map_err(fail)?;
             edits.push(Edit {
@@ -310,7 +320,10 @@ pub fn find<'a>(lessons: &'a [Lesson], name: &str) -> std::result::Result<&'a Le
             if names.is_empty() {
                 format!("no lesson named `{name}`: no lesson loaded")
             } else {
-                format!("no lesson named `{name}`; the lessons are: {}", names.join(", "))
+                format!(
+                    "no lesson named `{name}`; the lessons are: {}",
+                    names.join(", ")
+                )
             }
         })
 }
@@ -375,7 +388,10 @@ answer = "Because."
         let base = load_preset(&l.preset).unwrap();
         let d = l.experiments[0].apply(&base).unwrap();
         assert_eq!(d.camera.eye, crate::math::Vec3::new(0.0, 0.0, 3.0));
-        assert_eq!((l.question.as_str(), l.answer.as_str()), ("Why?", "Because."));
+        assert_eq!(
+            (l.question.as_str(), l.answer.as_str()),
+            ("Why?", "Because.")
+        );
     }
 
     #[test]
@@ -415,7 +431,10 @@ answer = "Because."
             assert!(path.ends_with("lessons/test-lesson.toml"), "{path}");
             assert_eq!(got_line, line, "{needle}: {e}");
             assert!(msg.contains(needle), "{needle}: {e}");
-            assert!(e.to_string().contains(&format!("test-lesson.toml:{line}:")), "{e}");
+            assert!(
+                e.to_string().contains(&format!("test-lesson.toml:{line}:")),
+                "{e}"
+            );
         }
     }
 
@@ -426,14 +445,22 @@ answer = "Because."
         let preset = root.join("presets/earth.ron").display().to_string();
         let good = GOOD.replace("../presets/earth.ron", &preset);
         std::fs::write(dir.path().join("01-good.toml"), &good).unwrap();
-        std::fs::write(dir.path().join("02-bad.toml"), good.replace("title", "titel")).unwrap();
+        std::fs::write(
+            dir.path().join("02-bad.toml"),
+            good.replace("title", "titel"),
+        )
+        .unwrap();
         std::fs::write(dir.path().join("03-good.toml"), &good).unwrap();
         std::fs::write(dir.path().join("notes.txt"), "not a lesson").unwrap();
         let got = load_dir(dir.path()).unwrap();
         let names: Vec<&str> = got.lessons.iter().map(|l| l.name.as_str()).collect();
         assert_eq!(names, ["01-good", "03-good"]);
         assert_eq!(got.errors.len(), 1);
-        assert!(got.errors[0].to_string().contains("02-bad.toml:2:"), "{}", got.errors[0]);
+        assert!(
+            got.errors[0].to_string().contains("02-bad.toml:2:"),
+            "{}",
+            got.errors[0]
+        );
         assert_eq!(find(&got.lessons, "3").unwrap().name, "03-good");
         assert_eq!(find(&got.lessons, "good").unwrap().name, "01-good");
         assert_eq!(

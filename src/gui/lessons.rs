@@ -244,61 +244,7 @@ impl LessonsPanel {
                 }
             }
             ui.strong("Try this");
-            for (k, x) in lesson.experiments.iter().enumerate() {
-                let applied = self.applied.iter().any(|a| a.experiment == k);
-                ui.horizontal(|ui| {
-                    let button = egui::Button::new(&x.label).selected(applied);
-                    if ui
-                        .add_enabled(self.active && desc.is_some(), button)
-                        .on_hover_text(
-                            x.edits
-                                .iter()
-                                .map(|e| format!("{} = {}", e.path, e.value))
-                                .collect::<Vec<_>>()
-                                .join("\n"),
-                        )
-                        .clicked()
-                        && let Some(d) = desc
-                    {
-                        match x.apply(d) {
-                            Ok(new) => {
-                                self.applied.retain(|a| a.experiment != k);
-                                self.applied.push(Applied {
-                                    experiment: k,
-                                    before: d.clone(),
-                                });
-                                self.lesson_desc = Some(new.clone());
-                                action = Some(LessonAction::Apply(new));
-                            }
-                            Err(e) => {
-                                action = Some(LessonAction::Error(format!(
-                                    "{}: \"{}\": {e}",
-                                    lesson.file.display(),
-                                    x.label
-                                )));
-                            }
-                        }
-                    }
-                    if applied
-                        && ui
-                            .button("Undo")
-                            .on_hover_text("Back to the scene before this experiment")
-                            .clicked()
-                        && let Some(pos) = self.applied.iter().position(|a| a.experiment == k)
-                    {
-                        // Undoing an experiment also drops those applied after it.
-                        let before = self.applied[pos].before.clone();
-                        self.applied.truncate(pos);
-                        self.lesson_desc = Some(before.clone());
-                        action = Some(LessonAction::Apply(before));
-                    }
-                });
-                ui.horizontal_wrapped(|ui| {
-                    ui.weak("Look for:");
-                    ui.label(&x.look_for);
-                });
-                ui.add_space(4.0);
-            }
+            self.experiments_ui(ui, &lesson, desc, &mut action);
             ui.separator();
             ui.strong("Question");
             ui.label(&lesson.question);
@@ -308,5 +254,72 @@ impl LessonsPanel {
             }
         });
         action
+    }
+
+    /// The *Try this* buttons with their Undo and Look-for lines.
+    fn experiments_ui(
+        &mut self,
+        ui: &mut egui::Ui,
+        lesson: &Lesson,
+        desc: Option<&SceneDesc>,
+        action: &mut Option<LessonAction>,
+    ) {
+        for (k, x) in lesson.experiments.iter().enumerate() {
+            let applied = self.applied.iter().any(|a| a.experiment == k);
+            ui.horizontal(|ui| {
+                let button = egui::Button::new(&x.label).selected(applied);
+                if ui
+                    .add_enabled(self.active && desc.is_some(), button)
+                    .on_hover_text(
+                        x.edits
+                            .iter()
+                            .map(|e| format!("{} = {}", e.path, e.value))
+                            .collect::<Vec<_>>()
+                            .join("\n"),
+                    )
+                    .clicked()
+                    && let Some(d) = desc
+                {
+                    match x.apply(d) {
+                        Ok(new) => {
+                            // Pressed again: Undo still goes back to before the first press.
+                            if !applied {
+                                self.applied.push(Applied {
+                                    experiment: k,
+                                    before: d.clone(),
+                                });
+                            }
+                            self.lesson_desc = Some(new.clone());
+                            *action = Some(LessonAction::Apply(new));
+                        }
+                        Err(e) => {
+                            *action = Some(LessonAction::Error(format!(
+                                "{}: \"{}\": {e}",
+                                lesson.file.display(),
+                                x.label
+                            )));
+                        }
+                    }
+                }
+                if applied
+                    && ui
+                        .button("Undo")
+                        .on_hover_text("Back to the scene before this experiment")
+                        .clicked()
+                    && let Some(pos) = self.applied.iter().position(|a| a.experiment == k)
+                {
+                    // Undoing an experiment also drops those applied after it.
+                    let before = self.applied[pos].before.clone();
+                    self.applied.truncate(pos);
+                    self.lesson_desc = Some(before.clone());
+                    *action = Some(LessonAction::Apply(before));
+                }
+            });
+            ui.horizontal_wrapped(|ui| {
+                ui.weak("Look for:");
+                ui.label(&x.look_for);
+            });
+            ui.add_space(4.0);
+        }
     }
 }

@@ -2,7 +2,7 @@
 //! and a value in the preset's own RON syntax (`Cylindrical`, `(0, 1, 4)`).
 //!
 //! The description is serialised to a `serde_json` tree only to find where the path goes;
-//! the new description is then deserialised from that tree through [`Splice`], a deserializer
+//! the new description is then deserialised from that tree through `Splice`, a deserializer
 //! that hands the one value at the path to RON's deserializer. `SceneDesc`'s own `Deserialize`
 //! drives both, so the value is parsed as exactly the type the field has (an enum variant, a
 //! point, a number), every field of every preset works, including fields added later, and a
@@ -172,7 +172,7 @@ fn resolve(tree: &Value, steps: &[Step]) -> Result<Vec<Step>, String> {
 /// The preset with the value at `path` replaced by `ron_value` (RON, as in a preset file).
 ///
 /// # Errors
-/// The path does not lead into the preset ("`objects` has 1 item(s), so [3] is not one of
+/// The path does not lead into the preset ("`objects` has 1 item(s), so `[3]` is not one of
 /// them"), the value does not fit the field (RON's message: "Expected ..."), or it is not a
 /// finite number where one is needed. The message names the path.
 pub fn set_path(desc: &SceneDesc, path: &str, ron_value: &str) -> Result<SceneDesc, String> {
@@ -226,7 +226,7 @@ impl de::Error for SpliceError {
     }
 }
 
-fn json_err(e: serde_json::Error) -> SpliceError {
+fn json_err(e: &serde_json::Error) -> SpliceError {
     SpliceError(e.to_string())
 }
 
@@ -290,7 +290,7 @@ macro_rules! forward {
         $(
             fn $method<V: Visitor<'de>>(self, $($($arg: $ty,)*)? visitor: V) -> Result<V::Value, SpliceError> {
                 match self.path {
-                    None => self.value.$method($($($arg,)*)? visitor).map_err(json_err),
+                    None => self.value.$method($($($arg,)*)? visitor).map_err(|e| json_err(&e)),
                     Some([]) => Self::ron(self.raw, |de| de.$method($($($arg,)*)? visitor)),
                     Some(rest) => self.descend(rest, visitor),
                 }
@@ -316,7 +316,10 @@ impl<'de> Deserializer<'de> for Splice<'_, 'de> {
 
     fn deserialize_option<V: Visitor<'de>>(self, visitor: V) -> Result<V::Value, SpliceError> {
         match self.path {
-            None => self.value.deserialize_option(visitor).map_err(json_err),
+            None => self
+                .value
+                .deserialize_option(visitor)
+                .map_err(|e| json_err(&e)),
             Some([]) => Self::ron(self.raw, |de| de.deserialize_option(visitor)),
             Some(_) => visitor.visit_some(self),
         }
@@ -331,7 +334,7 @@ impl<'de> Deserializer<'de> for Splice<'_, 'de> {
             None => self
                 .value
                 .deserialize_newtype_struct(name, visitor)
-                .map_err(json_err),
+                .map_err(|e| json_err(&e)),
             Some([]) => Self::ron(self.raw, |de| de.deserialize_newtype_struct(name, visitor)),
             Some(_) => visitor.visit_newtype_struct(self),
         }
@@ -347,7 +350,7 @@ impl<'de> Deserializer<'de> for Splice<'_, 'de> {
             None => self
                 .value
                 .deserialize_enum(name, variants, visitor)
-                .map_err(json_err),
+                .map_err(|e| json_err(&e)),
             Some([]) => Self::ron(self.raw, |de| de.deserialize_enum(name, variants, visitor)),
             Some([Step::Field(variant), rest @ ..]) => {
                 let Value::Object(mut map) = self.value else {

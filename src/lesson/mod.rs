@@ -238,7 +238,12 @@ pub fn parse_lesson(text: &str, file: &Path) -> Result<Lesson> {
         file: file.to_path_buf(),
         title: raw.title.trim().to_owned(),
         preset,
-        text: raw.text.trim().to_owned(),
+        // Only blank lines go: a text may start with an indented formula.
+        text: raw
+            .text
+            .trim_start_matches(['\n', '\r'])
+            .trim_end()
+            .to_owned(),
         experiments,
         question: raw.question.ask.trim().to_owned(),
         answer: raw.question.answer.trim().to_owned(),

@@ -560,6 +560,33 @@ mod tests {
     }
 
     #[test]
+    fn hostile_paths_and_values_are_errors_not_panics() {
+        let deep = format!("{}1{}", "(".repeat(10_000), ")".repeat(10_000));
+        for (path, value) in [
+            ("[0]", "1"),
+            ("objects[0", "1"),
+            ("objects]0[", "1"),
+            ("objects[0]]", "1"),
+            (".", "1"),
+            ("objects[18446744073709551616]", "1"),
+            ("camera..eye", "1"),
+            ("camera.eye", ""),
+            ("camera.eye", "\"unterminated"),
+            ("camera.eye", deep.as_str()),
+            ("objects[0].material.cd.path", "\"\u{0}\""),
+            ("render.spp", "0"),
+            ("render.spp", "-1"),
+            ("objects", "[]"),
+        ] {
+            // Either a clear error or a description that still checks out; never a panic.
+            if let Ok(d) = set_path(&earth(), path, value) {
+                assert!(check_numbers(&d).is_ok(), "{path} = {value}");
+            }
+        }
+        assert!(set_path(&earth(), "camera.eye", &deep).is_err());
+    }
+
+    #[test]
     fn paths_and_values_that_do_not_fit_say_why() {
         let e = set_path(&earth(), "objects[3].material", "Constant((1, 1, 1))").unwrap_err();
         assert!(

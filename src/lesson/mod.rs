@@ -26,7 +26,7 @@
 pub mod edit;
 
 use crate::error::{Error, Result};
-use crate::scene::{SceneDesc, load_preset};
+use crate::scene::{AssetCache, SceneDesc, build_scene, load_preset};
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
 use toml::Spanned;
@@ -167,9 +167,15 @@ fn ron_text(v: &toml::Value) -> std::result::Result<String, String> {
 ///
 /// # Errors
 /// One error naming the file, line and column: TOML syntax, an unknown or missing field, a
-/// preset that does not load, an empty `set`, or an edit whose path or value does not fit
-/// the preset.
+/// preset that does not load or build, an empty `set`, an edit whose path or value does not fit
+/// the preset, or an experiment whose scene does not build (a value out of range, a missing
+/// image).
 pub fn parse_lesson(text: &str, file: &Path) -> Result<Lesson> {
+    parse_with(text, file, &mut AssetCache::new())
+}
+
+/// [`parse_lesson`] with a cache shared by several lessons (each image is read once).
+fn parse_with(text: &str, file: &Path, cache: &mut AssetCache) -> Result<Lesson> {
     let raw: LessonFile = toml::from_str(text).map_err(|e| {
         let offset = e.span().map_or(0, |s| s.start);
         at(file, text, offset, e.message().trim().to_owned())
@@ -182,6 +188,14 @@ pub fn parse_lesson(text: &str, file: &Path) -> Result<Lesson> {
             text,
             raw.preset.span().start,
             format!("preset {:?} does not load: {e}", raw.preset.get_ref()),
+        )
+    })?;
+    build_scene(&base, &preset, cache).map_err(|e| {
+        at(
+            file,
+            text,
+            raw.preset.span().start,
+            format!("preset {:?} does not build: {e}", raw.preset.get_ref()),
         )
     })?;
     let mut experiments = Vec::new();
@@ -227,6 +241,14 @@ pub fn parse_lesson(text: &str, file: &Path) -> Result<Lesson> {
                 ),
             ));
         }
+        build_scene(&desc, &preset, cache).map_err(|e| {
+            at(
+                file,
+                text,
+                span.start,
+                format!("experiment \"{}\": the scene does not build: {e}", x.label),
+            )
+        })?;
         experiments.push(Experiment {
             label: x.label,
             look_for: x.look_for,
@@ -255,8 +277,12 @@ pub fn parse_lesson(text: &str, file: &Path) -> Result<Lesson> {
 /// # Errors
 /// As [`parse_lesson`], or the file cannot be read.
 pub fn load_lesson(file: &Path) -> Result<Lesson> {
+    load_with(file, &mut AssetCache::new())
+}
+
+fn load_with(file: &Path, cache: &mut AssetCache) -> Result<Lesson> {
     let text = crate::input::read_input_text(file, MAX_LESSON_BYTES)?;
-    parse_lesson(&text, file)
+    parse_with(&text, file, cache)
 }
 
 fn lesson_name(file: &Path) -> String {
@@ -286,8 +312,9 @@ pub fn load_dir(dir: &Path) -> Result<Lessons> {
         .collect();
     files.sort();
     let mut out = Lessons::default();
+    let mut cache = AssetCache::new();
     for f in files {
-        match load_lesson(&f) {
+        match load_with(&f, &mut cache) {
             Ok(l) => out.lessons.push(l),
             Err(e) => out.errors.push(e),
         }
@@ -401,7 +428,7 @@ answer = "Because."
 
     #[test]
     fn every_kind_of_error_names_the_file_and_line() {
-        let cases: [(String, usize, &str); 8] = [
+        let cases: [(String, usize, &str); 10] = [
             // TOML syntax: an unclosed string on line 3.
             (GOOD.replace("text = \"u = phi / 2 pi\"", "text = \"u = phi"), 4, "string"),
             // An unknown field.
@@ -419,6 +446,21 @@ answer = "Because."
                 GOOD.replace("\"Cylindrical\", \"camera.eye\" = [0, 0, 3]", "\"Spherical\""),
                 9,
                 "changes nothing",
+            ),
+            // A value of the right type out of range: the scene does not build.
+            (
+                GOOD.replace("\"camera.eye\" = [0, 0, 3]", "\"render.spp\" = 0"),
+                9,
+                "does not build",
+            ),
+            // A missing image.
+            (
+                GOOD.replace(
+                    "\"camera.eye\" = [0, 0, 3]",
+                    "\"objects[0].material.cd.path\" = '\"nowhere.png\"'",
+                ),
+                9,
+                "nowhere.png",
             ),
             // An empty `set`.
             (

@@ -46,7 +46,7 @@ impl Default for Inspector {
     }
 }
 
-fn srgb(c: Rgb) -> egui::Color32 {
+pub(super) fn srgb(c: Rgb) -> egui::Color32 {
     let [r, g, b] = c.to_array().map(linear_to_srgb8);
     egui::Color32::from_rgb(r, g, b)
 }
@@ -152,11 +152,46 @@ impl Inspector {
                     ui.label(format!("({:.3}, {:.3}, {:.3}) linear", c.0, c.1, c.2));
                 });
                 ui.end_row();
-                ui.label("pixel radiance");
+                ui.label("shaded radiance");
                 let c = i.radiance;
-                ui.label(format!("({:.3}, {:.3}, {:.3})", c.0, c.1, c.2));
+                ui.label(format!("({:.3}, {:.3}, {:.3}) linear", c.0, c.1, c.2))
+                    .on_hover_text(
+                        "The lit, textured colour of the ray through this pixel (before \
+                         exposure), whatever debug view the viewport shows",
+                    );
                 ui.end_row();
+                if let Some((view, c)) = i.debug_value {
+                    ui.label(format!("{} view shows", view.name()));
+                    ui.label(format!("({:.3}, {:.3}, {:.3})", c.0, c.1, c.2))
+                        .on_hover_text(view.description());
+                    ui.end_row();
+                }
             });
+        if let Some(m) = &i.mesh {
+            ui.separator();
+            ui.strong(format!("Triangle {} of the mesh", m.triangle));
+            egui::Grid::new("inspect-mesh")
+                .num_columns(3)
+                .striped(true)
+                .show(ui, |ui| {
+                    ui.label("vertex");
+                    ui.label("(u, v)");
+                    ui.label("weight");
+                    ui.end_row();
+                    for k in 0..3 {
+                        ui.label(format!("{k}"));
+                        match m.uvs {
+                            Some(t) => ui.monospace(format!("({:.4}, {:.4})", t[k].x, t[k].y)),
+                            None => ui.label("none in the file"),
+                        };
+                        ui.monospace(format!("w{k} = {:.4}", m.bary[k]));
+                        ui.end_row();
+                    }
+                });
+            for l in &m.lines {
+                ui.monospace(l);
+            }
+        }
         if !i.mapping_lines.is_empty() {
             ui.separator();
             ui.strong("Mapping, with this pixel's numbers");
@@ -454,7 +489,7 @@ impl Zoom {
 }
 
 /// The image as an sRGB texture, subsampled to at most [`OVERVIEW_MAX`] a side.
-fn overview(img: &ImageData) -> egui::ColorImage {
+pub(super) fn overview(img: &ImageData) -> egui::ColorImage {
     let (w, h) = (img.width(), img.height());
     let step = w.max(h).div_ceil(OVERVIEW_MAX).max(1);
     let (ow, oh) = (w.div_ceil(step), h.div_ceil(step));

@@ -279,6 +279,77 @@ impl Scene {
     }
 }
 
+/// Where a learner goes wrong with object `object`'s image texture, in words: an image whose
+/// aspect does not suit its mapping, the light probe's z flip and its panoramic variant, the
+/// lecture lookup's missing last column. Empty when the object reads no image.
+#[must_use]
+pub fn mapping_hints(scene: &Scene, object: usize) -> Vec<String> {
+    let Some(Texture::Image(t)) = scene
+        .objects
+        .get(object)
+        .and_then(|o| scene.materials.get(o.material))
+        .map(Material::texture)
+    else {
+        return Vec::new();
+    };
+    let (w, h) = (t.image.width(), t.image.height());
+    let aspect = f64::from(w) / f64::from(h);
+    let ratio = ratio_words(w, h);
+    let mut hints = Vec::new();
+    match t.mapping {
+        Mapping::Spherical if (aspect - 2.0).abs() > 0.02 => hints.push(format!(
+            "this image is {ratio} ({w} x {h}), but the spherical map spreads its width over              360 degrees of longitude and its height over 180 of latitude: only a 2:1 image              keeps its shapes (this one is stretched {:.2} x {} in latitude)",
+            2.0 / aspect,
+            if aspect > 2.0 { "taller" } else { "flatter" }
+        )),
+        Mapping::LightProbe => hints.push(
+            "the light probe looks along +z: alpha = acos(z) is 0 at the image centre. A probe              made for a panorama looks along -z; its variant `panoramic` flips z              (alpha = acos(-z)), so the centre of the image lands behind the viewer"
+                .to_owned(),
+        ),
+        Mapping::Panoramic => hints.push(
+            "panoramic: the light probe with z flipped (alpha = acos(-z)): the image centre is              the direction -z. Switch to `light-probe` to see the lecture's +z convention"
+                .to_owned(),
+        ),
+        _ => {}
+    }
+    if matches!(
+        t.mapping,
+        Mapping::LightProbe | Mapping::Panoramic | Mapping::MirrorBall
+    ) && (aspect - 1.0).abs() > 0.02
+    {
+        hints.push(format!(
+            "a light probe is a disc in a square image; this one is {ratio} ({w} x {h}), so the              disc is squeezed into an ellipse"
+        ));
+    }
+    if t.mapping == Mapping::Rectangular && (aspect - 1.0).abs() > 0.02 {
+        hints.push(format!(
+            "the rectangular map puts the whole {ratio} image on the square [-1, 1]^2: its              aspect is kept only if the object is scaled {ratio} too"
+        ));
+    }
+    if t.filter == Filter::Nearest && t.lookup == Lookup::Lecture {
+        hints.push(format!(
+            "the lecture's lookup (int)((hres - 1) u) reaches column {} only at u = 1 exactly \
+             (and row {} only at v = 1): the last column and row are almost never read, and \
+             every other texel is stretched by hres / (hres - 1). The centred lookup \
+             min(floor(u hres), hres - 1) reads every texel alike",
+            w - 1,
+            h - 1
+        ));
+    }
+    hints
+}
+
+/// "3:2" for 600 x 400, "2:1", or "1.47:1" when no small ratio fits.
+fn ratio_words(w: u32, h: u32) -> String {
+    for d in 1..=10_u32 {
+        let n = f64::from(w) * f64::from(d) / f64::from(h);
+        if (n - n.round()).abs() < 0.02 * n.max(1.0) && n.round() >= 1.0 {
+            return format!("{}:{d}", n.round());
+        }
+    }
+    format!("{:.2}:1", f64::from(w) / f64::from(h))
+}
+
 /// The triangle `prim` (BVH order; `part` in the file) of `mesh` hit at `p`: its vertices,
 /// their (u, v) and the barycentric weights of `p`, with the interpolation worked.
 fn mesh_point(mesh: &crate::geometry::Mesh, prim: u32, part: u32, p: Vec3A) -> Option<MeshPoint> {

@@ -6,6 +6,7 @@ use super::files::{FileAction, Files};
 use super::inspector::Inspector;
 use super::live::LiveImage;
 use super::scene_panel::ScenePanel;
+use super::texture_panel::TexturePanel;
 use super::viewport::{self, ViewEdit};
 use crate::math::Vec2;
 use crate::render::{DisplayImage, Generation, RenderJob, RenderOptions};
@@ -46,6 +47,7 @@ pub struct ExplorerApp {
     pub(super) error: Option<String>,
     pub(super) scene_panel: ScenePanel,
     pub(super) inspector: Inspector,
+    pub(super) texture_panel: TexturePanel,
     pub(super) ab: AbSplit,
     pub(super) speed: SpeedPanel,
     pub(super) files: Files,
@@ -80,6 +82,7 @@ impl ExplorerApp {
             error: None,
             scene_panel: ScenePanel::default(),
             inspector: Inspector::default(),
+            texture_panel: TexturePanel::default(),
             ab: AbSplit::default(),
             speed: SpeedPanel::default(),
             files: Files::new(options.recent_file),
@@ -356,6 +359,7 @@ impl ExplorerApp {
                 &self.path,
                 [
                     (&mut self.inspector.open, "Inspector"),
+                    (&mut self.texture_panel.open, "Texture panel"),
                     (&mut self.ab.enabled, "A/B split"),
                     (&mut self.speed.open, "Speed and error"),
                 ],
@@ -408,6 +412,7 @@ impl ExplorerApp {
             self.restart();
         }
 
+        self.texture_panel.update(&ctx, self.scene.as_ref());
         if self.inspector.open {
             egui::Panel::right("inspector")
                 .default_size(440.0)
@@ -415,6 +420,13 @@ impl ExplorerApp {
                 .show(ui, |ui| {
                     egui::ScrollArea::vertical().show(ui, |ui| self.inspector.ui(ui));
                 });
+        }
+
+        if self.texture_panel.open {
+            egui::Panel::right("texture-panel")
+                .default_size(380.0)
+                .resizable(true)
+                .show(ui, |ui| self.texture_panel.ui(ui, self.inspector.shown()));
         }
 
         self.speed.window(&ctx, self.desc.as_ref(), &self.path);

@@ -7,7 +7,9 @@ mod compare;
 mod files;
 mod inspector;
 mod live;
+mod overlay;
 mod scene_panel;
+mod texture_panel;
 mod viewport;
 mod widgets;
 

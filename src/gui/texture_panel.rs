@@ -480,7 +480,10 @@ impl TexturePanel {
             );
         }
         let what = match (&self.selection, self.hover) {
-            (Some(s), _) => Some(format!("{} texels chosen", s.count())),
+            (Some(s), _) => Some(match s.count() {
+                1 => "1 texel chosen".to_owned(),
+                n => format!("{n} texels chosen"),
+            }),
             (None, Some((c, r))) => Some(format!("texel ({c}, {r} from the bottom)")),
             _ => None,
         };

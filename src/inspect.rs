@@ -88,6 +88,8 @@ pub struct Inspection {
     pub world_point: Vec3A,
     /// Object-space hit point: the lecture's `local_hit_point`.
     pub local_point: Vec3A,
+    /// The point the mapping reads: the local hit point, fitted into [-1, 1]^3 on a mesh.
+    pub mapping_point: Vec3A,
     /// The kind of texture ("constant", "image", "checker").
     pub texture_kind: &'static str,
     /// The mapping in effect (after `uv` falls back to the shape's natural one); `None` for a
@@ -263,6 +265,7 @@ impl Scene {
             shape: shape_label(&obj.shape, hit.local.part),
             world_point: hit.p,
             local_point: hit.local.p,
+            mapping_point: ctx.p,
             texture_kind: kind,
             mapping: effective,
             mapping_lines,
@@ -276,6 +279,69 @@ impl Scene {
             debug_value,
             mesh,
         })
+    }
+}
+
+/// The angles of the lecture's mapping formulas at one point, for the mapping diagram: what the
+/// generic object's drawing marks. Each is `None` where the mapping has no such angle.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MappingAngles {
+    /// Azimuth about y from +z toward +x, in [0, 2 pi) (cylindrical, spherical).
+    pub phi: Option<f64>,
+    /// Polar angle from +y, in [0, pi] (spherical).
+    pub theta: Option<f64>,
+    /// Angle from the probe's axis (+z, or -z for the panoramic variant), in [0, pi].
+    pub alpha: Option<f64>,
+    /// Direction in the image disc, from +u toward +v (light probes).
+    pub beta: Option<f64>,
+    /// Distance from the image disc's centre, 0 to 1 (light probes).
+    pub r: Option<f64>,
+}
+
+/// The angles of `mapping`'s formula at `p` (the point the mapping reads, see
+/// [`Inspection::mapping_point`]): phi for the cylindrical map, phi and theta for the spherical,
+/// alpha, beta and r for the light probes. The rectangular map has none.
+#[must_use]
+pub fn mapping_angles(mapping: Mapping, p: Vec3A) -> MappingAngles {
+    let p = p.as_dvec3();
+    let phi = || {
+        let a = p.x.atan2(p.z);
+        if a < 0.0 {
+            a + std::f64::consts::TAU
+        } else {
+            a
+        }
+    };
+    match mapping {
+        Mapping::Cylindrical => MappingAngles {
+            phi: Some(phi()),
+            ..MappingAngles::default()
+        },
+        Mapping::Spherical | Mapping::Uv => MappingAngles {
+            phi: Some(phi()),
+            theta: Some(p.x.hypot(p.z).atan2(p.y)),
+            ..MappingAngles::default()
+        },
+        Mapping::LightProbe | Mapping::Panoramic | Mapping::MirrorBall => {
+            let z = if mapping == Mapping::Panoramic {
+                -p.z
+            } else {
+                p.z
+            };
+            let alpha = p.x.hypot(p.y).atan2(z);
+            let r = if mapping == Mapping::MirrorBall {
+                (alpha * 0.5).sin()
+            } else {
+                alpha / std::f64::consts::PI
+            };
+            MappingAngles {
+                alpha: Some(alpha),
+                beta: Some(p.y.atan2(p.x)),
+                r: Some(r),
+                ..MappingAngles::default()
+            }
+        }
+        Mapping::Rectangular => MappingAngles::default(),
     }
 }
 
@@ -298,16 +364,25 @@ pub fn mapping_hints(scene: &Scene, object: usize) -> Vec<String> {
     let mut hints = Vec::new();
     match t.mapping {
         Mapping::Spherical if (aspect - 2.0).abs() > 0.02 => hints.push(format!(
-            "this image is {ratio} ({w} x {h}), but the spherical map spreads its width over              360 degrees of longitude and its height over 180 of latitude: only a 2:1 image              keeps its shapes (this one is stretched {:.2} x {} in latitude)",
+            "this image is {ratio} ({w} x {h}), but the spherical map spreads its width over \
+             360 degrees of longitude and its height over 180 of latitude: only a 2:1 image \
+             keeps its shapes (its shapes come out {:.2} times {})",
             2.0 / aspect,
-            if aspect > 2.0 { "taller" } else { "flatter" }
+            if aspect < 2.0 {
+                "too wide"
+            } else {
+                "too narrow"
+            }
         )),
         Mapping::LightProbe => hints.push(
-            "the light probe looks along +z: alpha = acos(z) is 0 at the image centre. A probe              made for a panorama looks along -z; its variant `panoramic` flips z              (alpha = acos(-z)), so the centre of the image lands behind the viewer"
+            "the light probe looks along +z: alpha = acos(z) is 0 at the image centre. A \
+             probe made for a panorama looks along -z; its variant `panoramic` flips z (alpha \
+             = acos(-z)), so the centre of the image lands behind the viewer"
                 .to_owned(),
         ),
         Mapping::Panoramic => hints.push(
-            "panoramic: the light probe with z flipped (alpha = acos(-z)): the image centre is              the direction -z. Switch to `light-probe` to see the lecture's +z convention"
+            "panoramic: the light probe with z flipped (alpha = acos(-z)): the image centre \
+             is the direction -z. Switch to `light-probe` to see the lecture's +z convention"
                 .to_owned(),
         ),
         _ => {}
@@ -318,12 +393,14 @@ pub fn mapping_hints(scene: &Scene, object: usize) -> Vec<String> {
     ) && (aspect - 1.0).abs() > 0.02
     {
         hints.push(format!(
-            "a light probe is a disc in a square image; this one is {ratio} ({w} x {h}), so the              disc is squeezed into an ellipse"
+            "a light probe is a disc in a square image; this one is {ratio} ({w} x {h}), so \
+             the disc is squeezed into an ellipse"
         ));
     }
     if t.mapping == Mapping::Rectangular && (aspect - 1.0).abs() > 0.02 {
         hints.push(format!(
-            "the rectangular map puts the whole {ratio} image on the square [-1, 1]^2: its              aspect is kept only if the object is scaled {ratio} too"
+            "the rectangular map puts the whole {ratio} image on the square [-1, 1]^2: its \
+             aspect is kept only if the object is scaled {ratio} too"
         ));
     }
     if t.filter == Filter::Nearest && t.lookup == Lookup::Lecture {
@@ -551,6 +628,57 @@ mod tests {
         assert!(s.debug_value.is_none());
         assert_eq!(i.radiance, s.radiance);
         assert_ne!(i.radiance, value);
+    }
+
+    #[test]
+    fn hints_name_a_3_2_photo_on_the_sphere_and_the_lecture_lookups_last_column() {
+        let (mut desc, path) = earth();
+        if let crate::scene::TextureDesc::Image {
+            path: image,
+            lookup,
+            ..
+        } = desc.objects[0].material.texture_mut()
+        {
+            "../assets/coffee_600x400.png".clone_into(image);
+            *lookup = Lookup::Lecture;
+        }
+        let scene = build_scene(&desc, &path, &mut AssetCache::new()).expect("build");
+        let hints = mapping_hints(&scene, 0);
+        assert_eq!(hints.len(), 2, "{hints:?}");
+        assert!(
+            hints[0].starts_with("this image is 3:2 (600 x 400)"),
+            "{}",
+            hints[0]
+        );
+        assert!(hints[0].ends_with("1.33 times too wide)"), "{}", hints[0]);
+        assert!(
+            hints[1].contains("reaches column 599 only at u = 1"),
+            "{}",
+            hints[1]
+        );
+        // The Earth as shipped: 2:1 and the centred lookup, nothing to say.
+        let (desc, path) = earth();
+        let scene = build_scene(&desc, &path, &mut AssetCache::new()).expect("build");
+        assert!(mapping_hints(&scene, 0).is_empty());
+    }
+
+    #[test]
+    fn the_diagram_angles_are_the_formulas_angles() {
+        let p = Vec3A::new(0.5, 0.5_f32.sqrt(), -0.5);
+        let a = mapping_angles(Mapping::Spherical, p);
+        assert!((a.phi.unwrap() - 0.75 * std::f64::consts::PI).abs() < 1e-6);
+        assert!((a.theta.unwrap() - std::f64::consts::FRAC_PI_4).abs() < 1e-6);
+        let q = Vec3A::new(0.0, 1.0, 0.0);
+        let probe = mapping_angles(Mapping::LightProbe, q);
+        assert!((probe.alpha.unwrap() - std::f64::consts::FRAC_PI_2).abs() < 1e-6);
+        assert!((probe.beta.unwrap() - std::f64::consts::FRAC_PI_2).abs() < 1e-6);
+        assert!((probe.r.unwrap() - 0.5).abs() < 1e-6);
+        let pano = mapping_angles(Mapping::Panoramic, Vec3A::new(0.0, 0.0, -1.0));
+        assert!(pano.alpha.unwrap().abs() < 1e-6, "panoramic looks along -z");
+        assert_eq!(
+            mapping_angles(Mapping::Rectangular, p),
+            MappingAngles::default()
+        );
     }
 
     #[test]

@@ -300,7 +300,8 @@ pub struct MappingAngles {
 
 /// The angles of `mapping`'s formula at `p` (the point the mapping reads, see
 /// [`Inspection::mapping_point`]): phi for the cylindrical map, phi and theta for the spherical,
-/// alpha, beta and r for the light probes. The rectangular map has none.
+/// alpha, beta and r for the light probes. The rectangular map and a mesh's own (u, v) have
+/// none.
 #[must_use]
 pub fn mapping_angles(mapping: Mapping, p: Vec3A) -> MappingAngles {
     let p = p.as_dvec3();
@@ -317,7 +318,7 @@ pub fn mapping_angles(mapping: Mapping, p: Vec3A) -> MappingAngles {
             phi: Some(phi()),
             ..MappingAngles::default()
         },
-        Mapping::Spherical | Mapping::Uv => MappingAngles {
+        Mapping::Spherical => MappingAngles {
             phi: Some(phi()),
             theta: Some(p.x.hypot(p.z).atan2(p.y)),
             ..MappingAngles::default()
@@ -341,7 +342,8 @@ pub fn mapping_angles(mapping: Mapping, p: Vec3A) -> MappingAngles {
                 ..MappingAngles::default()
             }
         }
-        Mapping::Rectangular => MappingAngles::default(),
+        // `Uv` in effect means (u, v) carried by the shape: no angle.
+        Mapping::Rectangular | Mapping::Uv => MappingAngles::default(),
     }
 }
 

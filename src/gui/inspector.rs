@@ -216,7 +216,8 @@ impl Inspector {
             for l in &i.mapping_lines {
                 ui.monospace(l);
             }
-            if let Some(m) = i.mapping {
+            // `uv` here is (u, v) carried by a mesh: its interpolation is shown above instead.
+            if let Some(m) = i.mapping.filter(|&m| m != Mapping::Uv) {
                 mapping_diagram(ui, m, i.mapping_point);
             }
         }
@@ -559,7 +560,8 @@ fn mapping_diagram(ui: &mut egui::Ui, mapping: Mapping, p: crate::math::Vec3A) {
                     },
                 );
             }
-            Mapping::Cylindrical | Mapping::Spherical | Mapping::Uv => {
+            Mapping::Uv => {}
+            Mapping::Cylindrical | Mapping::Spherical => {
                 let phi = a.phi.unwrap_or(0.0);
                 view(ui, &format!("from above: phi = {}", deg(phi)), &|pa, r| {
                     from_above(pa, r, p, phi);

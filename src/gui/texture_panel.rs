@@ -68,6 +68,8 @@ pub struct TexturePanel {
     selection: Option<TexelMask>,
     selection_version: u64,
     hover: Option<(u32, u32)>,
+    /// The object the inspector showed last: the panel follows it when it changes.
+    followed: Option<usize>,
     asked: Option<Ask>,
     reverse: Option<Background<PixelMask>>,
     highlight: Option<(Ask, PixelMask)>,
@@ -93,6 +95,7 @@ impl Default for TexturePanel {
             selection: None,
             selection_version: 0,
             hover: None,
+            followed: None,
             asked: None,
             reverse: None,
             highlight: None,
@@ -305,6 +308,18 @@ impl TexturePanel {
         if objects.is_empty() {
             ui.label("No object of this scene reads an image: the panel shows image textures.");
             return;
+        }
+        // Follow the inspector to another textured object (the picker still overrides).
+        let inspected = shown.map(|i| i.object);
+        if inspected.is_some() && inspected != self.followed {
+            self.followed = inspected;
+            if let Some(o) = inspected.filter(|o| objects.contains(o) && *o != self.object) {
+                self.object = o;
+                self.selection = None;
+                self.selection_version += 1;
+                self.centre = None;
+                self.zoom = 1.0;
+            }
         }
         if objects.len() > 1 {
             let name = |o: usize| scene.objects[o].name.clone();

@@ -566,16 +566,14 @@ impl TexturePanel {
                 if let Some(p) = response.interact_pointer_pos() {
                     let sel = self.selection.get_or_insert_with(|| TexelMask::new(w, h));
                     let r = (BRUSH_POINTS / view.scale).max(0.5);
-                    let c = view.to_texels(p);
-                    let (x0, x1) = ((c.x - r).floor() as i64, (c.x + r).ceil() as i64);
-                    let (y0, y1) = ((c.y - r).floor() as i64, (c.y + r).ceil() as i64);
-                    for y in y0.max(0)..y1.min(i64::from(h)) {
-                        for x in x0.max(0)..x1.min(i64::from(w)) {
-                            let d = egui::vec2(x as f32 + 0.5, y as f32 + 0.5) - c;
-                            if d.length() <= r {
-                                sel.insert(x as u32, h - 1 - y as u32);
-                            }
-                        }
+                    // Stamp along the segment the pointer moved this frame, not only at its
+                    // end: a fast stroke leaves no gaps.
+                    let to = view.to_texels(p);
+                    let from = view.to_texels(p - response.drag_delta());
+                    let steps = ((to - from).length() / (r * 0.5)).ceil().clamp(1.0, 512.0) as u32;
+                    for k in 0..=steps {
+                        let c = from + (to - from) * (k as f32 / steps as f32);
+                        brush(sel, c, r);
                     }
                     self.selection_version += 1;
                 }
@@ -600,6 +598,21 @@ impl TexturePanel {
                 m
             });
             self.selection_version += 1;
+        }
+    }
+}
+
+/// Adds the texels whose centres lie within `r` texels of `c` (x right, y down) to `sel`.
+fn brush(sel: &mut TexelMask, c: egui::Vec2, r: f32) {
+    let (w, h) = (i64::from(sel.width), i64::from(sel.height));
+    let (x0, x1) = ((c.x - r).floor() as i64, (c.x + r).ceil() as i64);
+    let (y0, y1) = ((c.y - r).floor() as i64, (c.y + r).ceil() as i64);
+    for y in y0.max(0)..y1.min(h) {
+        for x in x0.max(0)..x1.min(w) {
+            let d = egui::vec2(x as f32 + 0.5, y as f32 + 0.5) - c;
+            if d.length() <= r {
+                sel.insert(x as u32, (h - 1 - y) as u32);
+            }
         }
     }
 }
@@ -802,7 +815,7 @@ fn upload_iso(ctx: &egui::Context, iso: &IsoLines) -> egui::TextureHandle {
 
 /// The pixels that read the chosen texels, as an image of the film's size.
 fn upload_highlight(ctx: &egui::Context, mask: &PixelMask) -> egui::TextureHandle {
-    let on = egui::Color32::from_rgba_unmultiplied(255, 240, 0, 220);
+    let on = egui::Color32::from_rgba_unmultiplied(255, 240, 0, 150);
     let pixels = mask
         .bits
         .iter()

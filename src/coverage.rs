@@ -17,6 +17,7 @@ use crate::render::{Cancelled, PoolError, thread_pool};
 use crate::scene::Scene;
 use crate::texture::{Filter, ImageTexture, Texture};
 use rayon::prelude::*;
+use std::collections::BTreeMap;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex, PoisonError};
 
@@ -474,7 +475,7 @@ pub fn iso_lines(field: &UvField, divisions: u32) -> IsoLines {
     let (w, h) = (field.width, field.height);
     let mut flags = vec![0_u8; field.pixels.len()];
     // (is_u, k) -> the pixels on that line.
-    let mut runs: std::collections::BTreeMap<(bool, u32), Vec<(u32, u32)>> = Default::default();
+    let mut runs: BTreeMap<(bool, u32), Vec<(u32, u32)>> = BTreeMap::default();
     for y in 0..h {
         for x in 0..w {
             let Some(p) = field.at(x, y) else { continue };

@@ -12,7 +12,7 @@ use texplore::coverage::{
     visible_region,
 };
 use texplore::math::Vec2;
-use texplore::scene::{AssetCache, Overrides, Scene, load_preset};
+use texplore::scene::{AssetCache, Overrides, Scene, TransformDesc, load_preset};
 use texplore::texture::Filter;
 
 fn scene(preset: &str, width: u32, height: u32, filter: Option<Filter>) -> Scene {
@@ -255,7 +255,7 @@ fn the_north_pole_is_marked_where_the_spherical_map_reaches_v_1() {
     let path = root().join("presets/earth.ron");
     let mut desc = load_preset(&path).unwrap();
     desc.camera.eye = [0.0, 3.6, 0.01].into();
-    desc.objects[0].transform = Default::default();
+    desc.objects[0].transform = TransformDesc::default();
     let scene = build_with(
         &desc,
         &path,

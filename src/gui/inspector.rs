@@ -129,86 +129,9 @@ impl Inspector {
                     .color(egui::Color32::from_rgb(255, 200, 90)),
             );
         }
-        let v3 = |v: crate::math::Vec3A| format!("({:.4}, {:.4}, {:.4})", v.x, v.y, v.z);
-        egui::Grid::new("inspect-hit")
-            .num_columns(2)
-            .striped(true)
-            .show(ui, |ui| {
-                ui.label("pixel");
-                ui.label(format!(
-                    "({:.0}, {:.0})",
-                    i.pixel.x.floor(),
-                    i.pixel.y.floor()
-                ));
-                ui.end_row();
-                ui.label("object");
-                ui.label(format!("{} ({})", i.object_name, i.shape));
-                ui.end_row();
-                ui.label("world hit point");
-                ui.label(v3(i.world_point));
-                ui.end_row();
-                ui.label("local hit point");
-                ui.label(v3(i.local_point)).on_hover_text(
-                    "The lecture's local_hit_point: the hit in the generic object's own space, \
-                     which the mapping reads",
-                );
-                ui.end_row();
-                ui.label("texture");
-                ui.label(i.texture_kind);
-                ui.end_row();
-                if let Some(m) = i.mapping {
-                    ui.label("mapping");
-                    ui.label(m.name()).on_hover_text(m.description());
-                    ui.end_row();
-                }
-                ui.label("texture colour");
-                ui.horizontal(|ui| {
-                    let (r, _) =
-                        ui.allocate_exact_size(egui::vec2(28.0, 14.0), egui::Sense::hover());
-                    ui.painter().rect_filled(r, 2.0, srgb(i.texture_colour));
-                    let c = i.texture_colour;
-                    ui.label(format!("({:.3}, {:.3}, {:.3}) linear", c.0, c.1, c.2));
-                });
-                ui.end_row();
-                ui.label("shaded radiance");
-                let c = i.radiance;
-                ui.label(format!("({:.3}, {:.3}, {:.3}) linear", c.0, c.1, c.2))
-                    .on_hover_text(
-                        "The lit, textured colour of the ray through this pixel (before \
-                         exposure), whatever debug view the viewport shows",
-                    );
-                ui.end_row();
-                if let Some((view, c)) = i.debug_value {
-                    ui.label(format!("{} view shows", view.name()));
-                    ui.label(format!("({:.3}, {:.3}, {:.3})", c.0, c.1, c.2))
-                        .on_hover_text(view.description());
-                    ui.end_row();
-                }
-            });
+        hit_grid(ui, &i);
         if let Some(m) = &i.mesh {
-            ui.separator();
-            ui.strong(format!("Triangle {} of the mesh", m.triangle));
-            egui::Grid::new("inspect-mesh")
-                .num_columns(3)
-                .striped(true)
-                .show(ui, |ui| {
-                    ui.label("vertex");
-                    ui.label("(u, v)");
-                    ui.label("weight");
-                    ui.end_row();
-                    for k in 0..3 {
-                        ui.label(format!("{k}"));
-                        match m.uvs {
-                            Some(t) => ui.monospace(format!("({:.4}, {:.4})", t[k].x, t[k].y)),
-                            None => ui.label("none in the file"),
-                        };
-                        ui.monospace(format!("w{k} = {:.4}", m.bary[k]));
-                        ui.end_row();
-                    }
-                });
-            for l in &m.lines {
-                ui.monospace(l);
-            }
+            mesh_section(ui, m);
         }
         if !i.mapping_lines.is_empty() {
             ui.separator();
@@ -524,6 +447,92 @@ pub(super) fn overview(img: &ImageData) -> egui::ColorImage {
         }
     }
     egui::ColorImage::new([ow as usize, oh as usize], pixels)
+}
+
+/// The hit: pixel, object, points, texture, mapping, colour, radiance and debug value.
+fn hit_grid(ui: &mut egui::Ui, i: &Inspection) {
+    let v3 = |v: crate::math::Vec3A| format!("({:.4}, {:.4}, {:.4})", v.x, v.y, v.z);
+    egui::Grid::new("inspect-hit")
+        .num_columns(2)
+        .striped(true)
+        .show(ui, |ui| {
+            ui.label("pixel");
+            ui.label(format!(
+                "({:.0}, {:.0})",
+                i.pixel.x.floor(),
+                i.pixel.y.floor()
+            ));
+            ui.end_row();
+            ui.label("object");
+            ui.label(format!("{} ({})", i.object_name, i.shape));
+            ui.end_row();
+            ui.label("world hit point");
+            ui.label(v3(i.world_point));
+            ui.end_row();
+            ui.label("local hit point");
+            ui.label(v3(i.local_point)).on_hover_text(
+                "The lecture's local_hit_point: the hit in the generic object's own space, \
+                 which the mapping reads",
+            );
+            ui.end_row();
+            ui.label("texture");
+            ui.label(i.texture_kind);
+            ui.end_row();
+            if let Some(m) = i.mapping {
+                ui.label("mapping");
+                ui.label(m.name()).on_hover_text(m.description());
+                ui.end_row();
+            }
+            ui.label("texture colour");
+            ui.horizontal(|ui| {
+                let (r, _) = ui.allocate_exact_size(egui::vec2(28.0, 14.0), egui::Sense::hover());
+                ui.painter().rect_filled(r, 2.0, srgb(i.texture_colour));
+                let c = i.texture_colour;
+                ui.label(format!("({:.3}, {:.3}, {:.3}) linear", c.0, c.1, c.2));
+            });
+            ui.end_row();
+            ui.label("shaded radiance");
+            let c = i.radiance;
+            ui.label(format!("({:.3}, {:.3}, {:.3}) linear", c.0, c.1, c.2))
+                .on_hover_text(
+                    "The lit, textured colour of the ray through this pixel (before \
+                     exposure), whatever debug view the viewport shows",
+                );
+            ui.end_row();
+            if let Some((view, c)) = i.debug_value {
+                ui.label(format!("{} view shows", view.name()));
+                ui.label(format!("({:.3}, {:.3}, {:.3})", c.0, c.1, c.2))
+                    .on_hover_text(view.description());
+                ui.end_row();
+            }
+        });
+}
+
+/// A mesh hit: the triangle's vertices' (u, v), the weights and the interpolation worked.
+fn mesh_section(ui: &mut egui::Ui, m: &crate::inspect::MeshPoint) {
+    ui.separator();
+    ui.strong(format!("Triangle {} of the mesh", m.triangle));
+    egui::Grid::new("inspect-mesh")
+        .num_columns(3)
+        .striped(true)
+        .show(ui, |ui| {
+            ui.label("vertex");
+            ui.label("(u, v)");
+            ui.label("weight");
+            ui.end_row();
+            for k in 0..3 {
+                ui.label(format!("{k}"));
+                match m.uvs {
+                    Some(t) => ui.monospace(format!("({:.4}, {:.4})", t[k].x, t[k].y)),
+                    None => ui.label("none in the file"),
+                };
+                ui.monospace(format!("w{k} = {:.4}", m.bary[k]));
+                ui.end_row();
+            }
+        });
+    for l in &m.lines {
+        ui.monospace(l);
+    }
 }
 
 /// Colours of the diagram: the generic object, the hit point and its angles.

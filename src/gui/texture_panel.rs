@@ -407,11 +407,27 @@ impl TexturePanel {
             )
             .weak(),
         );
-        let key = Arc::as_ptr(&img) as usize;
+        self.canvas(ui, &scene, &img, region, shown);
+        self.footer(ui, shown);
+    }
+
+    /// The texture with the visible region, the chosen texels, the grid, a mesh's UV layout and
+    /// the inspected pixel; the pointer's zoom, pan, pick and brush.
+    fn canvas(
+        &mut self,
+        ui: &mut egui::Ui,
+        scene: &Scene,
+        img: &Arc<crate::texture::ImageData>,
+        region: Option<&TexelMask>,
+        shown: Option<&Inspection>,
+    ) {
+        let (w, h) = (img.width(), img.height());
+        let computed = self.computed.clone();
+        let key = Arc::as_ptr(img) as usize;
         if self.image_tex.as_ref().is_none_or(|(k, _)| *k != key) {
             let t = ui.ctx().load_texture(
                 "texture-panel-image",
-                overview(&img),
+                overview(img),
                 egui::TextureOptions::NEAREST,
             );
             self.image_tex = Some((key, t));
@@ -494,6 +510,10 @@ impl TexturePanel {
                 egui::StrokeKind::Outside,
             );
         }
+    }
+
+    /// What the pointer chose and how many pixels read it; the footprint's size.
+    fn footer(&self, ui: &mut egui::Ui, shown: Option<&Inspection>) {
         let what = match (&self.selection, self.hover) {
             (Some(s), _) => Some(match s.count() {
                 1 => "1 texel chosen".to_owned(),
@@ -707,21 +727,17 @@ fn draw_hit(painter: &egui::Painter, view: &View, i: &Inspection, (w, h): (u32, 
             egui::Stroke::new(2.0, egui::Color32::from_rgb(90, 255, 120)),
         ));
     }
-    if let (Some(read), Some(pick)) = (
-        &i.image,
-        i.image
-            .as_ref()
-            .and_then(|r| i.texels.iter().find(|t| t.lookup == r.lookup)),
-    ) {
-        if read.filter == crate::texture::Filter::Nearest {
-            let (x, y) = (pick.column as f32, pick.file_row as f32);
-            painter.rect_stroke(
-                egui::Rect::from_min_max(view.to_screen(x, y), view.to_screen(x + 1.0, y + 1.0)),
-                0.0,
-                egui::Stroke::new(1.5, egui::Color32::YELLOW),
-                egui::StrokeKind::Outside,
-            );
-        }
+    if let Some(read) = &i.image
+        && read.filter == crate::texture::Filter::Nearest
+        && let Some(pick) = i.texels.iter().find(|t| t.lookup == read.lookup)
+    {
+        let (x, y) = (pick.column as f32, pick.file_row as f32);
+        painter.rect_stroke(
+            egui::Rect::from_min_max(view.to_screen(x, y), view.to_screen(x + 1.0, y + 1.0)),
+            0.0,
+            egui::Stroke::new(1.5, egui::Color32::YELLOW),
+            egui::StrokeKind::Outside,
+        );
     }
     let (Some(uv), Some(f)) = (i.wrapped_uv, i.footprint) else {
         return;

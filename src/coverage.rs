@@ -355,6 +355,8 @@ pub fn visible_region(scene: &Scene, field: &UvField, object: usize) -> Option<T
         field
             .pixels
             .par_chunks(field.width.max(1) as usize)
+            // One mask per worker or two, not per row: a mask is as big as the image.
+            .with_min_len((field.height as usize / (2 * rayon::current_num_threads())).max(1))
             .fold(
                 || TexelMask::new(w, h),
                 |mut mask, row| {

@@ -127,8 +127,8 @@ fn reverse_lookup_under_ewa_covers_the_pixels_whose_footprint_holds_the_texel() 
         got.contains(24, 18),
         "the pixel reads the texel under its centre"
     );
-    // Every pixel that reads it has the texel within its footprint ellipse's bounding box (by
-    // the inspector's derivatives, in texels, plus the bilinear taps).
+    // Every pixel that reads it has the texel within its footprint parallelogram's bounding box
+    // (by the inspector's derivatives, in texels, plus the bilinear taps).
     for y in 0..36 {
         for x in 0..48 {
             if !got.contains(x, y) {
@@ -137,11 +137,7 @@ fn reverse_lookup_under_ewa_covers_the_pixels_whose_footprint_holds_the_texel() 
             let t = scene.inspect(centre(x, y)).unwrap().tex.unwrap();
             let s = Vec2::new(img.width() as f32, img.height() as f32);
             let at = t.uv * s;
-            let half = Vec2::new(
-                (t.duvdx.x * s.x).hypot(t.duvdy.x * s.x),
-                (t.duvdx.y * s.y).hypot(t.duvdy.y * s.y),
-            ) * 0.5
-                + Vec2::splat(2.0);
+            let half = ((t.duvdx * s).abs() + (t.duvdy * s).abs()) * 0.5 + Vec2::splat(2.0);
             let mut dx = (c as f32 + 0.5 - at.x).abs();
             dx = dx.min(s.x - dx);
             assert!(

@@ -5,10 +5,12 @@
 //! Everything here is computed by the library; the GUI only displays it.
 
 use crate::geometry::Shape;
+use crate::mapping::explain_number;
 use crate::mapping::{Mapping, TexCoord, explain_mapping};
+use crate::math::Vec3;
 use crate::math::{Rgb, Vec2, Vec3A};
 use crate::names::Named as _;
-use crate::texture::{Filter, ImageData, Lookup, Texture, Wrap, explain_lookup};
+use crate::texture::{Filter, ImageData, Lookup, Texture, View, Wrap, explain_lookup};
 use crate::{material::Material, scene::Scene};
 use std::sync::Arc;
 use strum::VariantArray;
@@ -55,6 +57,22 @@ pub struct ImageRead {
     pub wraps: (Wrap, Wrap),
 }
 
+/// A mesh hit: the triangle's three vertices, their (u, v) and the barycentric weights that
+/// interpolate them.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MeshPoint {
+    /// The triangle's index in the file.
+    pub triangle: u32,
+    /// Its three vertices, in the file's coordinates.
+    pub positions: [Vec3; 3],
+    /// Their (u, v), when the mesh carries them.
+    pub uvs: Option<[Vec2; 3]>,
+    /// The hit's barycentric weights (w0, w1, w2), summing to 1: p = w0 p0 + w1 p1 + w2 p2.
+    pub bary: Vec3,
+    /// The interpolation with its numbers (empty without (u, v)).
+    pub lines: Vec<String>,
+}
+
 /// Everything the renderer did at one film position.
 #[derive(Clone, Debug)]
 pub struct Inspection {
@@ -70,6 +88,8 @@ pub struct Inspection {
     pub world_point: Vec3A,
     /// Object-space hit point: the lecture's `local_hit_point`.
     pub local_point: Vec3A,
+    /// The point the mapping reads: the local hit point, fitted into [-1, 1]^3 on a mesh.
+    pub mapping_point: Vec3A,
     /// The kind of texture ("constant", "image", "checker").
     pub texture_kind: &'static str,
     /// The mapping in effect (after `uv` falls back to the shape's natural one); `None` for a
@@ -89,8 +109,13 @@ pub struct Inspection {
     pub footprint: Option<Footprint>,
     /// The texture's colour here (linear, before lighting).
     pub texture_colour: Rgb,
-    /// The radiance of the ray through the film position (linear, before exposure).
+    /// The shaded radiance of the ray through the film position (linear, before exposure):
+    /// the lit, textured colour, whatever debug view is on.
     pub radiance: Rgb,
+    /// What the debug view in effect shows at this pixel instead (`None` in the shaded view).
+    pub debug_value: Option<(View, Rgb)>,
+    /// On a mesh: the triangle hit, its vertices' (u, v) and the barycentric weights.
+    pub mesh: Option<MeshPoint>,
 }
 
 impl Scene {
@@ -134,10 +159,36 @@ impl Scene {
             (m, _) => m,
         });
         let tex = mapping.map(|m| ctx.tex_coord(m));
+        // A mesh under a generated mapping: the model is fitted into [-1, 1]^3 first.
+        let fit_lines = match (&obj.shape, effective) {
+            (Shape::Mesh(m), Some(e)) if e != Mapping::Uv => {
+                let (c, s) = m.mesh.mapping_frame();
+                let v3 = |v: Vec3A| {
+                    format!(
+                        "({}, {}, {})",
+                        explain_number(f64::from(v.x)),
+                        explain_number(f64::from(v.y)),
+                        explain_number(f64::from(v.z))
+                    )
+                };
+                vec![
+                    format!(
+                        "fit the model into [-1, 1]^3: p = (p_file - centre) x scale = ({} - {}) x {}",
+                        v3(hit.local.p),
+                        v3(c),
+                        explain_number(f64::from(s))
+                    ),
+                    format!("p = {}", v3(ctx.p)),
+                ]
+            }
+            _ => Vec::new(),
+        };
         let mapping_lines = match (effective, mapping) {
             (Some(Mapping::Uv), _) => vec!["(u, v) carried by the shape's vertices".to_owned()],
             (Some(e), Some(m)) => {
-                let mut lines = explain_mapping(e, hit.local.p);
+                // The point the mapping reads: for meshes, the fitted one.
+                let mut lines = fit_lines;
+                lines.extend(explain_mapping(e, ctx.p));
                 if m != e {
                     lines.insert(
                         0,
@@ -192,7 +243,21 @@ impl Scene {
             }
         });
         let texture_colour = texture.eval(&ctx);
-        let radiance = self.trace(&ray, self.needs_differentials.then_some(&diff));
+        let shown = self.trace(&ray, self.needs_differentials.then_some(&diff));
+        // The shaded radiance and the debug view's value separately: under a debug view the
+        // film shows the view's colour, not the light.
+        let (radiance, debug_value) = if self.settings.view == View::Shaded {
+            (shown, None)
+        } else {
+            let mut shaded = self.clone();
+            shaded.settings.view = View::Shaded;
+            let l = shaded.trace(&ray, self.needs_differentials.then_some(&diff));
+            (l, Some((self.settings.view, shown)))
+        };
+        let mesh = match &obj.shape {
+            Shape::Mesh(m) => mesh_point(&m.mesh, hit.local.prim, hit.local.part, hit.local.p),
+            _ => None,
+        };
         Some(Inspection {
             pixel,
             object: hit.object,
@@ -200,6 +265,7 @@ impl Scene {
             shape: shape_label(&obj.shape, hit.local.part),
             world_point: hit.p,
             local_point: hit.local.p,
+            mapping_point: ctx.p,
             texture_kind: kind,
             mapping: effective,
             mapping_lines,
@@ -210,8 +276,219 @@ impl Scene {
             footprint,
             texture_colour,
             radiance,
+            debug_value,
+            mesh,
         })
     }
+}
+
+/// The angles of the lecture's mapping formulas at one point, for the mapping diagram: what the
+/// generic object's drawing marks. Each is `None` where the mapping has no such angle.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MappingAngles {
+    /// Azimuth about y from +z toward +x, in [0, 2 pi) (cylindrical, spherical).
+    pub phi: Option<f64>,
+    /// Polar angle from +y, in [0, pi] (spherical).
+    pub theta: Option<f64>,
+    /// Angle from the probe's axis (+z, or -z for the panoramic variant), in [0, pi].
+    pub alpha: Option<f64>,
+    /// Direction in the image disc, from +u toward +v (light probes).
+    pub beta: Option<f64>,
+    /// Distance from the image disc's centre, 0 to 1 (light probes).
+    pub r: Option<f64>,
+}
+
+/// The angles of `mapping`'s formula at `p` (the point the mapping reads, see
+/// [`Inspection::mapping_point`]): phi for the cylindrical map, phi and theta for the spherical,
+/// alpha, beta and r for the light probes. The rectangular map and a mesh's own (u, v) have
+/// none.
+#[must_use]
+pub fn mapping_angles(mapping: Mapping, p: Vec3A) -> MappingAngles {
+    let p = p.as_dvec3();
+    let phi = || {
+        let a = p.x.atan2(p.z);
+        if a < 0.0 {
+            a + std::f64::consts::TAU
+        } else {
+            a
+        }
+    };
+    match mapping {
+        Mapping::Cylindrical => MappingAngles {
+            phi: Some(phi()),
+            ..MappingAngles::default()
+        },
+        Mapping::Spherical => MappingAngles {
+            phi: Some(phi()),
+            theta: Some(p.x.hypot(p.z).atan2(p.y)),
+            ..MappingAngles::default()
+        },
+        Mapping::LightProbe | Mapping::Panoramic | Mapping::MirrorBall => {
+            let z = if mapping == Mapping::Panoramic {
+                -p.z
+            } else {
+                p.z
+            };
+            let alpha = p.x.hypot(p.y).atan2(z);
+            let r = if mapping == Mapping::MirrorBall {
+                (alpha * 0.5).sin()
+            } else {
+                alpha / std::f64::consts::PI
+            };
+            MappingAngles {
+                alpha: Some(alpha),
+                beta: Some(p.y.atan2(p.x)),
+                r: Some(r),
+                ..MappingAngles::default()
+            }
+        }
+        // `Uv` in effect means (u, v) carried by the shape: no angle.
+        Mapping::Rectangular | Mapping::Uv => MappingAngles::default(),
+    }
+}
+
+/// Where a learner goes wrong with object `object`'s image texture, in words: an image whose
+/// aspect does not suit its mapping, the light probe's z flip and its panoramic variant, the
+/// lecture lookup's missing last column. Empty when the object reads no image.
+#[must_use]
+pub fn mapping_hints(scene: &Scene, object: usize) -> Vec<String> {
+    let Some(Texture::Image(t)) = scene
+        .objects
+        .get(object)
+        .and_then(|o| scene.materials.get(o.material))
+        .map(Material::texture)
+    else {
+        return Vec::new();
+    };
+    let (w, h) = (t.image.width(), t.image.height());
+    let aspect = f64::from(w) / f64::from(h);
+    let ratio = ratio_words(w, h);
+    let mut hints = Vec::new();
+    match t.mapping {
+        Mapping::Spherical if (aspect - 2.0).abs() > 0.02 => hints.push(format!(
+            "this image is {ratio} ({w} x {h}), but the spherical map spreads its width over \
+             360 degrees of longitude and its height over 180 of latitude: only a 2:1 image \
+             keeps its shapes (its shapes come out {:.2} times {})",
+            2.0 / aspect,
+            if aspect < 2.0 {
+                "too wide"
+            } else {
+                "too narrow"
+            }
+        )),
+        Mapping::LightProbe => hints.push(
+            "the light probe looks along +z: alpha = acos(z) is 0 at the image centre. A \
+             probe made for a panorama looks along -z; its variant `panoramic` flips z (alpha \
+             = acos(-z)), so the centre of the image lands behind the viewer"
+                .to_owned(),
+        ),
+        Mapping::Panoramic => hints.push(
+            "panoramic: the light probe with z flipped (alpha = acos(-z)): the image centre \
+             is the direction -z. Switch to `light-probe` to see the lecture's +z convention"
+                .to_owned(),
+        ),
+        _ => {}
+    }
+    if matches!(
+        t.mapping,
+        Mapping::LightProbe | Mapping::Panoramic | Mapping::MirrorBall
+    ) && (aspect - 1.0).abs() > 0.02
+    {
+        hints.push(format!(
+            "a light probe is a disc in a square image; this one is {ratio} ({w} x {h}), so \
+             the disc is squeezed into an ellipse"
+        ));
+    }
+    if t.mapping == Mapping::Rectangular && (aspect - 1.0).abs() > 0.02 {
+        hints.push(format!(
+            "the rectangular map puts the whole {ratio} image on the square [-1, 1]^2: its \
+             aspect is kept only if the object is scaled {ratio} too"
+        ));
+    }
+    if t.filter == Filter::Nearest && t.lookup == Lookup::Lecture {
+        hints.push(format!(
+            "the lecture's lookup (int)((hres - 1) u) reaches column {} only at u = 1 exactly \
+             (and row {} only at v = 1): the last column and row are almost never read, and \
+             every other texel is stretched by hres / (hres - 1). The centred lookup \
+             min(floor(u hres), hres - 1) reads every texel alike",
+            w - 1,
+            h - 1
+        ));
+    }
+    hints
+}
+
+/// "3:2" for 600 x 400, "2:1", or "1.47:1" when no small ratio fits.
+fn ratio_words(w: u32, h: u32) -> String {
+    for d in 1..=10_u32 {
+        let n = f64::from(w) * f64::from(d) / f64::from(h);
+        if (n - n.round()).abs() < 0.02 * n.max(1.0) && n.round() >= 1.0 {
+            return format!("{}:{d}", n.round());
+        }
+    }
+    format!("{:.2}:1", f64::from(w) / f64::from(h))
+}
+
+/// The triangle `prim` (BVH order; `part` in the file) of `mesh` hit at `p`: its vertices,
+/// their (u, v) and the barycentric weights of `p`, with the interpolation worked.
+fn mesh_point(mesh: &crate::geometry::Mesh, prim: u32, part: u32, p: Vec3A) -> Option<MeshPoint> {
+    let (positions, uvs) = mesh.triangle_vertices(prim)?;
+    let bary = barycentric(positions, Vec3::from(p));
+    let n = |x: f32| explain_number(f64::from(x));
+    let lines = uvs.map_or_else(Vec::new, |t| {
+        let uv = t[0] * bary.x + t[1] * bary.y + t[2] * bary.z;
+        vec![
+            format!(
+                "weights: w0 = {}, w1 = {}, w2 = {} (w0 + w1 + w2 = 1)",
+                n(bary.x),
+                n(bary.y),
+                n(bary.z)
+            ),
+            format!(
+                "u = w0 u0 + w1 u1 + w2 u2 = {} x {} + {} x {} + {} x {} = {}",
+                n(bary.x),
+                n(t[0].x),
+                n(bary.y),
+                n(t[1].x),
+                n(bary.z),
+                n(t[2].x),
+                n(uv.x)
+            ),
+            format!(
+                "v = w0 v0 + w1 v1 + w2 v2 = {} x {} + {} x {} + {} x {} = {}",
+                n(bary.x),
+                n(t[0].y),
+                n(bary.y),
+                n(t[1].y),
+                n(bary.z),
+                n(t[2].y),
+                n(uv.y)
+            ),
+        ]
+    });
+    Some(MeshPoint {
+        triangle: part,
+        positions,
+        uvs,
+        bary,
+        lines,
+    })
+}
+
+/// The barycentric weights of `p` (on the triangle's plane) in triangle `t`, from the areas of
+/// the sub-triangles (in f64: the weights of a point near a vertex keep their digits).
+#[must_use]
+pub fn barycentric(t: [Vec3; 3], p: Vec3) -> Vec3 {
+    let [a, b, c] = t.map(|v| v.as_dvec3());
+    let p = p.as_dvec3();
+    let n = (b - a).cross(c - a);
+    let nn = n.length_squared();
+    if nn <= 0.0 || !nn.is_finite() {
+        return Vec3::new(1.0, 0.0, 0.0);
+    }
+    let w1 = (p - a).cross(c - a).dot(n) / nn;
+    let w2 = (b - a).cross(p - a).dot(n) / nn;
+    Vec3::new((1.0 - w1 - w2) as f32, w1 as f32, w2 as f32)
 }
 
 /// A shape in words, with the triangle hit for meshes.
@@ -277,6 +554,133 @@ mod tests {
         assert!(major >= minor && minor > 1.0, "{major} {minor}");
         assert!(fp.mip_level.expect("mip") > 1.0);
         assert!(i.radiance.is_finite());
+    }
+
+    #[test]
+    fn a_mesh_hit_shows_its_vertices_uv_weights_and_the_interpolation() {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("presets/two-triangles.ron");
+        let mut desc = load_preset(&path).expect("preset");
+        desc.render.width = 80;
+        desc.render.height = 60;
+        let scene = build_scene(&desc, &path, &mut AssetCache::new()).expect("build");
+        let i = (20..60)
+            .find_map(|x| scene.inspect(Vec2::new(x as f32 + 0.5, 30.5)))
+            .expect("a triangle in the middle row");
+        let m = i.mesh.as_ref().expect("a mesh hit");
+        let uvs = m.uvs.expect("the PLY has (u, v)");
+        assert!((m.bary.x + m.bary.y + m.bary.z - 1.0).abs() < 1e-5);
+        assert!(m.bary.min_element() >= -1e-4, "{}", m.bary);
+        let uv = uvs[0] * m.bary.x + uvs[1] * m.bary.y + uvs[2] * m.bary.z;
+        let tex = i.tex.expect("coordinates");
+        assert!((uv - tex.uv).length() < 1e-4, "{uv} {}", tex.uv);
+        assert_eq!(m.lines.len(), 3);
+        assert!(m.lines[1].starts_with("u = w0 u0 + w1 u1 + w2 u2 = "));
+        assert!(
+            m.lines[1].ends_with(&format!("= {}", explain_number(f64::from(uv.x)))),
+            "{}",
+            m.lines[1]
+        );
+    }
+
+    #[test]
+    fn a_mesh_under_a_generated_mapping_shows_the_fit_into_the_unit_cube() {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("presets/two-triangles.ron");
+        let mut desc = load_preset(&path).expect("preset");
+        desc.render.width = 80;
+        desc.render.height = 60;
+        for o in &mut desc.objects {
+            if let crate::scene::TextureDesc::Image { mapping, .. } = o.material.texture_mut() {
+                *mapping = Mapping::Rectangular;
+            }
+        }
+        let scene = build_scene(&desc, &path, &mut AssetCache::new()).expect("build");
+        let i = (20..60)
+            .find_map(|x| scene.inspect(Vec2::new(x as f32 + 0.5, 30.5)))
+            .expect("a hit");
+        assert!(i.mapping_lines[0].starts_with("fit the model into [-1, 1]^3"));
+        // The worked u is the u the texel comes from.
+        let u = i.tex.expect("coordinates").uv.x;
+        let line = i
+            .mapping_lines
+            .iter()
+            .find(|l| l.starts_with("u = (z + 1) / 2"))
+            .expect("the rectangular map's u");
+        assert!(
+            line.ends_with(&format!("= {}", explain_number(f64::from(u)))),
+            "{line} but u = {u}"
+        );
+    }
+
+    #[test]
+    fn under_a_debug_view_the_shaded_radiance_and_the_view_value_are_apart() {
+        let (mut desc, path) = earth();
+        desc.render.view = View::Uv;
+        let scene = build_scene(&desc, &path, &mut AssetCache::new()).expect("build");
+        let i = scene.inspect(Vec2::new(32.0, 24.0)).expect("hit");
+        let (view, value) = i.debug_value.expect("a debug value");
+        assert_eq!(view, View::Uv);
+        let w = i.wrapped_uv.expect("uv");
+        // The uv view's red is u and green v (as displayed: sRGB-encoded); the radiance is the
+        // lit Earth, not that.
+        let lin = crate::math::srgb_to_linear;
+        assert!((value.0 - lin(w.x)).abs() < 1e-3 && (value.1 - lin(w.y)).abs() < 1e-3);
+        let (shaded_desc, _) = earth();
+        let shaded = build_scene(&shaded_desc, &path, &mut AssetCache::new()).expect("build");
+        let s = shaded.inspect(Vec2::new(32.0, 24.0)).expect("hit");
+        assert!(s.debug_value.is_none());
+        assert_eq!(i.radiance, s.radiance);
+        assert_ne!(i.radiance, value);
+    }
+
+    #[test]
+    fn hints_name_a_3_2_photo_on_the_sphere_and_the_lecture_lookups_last_column() {
+        let (mut desc, path) = earth();
+        if let crate::scene::TextureDesc::Image {
+            path: image,
+            lookup,
+            ..
+        } = desc.objects[0].material.texture_mut()
+        {
+            "../assets/coffee_600x400.png".clone_into(image);
+            *lookup = Lookup::Lecture;
+        }
+        let scene = build_scene(&desc, &path, &mut AssetCache::new()).expect("build");
+        let hints = mapping_hints(&scene, 0);
+        assert_eq!(hints.len(), 2, "{hints:?}");
+        assert!(
+            hints[0].starts_with("this image is 3:2 (600 x 400)"),
+            "{}",
+            hints[0]
+        );
+        assert!(hints[0].ends_with("1.33 times too wide)"), "{}", hints[0]);
+        assert!(
+            hints[1].contains("reaches column 599 only at u = 1"),
+            "{}",
+            hints[1]
+        );
+        // The Earth as shipped: 2:1 and the centred lookup, nothing to say.
+        let (desc, path) = earth();
+        let scene = build_scene(&desc, &path, &mut AssetCache::new()).expect("build");
+        assert!(mapping_hints(&scene, 0).is_empty());
+    }
+
+    #[test]
+    fn the_diagram_angles_are_the_formulas_angles() {
+        let p = Vec3A::new(0.5, 0.5_f32.sqrt(), -0.5);
+        let a = mapping_angles(Mapping::Spherical, p);
+        assert!((a.phi.unwrap() - 0.75 * std::f64::consts::PI).abs() < 1e-6);
+        assert!((a.theta.unwrap() - std::f64::consts::FRAC_PI_4).abs() < 1e-6);
+        let q = Vec3A::new(0.0, 1.0, 0.0);
+        let probe = mapping_angles(Mapping::LightProbe, q);
+        assert!((probe.alpha.unwrap() - std::f64::consts::FRAC_PI_2).abs() < 1e-6);
+        assert!((probe.beta.unwrap() - std::f64::consts::FRAC_PI_2).abs() < 1e-6);
+        assert!((probe.r.unwrap() - 0.5).abs() < 1e-6);
+        let pano = mapping_angles(Mapping::Panoramic, Vec3A::new(0.0, 0.0, -1.0));
+        assert!(pano.alpha.unwrap().abs() < 1e-6, "panoramic looks along -z");
+        assert_eq!(
+            mapping_angles(Mapping::Rectangular, p),
+            MappingAngles::default()
+        );
     }
 
     #[test]

@@ -8,6 +8,7 @@
 
 pub mod camera;
 pub mod cli;
+pub mod coverage;
 pub mod error;
 pub mod geometry;
 pub mod input;

@@ -35,8 +35,9 @@ const LAYERS: &[&[&str]] = &[
     // Tools over the renderer: speed against error, golden images, light-probe conversion, the
     // fuzz entry points.
     &["report", "snapshot", "probe", "robustness"],
-    // What the renderer did at one pixel, with the report's RMSE for the A/B split.
-    &["inspect"],
+    // What the renderer did at one pixel, with the report's RMSE for the A/B split; which texels
+    // the pixels read and which pixels read a texel (one 1-spp pass on the render pool).
+    &["inspect", "coverage"],
     &["cli", "gui"],
 ];
 

@@ -402,6 +402,31 @@ impl Mesh {
         ((p - self.map_centre) * self.map_scale, self.map_scale)
     }
 
+    /// The centre and scale of the frame generated mappings see ([`Mesh::to_mapping_frame`]:
+    /// `(p - centre) * scale`), for the inspector's worked formula.
+    #[must_use]
+    pub fn mapping_frame(&self) -> (Vec3A, f32) {
+        (self.map_centre, self.map_scale)
+    }
+
+    /// Triangle `triangle`'s (BVH order, as [`LocalHit::prim`]) vertex positions and their
+    /// (u, v) when the mesh has them, for the inspector.
+    #[must_use]
+    pub fn triangle_vertices(&self, triangle: u32) -> Option<([Vec3; 3], Option<[Vec2; 3]>)> {
+        let t = self.triangles.get(triangle as usize)?.map(|k| k as usize);
+        let uv = (!self.uvs.is_empty()).then(|| t.map(|k| self.uvs[k]));
+        Some((t.map(|k| self.positions[k]), uv))
+    }
+
+    /// Every triangle's (u, v) corners (none without (u, v)): the mesh's UV layout.
+    pub fn uv_triangles(&self) -> impl Iterator<Item = [Vec2; 3]> + '_ {
+        let uvs = &self.uvs;
+        self.triangles
+            .iter()
+            .filter(move |_| !uvs.is_empty())
+            .map(move |t| t.map(|k| uvs[k as usize]))
+    }
+
     /// The nearest triangle hit in (0, `t_max`) of an object-space ray.
     #[must_use]
     #[inline]

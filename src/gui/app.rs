@@ -7,6 +7,7 @@ use super::inspector::Inspector;
 use super::lessons::{LessonAction, LessonsPanel};
 use super::live::LiveImage;
 use super::scene_panel::ScenePanel;
+use super::texture_panel::TexturePanel;
 use super::viewport::{self, ViewEdit};
 use crate::math::Vec2;
 use crate::render::{DisplayImage, Generation, RenderJob, RenderOptions};
@@ -49,6 +50,7 @@ pub struct ExplorerApp {
     pub(super) error: Option<String>,
     pub(super) scene_panel: ScenePanel,
     pub(super) inspector: Inspector,
+    pub(super) texture_panel: TexturePanel,
     pub(super) ab: AbSplit,
     pub(super) speed: SpeedPanel,
     pub(super) files: Files,
@@ -84,6 +86,7 @@ impl ExplorerApp {
             error: None,
             scene_panel: ScenePanel::default(),
             inspector: Inspector::default(),
+            texture_panel: TexturePanel::default(),
             ab: AbSplit::default(),
             speed: SpeedPanel::default(),
             files: Files::new(options.recent_file),
@@ -376,6 +379,7 @@ impl ExplorerApp {
                 &self.path,
                 [
                     (&mut self.inspector.open, "Inspector"),
+                    (&mut self.texture_panel.open, "Texture panel"),
                     (&mut self.ab.enabled, "A/B split"),
                     (&mut self.speed.open, "Speed and error"),
                     (&mut self.lessons.open, "Lessons"),
@@ -454,6 +458,7 @@ impl ExplorerApp {
             }
         }
 
+        self.texture_panel.update(&ctx, self.scene.as_ref());
         if self.inspector.open {
             egui::Panel::right("inspector")
                 .default_size(440.0)
@@ -461,6 +466,13 @@ impl ExplorerApp {
                 .show(ui, |ui| {
                     egui::ScrollArea::vertical().show(ui, |ui| self.inspector.ui(ui));
                 });
+        }
+
+        if self.texture_panel.open {
+            egui::Panel::right("texture-panel")
+                .default_size(380.0)
+                .resizable(true)
+                .show(ui, |ui| self.texture_panel.ui(ui, self.inspector.shown()));
         }
 
         self.speed.window(&ctx, self.desc.as_ref(), &self.path);

@@ -8,7 +8,9 @@ mod files;
 mod inspector;
 mod lessons;
 mod live;
+mod overlay;
 mod scene_panel;
+mod texture_panel;
 mod viewport;
 mod widgets;
 

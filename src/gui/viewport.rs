@@ -158,6 +158,7 @@ pub fn show(
         egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0)),
         egui::Color32::WHITE,
     );
+    super::overlay::paint(ui, rect);
     out
 }
 

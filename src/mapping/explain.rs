@@ -10,6 +10,11 @@ use super::Mapping;
 use glam::{DVec2, DVec3, Vec3A};
 use std::f64::consts::{PI, TAU};
 
+/// Below this polar angle (radians) from a pole, the spherical map's worked formula shows the
+/// atan2 form the renderer runs instead of acos(y): 0.05 rad is where y = cos(theta) keeps only
+/// three significant digits of theta's information in four decimals.
+pub const POLE_THETA: f64 = 0.05;
+
 /// A number as the worked formulas print it: four decimals, in scientific notation when that
 /// would show nothing (below 1e-4, 1e6 and above), and in full when four decimals would round
 /// to a whole number the value is not (0.99999994 is not 1: it picks a different texel).
@@ -111,12 +116,32 @@ fn worked(mapping: Mapping, p: DVec3, out: &mut Option<Vec<String>>) -> DVec2 {
             // theta = acos(y / |p|), computed as atan2(sqrt(x^2 + z^2), y) (exact off the
             // sphere, as the renderer).
             let theta = q.x.hypot(q.z).atan2(q.y);
-            line!(
-                out,
-                "theta = acos(y) = acos({}) = {} rad",
-                n(nq.y.clamp(-1.0, 1.0)),
-                n(theta)
-            );
+            if (theta.min(PI - theta)) < POLE_THETA {
+                // acos is ill-conditioned at +-1: y = cos(0.0077) = 0.99997 prints as 1.0000,
+                // and acos(1.0000) = 0.0077 looks wrong. Show the formula the renderer runs.
+                line!(
+                    out,
+                    "near the {} pole: theta = atan2(sqrt(x^2 + z^2), y) = atan2({}, {}) = {} rad",
+                    if q.y > 0.0 { "north" } else { "south" },
+                    n(nq.x.hypot(nq.z)),
+                    n(nq.y),
+                    n(theta)
+                );
+                line!(
+                    out,
+                    "(acos(y) is the same angle, but y is within {} of {}1 here, where acos loses \
+                     its digits: the renderer computes theta with atan2, exact at the poles)",
+                    n(1.0 - nq.y.abs()),
+                    if q.y > 0.0 { "" } else { "-" }
+                );
+            } else {
+                line!(
+                    out,
+                    "theta = acos(y) = acos({}) = {} rad",
+                    n(nq.y.clamp(-1.0, 1.0)),
+                    n(theta)
+                );
+            }
             let v = (1.0 - theta / PI).clamp(0.0, 1.0);
             line!(out, "v = 1 - theta / pi = {}", n(v));
             if mapping == Mapping::Uv {
@@ -269,4 +294,46 @@ fn unit_direction(q: DVec3, scale: f64, out: &mut Option<Vec<String>>) -> DVec3 
 fn rescaled(p: DVec3) -> Option<(DVec3, f64)> {
     let s = p.abs().max_element();
     (s > 0.0 && s.is_finite()).then(|| (p / s, s))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn near_a_pole_the_worked_formula_is_the_atan2_the_renderer_runs() {
+        // 0.0077 rad from the north pole: y = cos(0.0077) = 0.99997.
+        let t: f64 = 0.0077;
+        let p = DVec3::new(t.sin(), t.cos(), 0.0);
+        let (lines, uv) = explain_mapping_f64(Mapping::Spherical, p);
+        let theta = lines
+            .iter()
+            .find(|l| l.contains("theta ="))
+            .expect("a theta line");
+        assert!(
+            theta.starts_with("near the north pole: theta = atan2(sqrt(x^2 + z^2), y)"),
+            "{theta}"
+        );
+        assert!(theta.ends_with("= 0.0077 rad"), "{theta}");
+        assert!(
+            !lines.iter().any(|l| l.contains("acos(1.0000)")),
+            "{lines:?}"
+        );
+        assert!(
+            lines
+                .iter()
+                .any(|l| l.contains("atan2, exact at the poles"))
+        );
+        assert!((uv.y - (1.0 - t / PI)).abs() < 1e-12);
+        // South.
+        let (lines, _) = explain_mapping_f64(Mapping::Spherical, DVec3::new(0.01, -1.0, 0.0));
+        assert!(lines.iter().any(|l| l.starts_with("near the south pole")));
+        // Away from the poles the lecture's acos stays.
+        let (lines, _) = explain_mapping_f64(Mapping::Spherical, DVec3::new(0.6, 0.8, 0.0));
+        assert!(
+            lines
+                .iter()
+                .any(|l| l == "theta = acos(y) = acos(0.8000) = 0.6435 rad")
+        );
+    }
 }

@@ -5,21 +5,25 @@
 mod app;
 mod compare;
 mod files;
+mod help;
+mod history;
 mod inspector;
 mod live;
 mod scene_panel;
 mod viewport;
 mod widgets;
 
-pub use app::{AppOptions, ExplorerApp};
-pub use files::config_dir;
+pub use app::{AppOptions, ExplorerApp, Prefs};
+pub use files::{BrowseFor, Browser, config_dir, screenshot_default};
 
 use std::path::PathBuf;
 
 /// The preset the window opens on.
 pub const DEFAULT_PRESET: &str = "presets/earth.ron";
 
-/// Opens the window on `open` (a preset or a texplore PNG) or on the Earth.
+/// Opens the window on `open` (a preset or a texplore PNG), else on the scene open when it was
+/// last closed, else on the Earth. eframe keeps the window's size, the panels' widths and
+/// [`Prefs`] between runs (in its storage folder, `~/.local/share/texplore` on Linux).
 ///
 /// # Errors
 /// The window cannot be created (no display, no GPU adapter).
@@ -33,14 +37,20 @@ pub fn run(open: Option<PathBuf>) -> anyhow::Result<()> {
         renderer: eframe::Renderer::Wgpu,
         ..Default::default()
     };
-    let path = open.unwrap_or_else(|| PathBuf::from(DEFAULT_PRESET));
     let app_options = AppOptions {
         recent_file: config_dir().map(|d| d.join("recent.ron")),
+        browser: Browser::default(),
     };
     eframe::run_native(
         "texplore",
         options,
-        Box::new(move |_cc| Ok(Box::new(ExplorerApp::with_options(path, app_options)))),
+        Box::new(move |cc| {
+            Ok(Box::new(ExplorerApp::restore(
+                cc.storage,
+                open,
+                app_options,
+            )))
+        }),
     )
     .map_err(|e| anyhow::anyhow!("cannot open the window: {e}"))
 }

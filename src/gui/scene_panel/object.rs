@@ -1,8 +1,9 @@
 //! The object editor: the shape (with a cylinder's caps or a mesh's file and shading), the
 //! transform, and the material and texture editors below them.
 
-use super::{ScenePanel, material::material_ui, path_field};
+use super::{ScenePanel, browse_button, material::material_ui, path_field};
 use crate::geometry::Shading;
+use crate::gui::files::{BrowseFor, Browser};
 use crate::gui::widgets::{enum_combo, vec3};
 use crate::names::Named;
 use crate::scene::{ObjectDesc, ShapeDesc, ShapeKind};
@@ -69,7 +70,7 @@ impl ScenePanel {
         }
         if let Some((k, mut text)) = self.mesh_prompt.take() {
             if k == key {
-                let (loaded, keep) = mesh_prompt_ui(ui, shape, &mut text);
+                let (loaded, keep) = mesh_prompt_ui(ui, shape, &mut text, &self.browser, preset);
                 if keep {
                     self.mesh_prompt = Some((k, text));
                 }
@@ -85,7 +86,16 @@ impl ScenePanel {
                     .changed();
             }
             ShapeDesc::Mesh { path, shading } => {
-                changed |= path_field(ui, "mesh file", path, &mut self.mesh_text, key, preset);
+                changed |= path_field(
+                    ui,
+                    "mesh file",
+                    path,
+                    &mut self.mesh_text,
+                    key,
+                    preset,
+                    &self.browser,
+                    BrowseFor::Mesh,
+                );
                 changed |= enum_combo(ui, "Shading", shading);
             }
             ShapeDesc::Sphere | ShapeDesc::Plane | ShapeDesc::Rectangle | ShapeDesc::Disk => {}
@@ -97,7 +107,13 @@ impl ScenePanel {
 /// The question Shape -> Mesh asks: which file. "Load" (or Enter) makes the shape that mesh;
 /// "Cancel" keeps the shape it was. Returns whether the shape changed and whether to keep
 /// asking.
-fn mesh_prompt_ui(ui: &mut egui::Ui, shape: &mut ShapeDesc, text: &mut String) -> (bool, bool) {
+fn mesh_prompt_ui(
+    ui: &mut egui::Ui,
+    shape: &mut ShapeDesc,
+    text: &mut String,
+    browser: &Browser,
+    preset: &Path,
+) -> (bool, bool) {
     let mut changed = false;
     let mut cancel = false;
     ui.label(format!(
@@ -117,7 +133,12 @@ fn mesh_prompt_ui(ui: &mut egui::Ui, shape: &mut ShapeDesc, text: &mut String) -
             .add_enabled(ready, egui::Button::new("Load"))
             .on_hover_text("Load the mesh at this path")
             .clicked();
-        if (load || enter) && ready {
+        let browsed = browse_button(ui, browser, BrowseFor::Mesh, preset);
+        let chosen = browsed.is_some();
+        if let Some(p) = browsed {
+            *text = p;
+        }
+        if ((load || enter) && ready) || chosen {
             *shape = ShapeDesc::Mesh {
                 path: text.trim().to_owned(),
                 shading: Shading::default(),

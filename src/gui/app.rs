@@ -582,10 +582,13 @@ impl ExplorerApp {
         }
 
         let changed = egui::Panel::left("scene")
-            .default_size(300.0)
+            .default_size(320.0)
             .resizable(true)
             .show(ui, |ui| {
-                egui::ScrollArea::vertical()
+                // Scrolls both ways inside the panel's own width: wide content (large numbers,
+                // long paths) scrolls instead of widening the panel and moving the viewport.
+                egui::ScrollArea::both()
+                    .auto_shrink([false, false])
                     .show(ui, |ui| {
                         let Self {
                             desc,
@@ -616,7 +619,11 @@ impl ExplorerApp {
                 .default_size(440.0)
                 .resizable(true)
                 .show(ui, |ui| {
-                    egui::ScrollArea::vertical().show(ui, |ui| self.inspector.ui(ui));
+                    // As the scene panel: the inspector's content changes with every pixel
+                    // hovered, and must not move the viewport.
+                    egui::ScrollArea::both()
+                        .auto_shrink([false, false])
+                        .show(ui, |ui| self.inspector.ui(ui));
                 });
         }
 

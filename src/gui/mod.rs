@@ -15,6 +15,7 @@ mod widgets;
 
 pub use app::{AppOptions, ExplorerApp, Prefs};
 pub use files::{BrowseFor, Browser, config_dir, screenshot_default};
+pub use viewport::HINT as VIEW_HINT;
 
 use std::path::PathBuf;
 

@@ -231,7 +231,10 @@ fn path_field(
     ui.horizontal(|ui| {
         let l = ui.label(label);
         let r = ui
-            .add(egui::TextEdit::singleline(buf).desired_width(150.0))
+            .add(
+                egui::TextEdit::singleline(buf)
+                    .desired_width((ui.available_width() - 130.0).max(80.0)),
+            )
             .labelled_by(l.id)
             .on_hover_text("Path relative to the preset's folder; Enter loads it");
         let enter = r.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));

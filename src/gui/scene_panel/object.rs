@@ -124,7 +124,10 @@ fn mesh_prompt_ui(
     ui.horizontal(|ui| {
         let l = ui.label("mesh file");
         let r = ui
-            .add(egui::TextEdit::singleline(text).desired_width(150.0))
+            .add(
+                egui::TextEdit::singleline(text)
+                    .desired_width((ui.available_width() - 50.0).max(80.0)),
+            )
             .labelled_by(l.id)
             .on_hover_text("Path relative to the preset's folder; Enter loads it");
         let enter = r.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
@@ -133,14 +136,20 @@ fn mesh_prompt_ui(
             .add_enabled(ready, egui::Button::new("Load"))
             .on_hover_text("Load the mesh at this path")
             .clicked();
-        let browsed = browse_button(ui, browser, BrowseFor::Mesh, preset);
-        let chosen = browsed.is_some();
-        if let Some(p) = browsed {
-            *text = p;
-        }
-        if ((load || enter) && ready) || chosen {
+        if (load || enter) && ready {
             *shape = ShapeDesc::Mesh {
                 path: text.trim().to_owned(),
+                shading: Shading::default(),
+            };
+            changed = true;
+        }
+    });
+    // A second row, so that every button stays inside the panel's width.
+    ui.horizontal(|ui| {
+        if let Some(p) = browse_button(ui, browser, BrowseFor::Mesh, preset) {
+            text.clone_from(&p);
+            *shape = ShapeDesc::Mesh {
+                path: p,
                 shading: Shading::default(),
             };
             changed = true;

@@ -201,7 +201,10 @@ impl ScenePanel {
         ui.horizontal(|ui| {
             let l = ui.label("image");
             let r = ui
-                .add(egui::TextEdit::singleline(text).desired_width(150.0))
+                .add(
+                    egui::TextEdit::singleline(text)
+                        .desired_width((ui.available_width() - 130.0).max(80.0)),
+                )
                 .labelled_by(l.id)
                 .on_hover_text(
                     "Path relative to the preset's folder; Enter loads it. \

@@ -6,7 +6,7 @@ use super::files::{Browser, FileAction, Files};
 use super::help;
 use super::history::{self, Gesture, Gestures, History};
 use super::inspector::Inspector;
-use super::live::LiveImage;
+use super::live::{Latency, LiveImage};
 use super::scene_panel::ScenePanel;
 use super::viewport::{self, ViewEdit};
 use crate::math::Vec2;
@@ -93,6 +93,11 @@ pub struct ExplorerApp {
     pub(super) shortcuts_open: bool,
     /// The window title last sent, so it is sent only when it changes.
     title_sent: String,
+    /// `TEXPLORE_LATENCY=1`: where the time goes from an edit to its first preview.
+    latency: Latency,
+    /// The window's context once a frame has run: a new job asks it for a repaint as soon as
+    /// its first preview is published.
+    ctx: Option<egui::Context>,
 }
 
 /// An Edit-menu command.
@@ -138,6 +143,8 @@ impl ExplorerApp {
             camera_is_unsaved: false,
             shortcuts_open: false,
             title_sent: String::new(),
+            latency: Latency::from_env(),
+            ctx: None,
         };
         let path = app.path.clone();
         app.open_file(&path);
@@ -408,7 +415,22 @@ impl ExplorerApp {
                         RenderOptions::default(),
                         &self.generation,
                     ) {
-                        Ok(job) => self.job = Some(job),
+                        Ok(job) => {
+                            let published = self.latency.restarted();
+                            if let Some(ctx) = self.ctx.clone() {
+                                // The first preview takes a few milliseconds: paint it at once
+                                // rather than at the next poll (later passes are polled at
+                                // FRAME_INTERVAL, so the UI never repaints faster than that).
+                                let woken = std::sync::atomic::AtomicBool::new(false);
+                                job.on_publish(move || {
+                                    published.get_or_init(std::time::Instant::now);
+                                    if !woken.swap(true, std::sync::atomic::Ordering::Relaxed) {
+                                        ctx.request_repaint();
+                                    }
+                                });
+                            }
+                            self.job = Some(job);
+                        }
                         Err(e) => started = Err(e.to_string()),
                     }
                 }
@@ -520,7 +542,9 @@ impl Drop for ExplorerApp {
 impl eframe::App for ExplorerApp {
     fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
         let started = std::time::Instant::now();
+        self.latency.frame_started();
         self.frame(ui);
+        self.latency.frame_laid_out();
         let t = started.elapsed().as_secs_f32();
         self.layout_time += (t - self.layout_time) * 0.2;
     }
@@ -533,6 +557,9 @@ impl eframe::App for ExplorerApp {
 impl ExplorerApp {
     fn frame(&mut self, ui: &mut egui::Ui) {
         let ctx = ui.ctx().clone();
+        if self.ctx.is_none() {
+            self.ctx = Some(ctx.clone());
+        }
         // Which gesture this frame's changes belong to (one undo step per drag or wheel run).
         let gesture = ctx.input(|i| {
             self.gestures.update(
@@ -632,7 +659,9 @@ impl ExplorerApp {
         // The viewport.
         let mut busy = false;
         if let Some(job) = &self.job {
-            self.live.update(&ctx, job);
+            if self.live.update(&ctx, job) {
+                self.latency.uploaded();
+            }
             busy |= !job.progress().finished && !job.progress().cancelled;
         }
         busy |= self.ab.poll(&ctx);

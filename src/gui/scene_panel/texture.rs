@@ -239,6 +239,13 @@ impl ScenePanel {
                     || "(a file elsewhere)".to_owned(),
                     |n| n.to_string_lossy().into_owned(),
                 );
+            // Short enough that Rescan stays inside the panel (a long name is cut; the list
+            // shows it whole).
+            let shown = if shown.chars().count() > 18 {
+                format!("{}…", shown.chars().take(17).collect::<String>())
+            } else {
+                shown
+            };
             egui::ComboBox::from_id_salt("assets")
                 .selected_text(shown)
                 .show_ui(ui, |ui| {

@@ -362,3 +362,65 @@ fn the_window_reopens_the_last_scene_and_the_camera_rule() {
         gone.path()
     );
 }
+
+#[test]
+fn a_render_job_calls_its_publish_hook_for_each_image_and_at_once_for_one_already_there() {
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    use texplore::render::{Generation, RenderJob, RenderOptions};
+    let dir = tempfile::tempdir().expect("temp dir");
+    let path = small_earth(dir.path());
+    let desc = texplore::scene::load_preset(&path).expect("preset");
+    let scene = texplore::scene::build_scene(&desc, &path, &mut texplore::scene::AssetCache::new())
+        .expect("build");
+    let generation = Generation::new();
+    let job = RenderJob::start(
+        std::sync::Arc::new(scene),
+        RenderOptions::default(),
+        &generation,
+    )
+    .expect("start");
+    let (tx, rx) = std::sync::mpsc::channel();
+    let calls = std::sync::Arc::new(AtomicUsize::new(0));
+    let counted = calls.clone();
+    job.on_publish(move || {
+        counted.fetch_add(1, Ordering::SeqCst);
+        let _ = tx.send(());
+    });
+    rx.recv_timeout(std::time::Duration::from_mins(2))
+        .expect("the hook is called for the first image");
+    assert!(
+        job.image().is_some(),
+        "an image is there when the hook runs"
+    );
+    let progress = job.wait();
+    assert!(progress.finished);
+    // 3 previews and 4 passes at 4 spp; the hook may have been set after some of them (then
+    // it runs once at once for those).
+    let n = calls.load(Ordering::SeqCst);
+    assert!((1..=7).contains(&n), "{n} calls");
+
+    // Set on a finished job: called at once, once.
+    let job = RenderJob::start(
+        std::sync::Arc::new(
+            texplore::scene::build_scene(&desc, &path, &mut texplore::scene::AssetCache::new())
+                .expect("build"),
+        ),
+        RenderOptions::default(),
+        &generation,
+    )
+    .expect("start");
+    let started = std::time::Instant::now();
+    while !job.progress().finished {
+        assert!(
+            started.elapsed() < std::time::Duration::from_mins(2),
+            "the render never finished"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+    let once = std::sync::Arc::new(AtomicUsize::new(0));
+    let c = once.clone();
+    job.on_publish(move || {
+        c.fetch_add(1, Ordering::SeqCst);
+    });
+    assert_eq!(once.load(Ordering::SeqCst), 1);
+}

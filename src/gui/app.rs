@@ -2,10 +2,12 @@
 //! status line. Each panel lives in its own file; this one owns the scene and the render jobs.
 
 use super::compare::{AbSplit, SpeedPanel};
-use super::files::{FileAction, Files};
+use super::files::{Browser, FileAction, Files};
+use super::help;
+use super::history::{self, Gesture, Gestures, History};
 use super::inspector::Inspector;
 use super::lessons::{LessonAction, LessonsPanel};
-use super::live::LiveImage;
+use super::live::{Latency, LiveImage};
 use super::scene_panel::ScenePanel;
 use super::texture_panel::TexturePanel;
 use super::viewport::{self, ViewEdit};
@@ -25,6 +27,32 @@ pub struct AppOptions {
     pub recent_file: Option<PathBuf>,
     /// Start on this lesson (its preset, the Lessons panel open on it).
     pub lesson: Option<crate::lesson::Lesson>,
+    /// What every *Browse…* button asks (the system's file dialog unless replaced).
+    pub browser: Browser,
+}
+
+/// What the window remembers between runs besides its size and panel widths (which eframe and
+/// egui keep themselves): the scene it had open and the unsaved-changes rule.
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(default)]
+pub struct Prefs {
+    /// The file open when the window closed (absolute).
+    pub last_scene: Option<PathBuf>,
+    /// *Edit → Camera moves are unsaved changes*.
+    pub camera_is_unsaved: bool,
+}
+
+impl Prefs {
+    /// The key [`Prefs`] is stored under in eframe's storage.
+    pub const KEY: &str = "texplore-prefs";
+
+    /// The preferences kept in `storage` (none kept, or unreadable: the defaults).
+    #[must_use]
+    pub fn load(storage: Option<&dyn eframe::Storage>) -> Self {
+        storage
+            .and_then(|s| eframe::get_value(s, Self::KEY))
+            .unwrap_or_default()
+    }
 }
 
 /// The explorer: the scene being edited, the render job showing it, and the panels.
@@ -48,6 +76,8 @@ pub struct ExplorerApp {
     /// Render at this fraction of the preset's resolution (a view setting, not saved).
     pub(super) resolution_scale: f32,
     pub(super) error: Option<String>,
+    /// A confirmation shown for a few seconds ("Screenshot saved to ...") and when it came.
+    notice: Option<(String, std::time::Instant)>,
     pub(super) scene_panel: ScenePanel,
     pub(super) inspector: Inspector,
     pub(super) texture_panel: TexturePanel,
@@ -59,6 +89,28 @@ pub struct ExplorerApp {
     frame_time: f32,
     /// Running mean of the time `ui()` itself takes (seconds): the rest of a frame is painting.
     layout_time: f32,
+    /// Undo and redo over every change of `desc`, whichever panel made it.
+    history: History<SceneDesc>,
+    gestures: Gestures,
+    /// Whether a camera move alone counts as an unsaved change (off: orbiting does not make
+    /// switching presets ask to save; *Save* still writes the camera).
+    pub(super) camera_is_unsaved: bool,
+    /// The *Help → Keyboard shortcuts* window is open.
+    pub(super) shortcuts_open: bool,
+    /// The window title last sent, so it is sent only when it changes.
+    title_sent: String,
+    /// `TEXPLORE_LATENCY=1`: where the time goes from an edit to its first preview.
+    latency: Latency,
+    /// The window's context once a frame has run: a new job asks it for a repaint as soon as
+    /// its first preview is published.
+    ctx: Option<egui::Context>,
+}
+
+/// An Edit-menu command.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum EditCommand {
+    Undo,
+    Redo,
 }
 
 impl ExplorerApp {
@@ -84,15 +136,23 @@ impl ExplorerApp {
             live: LiveImage::new("render"),
             resolution_scale: 1.0,
             error: None,
-            scene_panel: ScenePanel::default(),
+            notice: None,
+            scene_panel: ScenePanel::with_browser(options.browser.clone()),
             inspector: Inspector::default(),
             texture_panel: TexturePanel::default(),
             ab: AbSplit::default(),
             speed: SpeedPanel::default(),
-            files: Files::new(options.recent_file),
+            files: Files::new(options.recent_file, options.browser),
             lessons: LessonsPanel::default(),
             frame_time: FRAME_INTERVAL.as_secs_f32(),
             layout_time: 0.0,
+            history: History::default(),
+            gestures: Gestures::default(),
+            camera_is_unsaved: false,
+            shortcuts_open: false,
+            title_sent: String::new(),
+            latency: Latency::from_env(),
+            ctx: None,
         };
         if let Some(lesson) = &options.lesson {
             let dir = lesson.file.parent().unwrap_or(Path::new("."));
@@ -102,6 +162,33 @@ impl ExplorerApp {
         let path = app.path.clone();
         app.open_file(&path);
         app
+    }
+
+    /// The window as it starts: on `open` if given, else on the scene `storage` says was open
+    /// last (if that file is still there), else on [`super::DEFAULT_PRESET`]; with the
+    /// preferences `storage` kept. Tests pass their own storage or none, never the user's.
+    #[must_use]
+    pub fn restore(
+        storage: Option<&dyn eframe::Storage>,
+        open: Option<PathBuf>,
+        options: AppOptions,
+    ) -> Self {
+        let prefs = Prefs::load(storage);
+        let path = open
+            .or(prefs.last_scene.filter(|p| p.is_file()))
+            .unwrap_or_else(|| PathBuf::from(super::DEFAULT_PRESET));
+        let mut app = Self::with_options(path, options);
+        app.camera_is_unsaved = prefs.camera_is_unsaved;
+        app
+    }
+
+    /// What [`eframe::App::save`] keeps.
+    #[must_use]
+    pub fn prefs(&self) -> Prefs {
+        Prefs {
+            last_scene: Some(std::path::absolute(&self.path).unwrap_or_else(|_| self.path.clone())),
+            camera_is_unsaved: self.camera_is_unsaved,
+        }
     }
 
     /// Opens a preset or a texplore PNG, replacing the scene; on an error the current scene
@@ -124,6 +211,7 @@ impl ExplorerApp {
                     self.scene_panel.scene_replaced();
                     self.inspector.clear();
                     self.files.add_recent(path);
+                    self.history.reset(self.desc.as_ref());
                     true
                 } else {
                     self.desc = old_desc;
@@ -151,6 +239,12 @@ impl ExplorerApp {
         &self.path
     }
 
+    /// The confirmation shown in the status line, if any ("Screenshot saved to ...").
+    #[must_use]
+    pub fn notice(&self) -> Option<&str> {
+        self.notice.as_ref().map(|(n, _)| n.as_str())
+    }
+
     /// The error shown in the window, if any.
     #[must_use]
     pub fn error(&self) -> Option<&str> {
@@ -163,10 +257,101 @@ impl ExplorerApp {
         self.inspector.shown()
     }
 
-    /// Whether the scene differs from the file it came from.
+    /// Whether the scene has unsaved changes: it differs from the file it came from, a camera
+    /// move alone not counting unless *Edit → Camera moves are unsaved changes* is on.
     #[must_use]
     pub fn is_dirty(&self) -> bool {
-        self.desc != self.saved_desc
+        match (&self.desc, &self.saved_desc) {
+            (Some(now), Some(saved)) if !self.camera_is_unsaved => {
+                let mut now = now.clone();
+                now.camera = saved.camera;
+                now != *saved
+            }
+            (now, saved) => now != saved,
+        }
+    }
+
+    /// The window's title: the file's name, `•` before it while there are unsaved changes.
+    #[must_use]
+    pub fn title(&self) -> String {
+        let name = self
+            .path
+            .file_name()
+            .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+        let mark = if self.is_dirty() { "• " } else { "" };
+        format!("{mark}{name} — texplore")
+    }
+
+    /// Edits the scene: `f` changes the description, and if anything changed the scene is
+    /// rebuilt and re-rendered (an edit that does not build is rolled back and its error
+    /// shown). The change is an undo step like any other. For panels that edit the scene.
+    pub fn edit_scene(&mut self, f: impl FnOnce(&mut SceneDesc)) {
+        let Some(desc) = &mut self.desc else { return };
+        let before = desc.clone();
+        f(desc);
+        if *desc != before {
+            self.restart();
+        }
+    }
+
+    /// The index of the object the scene panel edits.
+    #[must_use]
+    pub fn selected_object(&self) -> usize {
+        self.scene_panel.selected
+    }
+
+    /// What *Edit → Undo* would undo ("mapping of Earth", "camera"...), if anything.
+    #[must_use]
+    pub fn undo_label(&self) -> Option<&str> {
+        self.history.undo_label()
+    }
+
+    /// What *Edit → Redo* would redo, if anything.
+    #[must_use]
+    pub fn redo_label(&self) -> Option<&str> {
+        self.history.redo_label()
+    }
+
+    /// Records this frame's change of the scene, if any, as an undo step (or as part of the
+    /// step of the gesture it continues).
+    fn record(&mut self, gesture: Option<Gesture>) {
+        self.history
+            .observe(self.desc.as_ref(), gesture, history::describe);
+    }
+
+    /// Undoes or redoes one step and re-renders.
+    fn run_edit(&mut self, command: EditCommand) {
+        self.record(None);
+        let Some(current) = self.desc.clone() else {
+            return;
+        };
+        let kept = self.history.clone();
+        let restored = match command {
+            EditCommand::Undo => self.history.undo(&current),
+            EditCommand::Redo => self.history.redo(&current),
+        };
+        let Some(restored) = restored else { return };
+        let objects_before = current.objects.len();
+        // The object that came back or went away is the one to look at.
+        let changed_object = restored
+            .objects
+            .iter()
+            .zip(&current.objects)
+            .position(|(a, b)| a != b)
+            .unwrap_or(restored.objects.len().min(objects_before));
+        let count_changed = restored.objects.len() != objects_before;
+        self.desc = Some(restored);
+        if self.restart() {
+            if count_changed {
+                self.scene_panel.selected = changed_object;
+            }
+            let n = self.desc.as_ref().map_or(0, |d| d.objects.len());
+            self.scene_panel.selected = self.scene_panel.selected.min(n.saturating_sub(1));
+        } else {
+            // The step does not build any more (a file it used is gone): `restart` put the
+            // scene back and shows why; the history stays as it was.
+            self.history = kept;
+        }
     }
 
     /// The latest image of the render (preview or accumulated).
@@ -253,7 +438,22 @@ impl ExplorerApp {
                         RenderOptions::default(),
                         &self.generation,
                     ) {
-                        Ok(job) => self.job = Some(job),
+                        Ok(job) => {
+                            let published = self.latency.restarted();
+                            if let Some(ctx) = self.ctx.clone() {
+                                // The first preview takes a few milliseconds: paint it at once
+                                // rather than at the next poll (later passes are polled at
+                                // FRAME_INTERVAL, so the UI never repaints faster than that).
+                                let woken = std::sync::atomic::AtomicBool::new(false);
+                                job.on_publish(move || {
+                                    published.get_or_init(std::time::Instant::now);
+                                    if !woken.swap(true, std::sync::atomic::Ordering::Relaxed) {
+                                        ctx.request_repaint();
+                                    }
+                                });
+                            }
+                            self.job = Some(job);
+                        }
                         Err(e) => started = Err(e.to_string()),
                     }
                 }
@@ -309,6 +509,10 @@ impl ExplorerApp {
                 ui.colored_label(egui::Color32::LIGHT_RED, err);
                 return dismiss;
             }
+            if let Some((notice, _)) = &self.notice {
+                ui.colored_label(egui::Color32::LIGHT_GREEN, notice);
+                ui.separator();
+            }
             if self.ab.enabled {
                 ui.label(self.ab.status());
                 return false;
@@ -361,34 +565,50 @@ impl Drop for ExplorerApp {
 impl eframe::App for ExplorerApp {
     fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
         let started = std::time::Instant::now();
+        self.latency.frame_started();
         self.frame(ui);
+        self.latency.frame_laid_out();
         let t = started.elapsed().as_secs_f32();
         self.layout_time += (t - self.layout_time) * 0.2;
+    }
+
+    fn save(&mut self, storage: &mut dyn eframe::Storage) {
+        eframe::set_value(storage, Prefs::KEY, &self.prefs());
     }
 }
 
 impl ExplorerApp {
     fn frame(&mut self, ui: &mut egui::Ui) {
         let ctx = ui.ctx().clone();
+        if self.ctx.is_none() {
+            self.ctx = Some(ctx.clone());
+        }
+        // Which gesture this frame's changes belong to (one undo step per drag or wheel run).
+        let gesture = ctx.input(|i| {
+            self.gestures.update(
+                std::time::Instant::now(),
+                i.pointer.any_pressed(),
+                i.pointer.any_down() || i.pointer.any_released(),
+                i.smooth_scroll_delta != egui::Vec2::ZERO
+                    || i.raw
+                        .events
+                        .iter()
+                        .any(|e| matches!(e, egui::Event::MouseWheel { .. })),
+            )
+        });
+        let mut command = self.edit_shortcuts(&ctx);
 
         // Files: menus, dialogs, drops, the unsaved-changes prompt.
         let ab_before = self.ab.enabled;
-        egui::Panel::top("menu").show(ui, |ui| {
-            self.files.menu_bar(
-                ui,
-                &self.path,
-                [
-                    (&mut self.inspector.open, "Inspector"),
-                    (&mut self.texture_panel.open, "Texture panel"),
-                    (&mut self.ab.enabled, "A/B split"),
-                    (&mut self.speed.open, "Speed and error"),
-                    (&mut self.lessons.open, "Lessons"),
-                ],
-            );
-        });
+        self.menu_bar(ui, &mut command);
+        if let Some(c) = command {
+            self.run_edit(c);
+        }
+        help::shortcuts_window(&ctx, &mut self.shortcuts_open);
         let mut actions: Vec<FileAction> = Vec::new();
         actions.extend(self.files.dropped(&ctx));
-        actions.extend(self.files.dialogs(&ctx, self.is_dirty()));
+        let description = self.desc.as_ref().map_or("", |d| d.description.as_str());
+        actions.extend(self.files.dialogs(&ctx, self.is_dirty(), description));
         if self.files.close_requested(&ctx, self.is_dirty()) {
             ctx.send_viewport_cmd(egui::ViewportCommand::CancelClose);
         }
@@ -396,6 +616,14 @@ impl ExplorerApp {
             self.run_action(&ctx, a);
         }
 
+        if let Some((_, at)) = &self.notice {
+            let left = NOTICE_TIME.saturating_sub(at.elapsed());
+            if left.is_zero() {
+                self.notice = None;
+            } else {
+                ctx.request_repaint_after(left);
+            }
+        }
         let dismiss = egui::Panel::bottom("status")
             .show(ui, |ui| self.status_line(ui))
             .inner;
@@ -404,10 +632,13 @@ impl ExplorerApp {
         }
 
         let changed = egui::Panel::left("scene")
-            .default_size(300.0)
+            .default_size(320.0)
             .resizable(true)
             .show(ui, |ui| {
-                egui::ScrollArea::vertical()
+                // Scrolls both ways inside the panel's own width: wide content (large numbers,
+                // long paths) scrolls instead of widening the panel and moving the viewport.
+                egui::ScrollArea::both()
+                    .auto_shrink([false, false])
                     .show(ui, |ui| {
                         let Self {
                             desc,
@@ -464,7 +695,11 @@ impl ExplorerApp {
                 .default_size(440.0)
                 .resizable(true)
                 .show(ui, |ui| {
-                    egui::ScrollArea::vertical().show(ui, |ui| self.inspector.ui(ui));
+                    // As the scene panel: the inspector's content changes with every pixel
+                    // hovered, and must not move the viewport.
+                    egui::ScrollArea::both()
+                        .auto_shrink([false, false])
+                        .show(ui, |ui| self.inspector.ui(ui));
                 });
         }
 
@@ -480,7 +715,9 @@ impl ExplorerApp {
         // The viewport.
         let mut busy = false;
         if let Some(job) = &self.job {
-            self.live.update(&ctx, job);
+            if self.live.update(&ctx, job) {
+                self.latency.uploaded();
+            }
             busy |= !job.progress().finished && !job.progress().cancelled;
         }
         busy |= self.ab.poll(&ctx);
@@ -497,11 +734,12 @@ impl ExplorerApp {
             .map(|s| Vec2::new(s.settings.width as f32, s.settings.height as f32));
         let out = egui::CentralPanel::default()
             .show(ui, |ui| {
+                let hint = self.desc.as_ref().and_then(viewport::edge_on_hint);
                 let view = self.desc.as_mut().map(|d| &mut d.render.view);
                 if self.ab.enabled {
-                    viewport::show_split(ui, &mut self.ab, size, view)
+                    viewport::show_split(ui, &mut self.ab, size, view, hint.as_deref())
                 } else {
-                    viewport::show(ui, self.live.texture(), size, view)
+                    viewport::show(ui, self.live.texture(), size, view, hint.as_deref())
                 }
             })
             .inner;
@@ -517,10 +755,135 @@ impl ExplorerApp {
         if let Some(scene) = &self.scene {
             self.inspector.pointer(scene, out.hover, out.click);
         }
+
+        // Whatever changed the scene this frame (any panel, the camera, a file action) is one
+        // undo step, or part of the gesture's step.
+        self.record(gesture);
+        let title = self.title();
+        if title != self.title_sent {
+            ctx.send_viewport_cmd(egui::ViewportCommand::Title(title.clone()));
+            self.title_sent = title;
+        }
+    }
+
+    /// The menu bar: File, Edit, Presets, View, Help; an Edit command chosen goes to `command`.
+    fn menu_bar(&mut self, ui: &mut egui::Ui, command: &mut Option<EditCommand>) {
+        egui::Panel::top("menu").show(ui, |ui| {
+            let Self {
+                files,
+                history,
+                camera_is_unsaved,
+                shortcuts_open,
+                inspector,
+                texture_panel,
+                lessons,
+                ab,
+                speed,
+                path,
+                ..
+            } = self;
+            files.menu_bar(
+                ui,
+                path,
+                [
+                    (&mut inspector.open, "Inspector"),
+                    (&mut texture_panel.open, "Texture panel"),
+                    (&mut ab.enabled, "A/B split"),
+                    (&mut speed.open, "Speed and error"),
+                    (&mut lessons.open, "Lessons"),
+                ],
+                |ui| {
+                    if let Some(c) = edit_menu(ui, history, camera_is_unsaved) {
+                        *command = Some(c);
+                    }
+                },
+                |ui| {
+                    if ui
+                        .add(
+                            egui::Button::new("Keyboard shortcuts")
+                                .shortcut_text(ui.ctx().format_shortcut(&help::SHORTCUTS_KEY)),
+                        )
+                        .clicked()
+                    {
+                        *shortcuts_open = true;
+                        ui.close();
+                    }
+                },
+            );
+        });
+    }
+
+    /// Ctrl+Z undoes, Ctrl+Shift+Z and Ctrl+Y redo, F1 opens the shortcuts; not while a text
+    /// field has the keyboard (it has its own undo).
+    fn edit_shortcuts(&mut self, ctx: &egui::Context) -> Option<EditCommand> {
+        if ctx.egui_wants_keyboard_input() {
+            return None;
+        }
+        ctx.input_mut(|i| {
+            if i.consume_shortcut(&help::SHORTCUTS_KEY) {
+                self.shortcuts_open = !self.shortcuts_open;
+            }
+            // Shift first: Ctrl+Z would also match Ctrl+Shift+Z.
+            if i.consume_shortcut(&help::REDO) || i.consume_shortcut(&help::REDO_Y) {
+                Some(EditCommand::Redo)
+            } else if i.consume_shortcut(&help::UNDO) {
+                Some(EditCommand::Undo)
+            } else {
+                None
+            }
+        })
     }
 }
 
+/// The Edit menu: undo and redo, each saying what it would do, and whether camera moves count
+/// as unsaved changes.
+fn edit_menu(
+    ui: &mut egui::Ui,
+    history: &History<SceneDesc>,
+    camera_is_unsaved: &mut bool,
+) -> Option<EditCommand> {
+    let mut command = None;
+    for (c, verb, label, key) in [
+        (EditCommand::Undo, "Undo", history.undo_label(), help::UNDO),
+        (EditCommand::Redo, "Redo", history.redo_label(), help::REDO),
+    ] {
+        let text = label.map_or_else(|| verb.to_owned(), |l| format!("{verb} {l}"));
+        if ui
+            .add_enabled(
+                label.is_some(),
+                egui::Button::new(text).shortcut_text(ui.ctx().format_shortcut(&key)),
+            )
+            .clicked()
+        {
+            command = Some(c);
+            ui.close();
+        }
+    }
+    ui.separator();
+    ui.checkbox(camera_is_unsaved, "Camera moves are unsaved changes")
+        .on_hover_text(
+            "On: orbiting, panning or zooming marks the scene unsaved, and opening another \
+             preset asks first. Off: only edits of the scene do (Save still writes the camera)",
+        );
+    command
+}
+
+/// `p` made absolute for a message (as typed if that fails).
+fn absolute_display(p: &Path) -> String {
+    std::path::absolute(p)
+        .unwrap_or_else(|_| p.to_path_buf())
+        .display()
+        .to_string()
+}
+
+/// How long a confirmation stays in the status line.
+const NOTICE_TIME: std::time::Duration = std::time::Duration::from_secs(8);
+
 impl ExplorerApp {
+    fn notify(&mut self, text: String) {
+        self.notice = Some((text, std::time::Instant::now()));
+    }
+
     fn run_action(&mut self, ctx: &egui::Context, action: FileAction) {
         match action {
             FileAction::Open(p) => self.open_file(&p),
@@ -540,20 +903,33 @@ impl ExplorerApp {
                     crate::scene::rebase_assets(&mut out, from, to);
                     match crate::scene::save_preset(&out, &p) {
                         Ok(()) => {
+                            // The steps to undo hold paths relative to the old folder too.
+                            self.history
+                                .rewrite(|d| crate::scene::rebase_assets(d, from, to));
                             *desc = out.clone();
                             self.saved_desc = Some(out);
                             self.path.clone_from(&p);
                             self.files.add_recent(&p);
                             self.error = None;
+                            self.notify(format!("Saved {}", absolute_display(&p)));
                         }
                         Err(e) => self.error = Some(e.to_string()),
                     }
                 }
             }
             FileAction::Screenshot(p) => match self.save_screenshot(&p) {
-                Ok(()) => self.error = None,
+                Ok(()) => {
+                    self.error = None;
+                    self.notify(format!("Screenshot saved to {}", absolute_display(&p)));
+                }
                 Err(e) => self.error = Some(e.to_string()),
             },
+            FileAction::Describe(d) => {
+                // Only the text changes: nothing to render again.
+                if let Some(desc) = &mut self.desc {
+                    desc.description = d;
+                }
+            }
             FileAction::UseImage(p) => {
                 if let Some(desc) = &mut self.desc {
                     let dir = self.path.parent().unwrap_or(Path::new("."));

@@ -1,9 +1,95 @@
 //! Files: the menu bar, built-in presets, open / save / save-as / screenshot dialogs (a path
-//! field with quick picks, no native dialog), recent files, dropped files, and the prompts that
-//! guard unsaved changes and existing files.
+//! field with quick picks and a *Browse…* button for the system's file dialog), recent files,
+//! dropped files, and the prompts that guard unsaved changes and existing files.
 
 use crate::scene::read_png_preset;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+/// What a *Browse…* button asks the file dialog for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BrowseFor {
+    /// An image for the texture.
+    Image,
+    /// A PLY or OBJ mesh for the shape.
+    Mesh,
+    /// A preset or a texplore PNG to open.
+    Scene,
+    /// Where to save the preset.
+    Preset,
+    /// Where to save the screenshot.
+    Screenshot,
+}
+
+/// A file chooser: what is asked for, the folder to start in, the file name to suggest;
+/// `None` when the user cancels.
+pub type BrowseFn = dyn Fn(BrowseFor, &Path, &str) -> Option<PathBuf> + Send + Sync;
+
+/// The file chooser behind every *Browse…* button: the system's dialog (`rfd`: the XDG desktop
+/// portal on Linux, the native panels on macOS and Windows), or, in tests, a function that
+/// answers in its place.
+#[derive(Clone, Default)]
+pub struct Browser(Option<Arc<BrowseFn>>);
+
+impl std::fmt::Debug for Browser {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(if self.0.is_some() {
+            "Browser(replaced)"
+        } else {
+            "Browser(native)"
+        })
+    }
+}
+
+impl Browser {
+    /// A chooser that calls `f` instead of showing the system's dialog.
+    #[must_use]
+    pub fn replaced_by(
+        f: impl Fn(BrowseFor, &Path, &str) -> Option<PathBuf> + Send + Sync + 'static,
+    ) -> Self {
+        Self(Some(Arc::new(f)))
+    }
+
+    /// Asks for a file: `start` is the folder shown first, `name` the suggested file name of a
+    /// save. Blocks until the dialog closes.
+    #[must_use]
+    pub fn pick(&self, what: BrowseFor, start: &Path, name: &str) -> Option<PathBuf> {
+        if let Some(f) = &self.0 {
+            return f(what, start, name);
+        }
+        let start = std::path::absolute(start).unwrap_or_else(|_| start.to_path_buf());
+        let d = rfd::FileDialog::new().set_directory(start);
+        match what {
+            BrowseFor::Image => d
+                .set_title("Choose an image")
+                .add_filter("Images", &IMAGE_EXTENSIONS)
+                .pick_file(),
+            BrowseFor::Mesh => d
+                .set_title("Choose a mesh")
+                .add_filter("Meshes (PLY, OBJ)", &["ply", "obj"])
+                .pick_file(),
+            BrowseFor::Scene => d
+                .set_title("Open a preset or a texplore PNG")
+                .add_filter("Presets and texplore PNGs", &["ron", "png"])
+                .pick_file(),
+            BrowseFor::Preset => d
+                .set_title("Save the scene as a preset")
+                .add_filter("Preset (.ron)", &["ron"])
+                .set_file_name(name)
+                .save_file(),
+            BrowseFor::Screenshot => d
+                .set_title("Save a screenshot")
+                .add_filter("PNG", &["png"])
+                .set_file_name(name)
+                .save_file(),
+        }
+    }
+}
+
+/// The image files texplore reads, by extension.
+pub const IMAGE_EXTENSIONS: [&str; 9] = [
+    "png", "jpg", "jpeg", "hdr", "exr", "tif", "tiff", "ppm", "pgm",
+];
 
 /// How many recent files are remembered.
 const MAX_RECENT: usize = 10;
@@ -23,6 +109,8 @@ pub enum FileAction {
     UseImage(PathBuf),
     /// Make the selected object this mesh (PLY or OBJ).
     UseMesh(PathBuf),
+    /// Set the scene's description (typed in the *Save as* dialog).
+    Describe(String),
     /// Show this message.
     Error(String),
     /// Close the window.
@@ -42,11 +130,25 @@ enum Pending {
     Quit,
 }
 
+/// The path dialog while it is open.
+struct Dialog {
+    kind: DialogKind,
+    /// The path typed.
+    text: String,
+    /// *Save as*: the description typed (filled from the scene's when first shown).
+    description: Option<String>,
+    /// The path field takes the keyboard on the dialog's first frame.
+    focus: bool,
+}
+
 /// The files state.
 pub struct Files {
     recent: Vec<PathBuf>,
     recent_file: Option<PathBuf>,
-    dialog: Option<(DialogKind, String)>,
+    dialog: Option<Dialog>,
+    browser: Browser,
+    /// The built-in presets in the lecture's order with their descriptions (read once).
+    presets: Option<Vec<(PathBuf, String)>>,
     requested: Option<Pending>,
     prompt: Option<Pending>,
     overwrite: Option<FileAction>,
@@ -62,10 +164,6 @@ pub fn config_dir() -> Option<PathBuf> {
     dirs::config_dir().map(|d| d.join("texplore"))
 }
 
-fn list_presets() -> Vec<PathBuf> {
-    crate::scene::list_presets(Path::new(PRESET_DIR)).unwrap_or_default()
-}
-
 fn stem(p: &Path) -> String {
     p.file_stem().map_or_else(
         || p.display().to_string(),
@@ -74,21 +172,55 @@ fn stem(p: &Path) -> String {
 }
 
 fn is_image(p: &Path) -> bool {
-    p.extension().and_then(|e| e.to_str()).is_some_and(|e| {
-        [
-            "png", "jpg", "jpeg", "hdr", "exr", "tif", "tiff", "ppm", "pgm",
-        ]
-        .contains(&e.to_ascii_lowercase().as_str())
-    })
+    p.extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| IMAGE_EXTENSIONS.contains(&e.to_ascii_lowercase().as_str()))
+}
+
+fn canonical(p: &Path) -> PathBuf {
+    std::fs::canonicalize(p)
+        .unwrap_or_else(|_| std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf()))
+}
+
+/// The folder of `file` ("." for a bare name).
+fn folder_of(file: &Path) -> &Path {
+    file.parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."))
+}
+
+/// Where a screenshot of the scene from `current` goes by default: beside its preset, or, for a
+/// built-in preset, in the user's Pictures folder (else the home folder; the program's presets
+/// folder is no place for it); named `<preset>-shot.png`, or `-shot-2.png`... so that the
+/// default never replaces a file.
+#[must_use]
+pub fn screenshot_default(current: &Path) -> PathBuf {
+    let folder = folder_of(current);
+    let dir = if canonical(folder) == canonical(Path::new(PRESET_DIR)) {
+        dirs::picture_dir()
+            .or_else(dirs::home_dir)
+            .unwrap_or_else(|| folder.to_path_buf())
+    } else {
+        folder.to_path_buf()
+    };
+    let stem = stem(current);
+    let mut p = dir.join(format!("{stem}-shot.png"));
+    let mut n = 2;
+    while p.exists() && n < 10_000 {
+        p = dir.join(format!("{stem}-shot-{n}.png"));
+        n += 1;
+    }
+    p
 }
 
 /// Largest recent-files list read (a list of paths takes a few kilobytes).
 const MAX_RECENT_BYTES: u64 = 1 << 20;
 
 impl Files {
-    /// Reads the recent-files list from `recent_file` (a missing or bad file is an empty list).
+    /// Reads the recent-files list from `recent_file` (a missing or bad file is an empty list);
+    /// *Browse…* asks `browser`.
     #[must_use]
-    pub fn new(recent_file: Option<PathBuf>) -> Self {
+    pub fn new(recent_file: Option<PathBuf>, browser: Browser) -> Self {
         let recent = recent_file
             .as_deref()
             .and_then(|f| crate::input::read_input_text(f, MAX_RECENT_BYTES).ok())
@@ -98,12 +230,31 @@ impl Files {
             recent,
             recent_file,
             dialog: None,
+            browser,
+            presets: None,
             requested: None,
             prompt: None,
             overwrite: None,
             close_ok: false,
             current: PathBuf::new(),
         }
+    }
+
+    /// The built-in presets in the lecture's order ([`crate::scene::LECTURE_ORDER`]), each
+    /// with its description.
+    fn presets(&mut self) -> Vec<(PathBuf, String)> {
+        self.presets
+            .get_or_insert_with(|| crate::scene::presets_in_lecture_order(Path::new(PRESET_DIR)))
+            .clone()
+    }
+
+    fn open_dialog(&mut self, kind: DialogKind, text: String) {
+        self.dialog = Some(Dialog {
+            kind,
+            text,
+            description: None,
+            focus: true,
+        });
     }
 
     /// Puts `path` first in the recent list and writes the list (errors writing it are ignored:
@@ -123,25 +274,22 @@ impl Files {
         }
     }
 
-    /// The menu bar. `toggles` are the View menu's panels.
+    /// The menu bar. `toggles` are the View menu's panels; `edit` fills the Edit menu and `help`
+    /// the Help menu.
     pub fn menu_bar<const N: usize>(
         &mut self,
         ui: &mut egui::Ui,
         current: &Path,
         toggles: [(&mut bool, &str); N],
+        edit: impl FnOnce(&mut egui::Ui),
+        help: impl FnOnce(&mut egui::Ui),
     ) {
         self.current = current.to_path_buf();
         // Ctrl+S saves (over a .ron, else asks where), Ctrl+O opens.
         let (save, open) = ui.input_mut(|i| {
             (
-                i.consume_shortcut(&egui::KeyboardShortcut::new(
-                    egui::Modifiers::COMMAND,
-                    egui::Key::S,
-                )),
-                i.consume_shortcut(&egui::KeyboardShortcut::new(
-                    egui::Modifiers::COMMAND,
-                    egui::Key::O,
-                )),
+                i.consume_shortcut(&super::help::SAVE),
+                i.consume_shortcut(&super::help::OPEN),
             )
         });
         if save {
@@ -149,16 +297,16 @@ impl Files {
                 // Never overwrite without asking: the replace prompt confirms.
                 self.overwrite = Some(FileAction::Save(current.to_path_buf()));
             } else {
-                self.dialog = Some((DialogKind::SaveAs, String::new()));
+                self.open_dialog(DialogKind::SaveAs, String::new());
             }
         }
         if open {
-            self.dialog = Some((DialogKind::Open, String::new()));
+            self.open_dialog(DialogKind::Open, String::new());
         }
         egui::MenuBar::new().ui(ui, |ui| {
             ui.menu_button("File", |ui| {
                 if ui.button("Open…").clicked() {
-                    self.dialog = Some((DialogKind::Open, String::new()));
+                    self.open_dialog(DialogKind::Open, String::new());
                 }
                 let is_ron = current.extension().is_some_and(|e| e == "ron");
                 if ui
@@ -170,12 +318,12 @@ impl Files {
                         // Never overwrite without asking: the replace prompt confirms.
                         self.overwrite = Some(FileAction::Save(current.to_path_buf()));
                     } else {
-                        self.dialog = Some((DialogKind::SaveAs, String::new()));
+                        self.open_dialog(DialogKind::SaveAs, String::new());
                     }
                 }
                 if ui.button("Save as…").clicked() {
                     let name = current.with_extension("ron").display().to_string();
-                    self.dialog = Some((DialogKind::SaveAs, name));
+                    self.open_dialog(DialogKind::SaveAs, name);
                 }
                 if ui
                     .button("Save screenshot…")
@@ -185,8 +333,8 @@ impl Files {
                     ))
                     .clicked()
                 {
-                    let name = format!("{}-shot.png", stem(current));
-                    self.dialog = Some((DialogKind::Screenshot, name));
+                    let name = screenshot_default(current).display().to_string();
+                    self.open_dialog(DialogKind::Screenshot, name);
                 }
                 ui.menu_button("Recent", |ui| {
                     if self.recent.is_empty() {
@@ -203,18 +351,27 @@ impl Files {
                     self.requested = Some(Pending::Quit);
                 }
             });
+            ui.menu_button("Edit", edit);
             ui.menu_button("Presets", |ui| {
-                for p in list_presets() {
-                    if ui.button(stem(&p)).clicked() {
-                        self.requested = Some(Pending::Open(p));
+                // In the lecture's order, each with the description its file holds.
+                egui::Grid::new("presets").num_columns(2).show(ui, |ui| {
+                    for (p, description) in self.presets() {
+                        let button = ui.button(stem(&p)).on_hover_text(&description);
+                        ui.weak(&description);
+                        ui.end_row();
+                        if button.clicked() {
+                            self.requested = Some(Pending::Open(p));
+                            ui.close();
+                        }
                     }
-                }
+                });
             });
             ui.menu_button("View", |ui| {
                 for (flag, name) in toggles {
                     ui.checkbox(flag, name);
                 }
             });
+            ui.menu_button("Help", help);
             let name = current
                 .file_name()
                 .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
@@ -266,8 +423,14 @@ impl Files {
         false
     }
 
-    /// The dialogs and prompts; returns what the user confirmed.
-    pub fn dialogs(&mut self, ctx: &egui::Context, dirty: bool) -> Vec<FileAction> {
+    /// The dialogs and prompts; returns what the user confirmed. `description` is the scene's,
+    /// which *Save as* offers to edit.
+    pub fn dialogs(
+        &mut self,
+        ctx: &egui::Context,
+        dirty: bool,
+        description: &str,
+    ) -> Vec<FileAction> {
         let mut out = Vec::new();
         if let Some(req) = self.requested.take() {
             if dirty {
@@ -321,37 +484,90 @@ impl Files {
                 });
             });
         }
-        if let Some((kind, mut text)) = self.dialog.take() {
+        self.path_dialog(ctx, description, &mut out);
+        out
+    }
+
+    /// The path dialog (Open, Save as, Save screenshot), while open; what it confirms goes to
+    /// `out` (or to the replace prompt).
+    fn path_dialog(&mut self, ctx: &egui::Context, description: &str, out: &mut Vec<FileAction>) {
+        if let Some(mut dialog) = self.dialog.take() {
+            let kind = dialog.kind;
             let mut keep = true;
             let title = match kind {
                 DialogKind::Open => "Open a preset or a texplore PNG",
                 DialogKind::SaveAs => "Save the scene as a preset (.ron)",
                 DialogKind::Screenshot => "Save a screenshot (.png, with the scene inside)",
             };
-            egui::Modal::new(egui::Id::unique("path-dialog")).show(ctx, |ui| {
+            let modal = egui::Modal::new(egui::Id::unique("path-dialog")).show(ctx, |ui| {
                 ui.heading(title);
                 let mut go = false;
+                let text = &mut dialog.text;
                 ui.horizontal(|ui| {
                     let l = ui.label("Path");
                     let r = ui
-                        .add(egui::TextEdit::singleline(&mut text).desired_width(360.0))
+                        .add(egui::TextEdit::singleline(text).desired_width(360.0))
                         .labelled_by(l.id);
+                    if std::mem::take(&mut dialog.focus) {
+                        r.request_focus();
+                    }
                     go |= r.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
+                    if ui
+                        .button("Browse…")
+                        .on_hover_text("Choose the file in the system's file dialog")
+                        .clicked()
+                    {
+                        let what = match kind {
+                            DialogKind::Open => BrowseFor::Scene,
+                            DialogKind::SaveAs => BrowseFor::Preset,
+                            DialogKind::Screenshot => BrowseFor::Screenshot,
+                        };
+                        let typed = Path::new(text.trim());
+                        let start = if text.trim().is_empty() {
+                            folder_of(&self.current)
+                        } else {
+                            folder_of(typed)
+                        };
+                        let name = typed
+                            .file_name()
+                            .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+                        if let Some(p) = self.browser.pick(what, start, &name) {
+                            *text = p.display().to_string();
+                            go = true;
+                        }
+                    }
                 });
+                if kind == DialogKind::SaveAs {
+                    let d = dialog
+                        .description
+                        .get_or_insert_with(|| description.to_owned());
+                    let l = ui.label("Description (shown in the Presets menu)");
+                    ui.add(
+                        egui::TextEdit::multiline(d)
+                            .desired_rows(2)
+                            .desired_width(420.0),
+                    )
+                    .labelled_by(l.id);
+                }
                 if kind == DialogKind::Open {
                     ui.label("Built-in presets and recent files:");
+                    let presets: Vec<PathBuf> =
+                        self.presets().into_iter().map(|(p, _)| p).collect();
+                    let builtin: Vec<PathBuf> = presets.iter().map(|p| canonical(p)).collect();
+                    let recent = self
+                        .recent
+                        .iter()
+                        .filter(|r| !builtin.contains(&canonical(r)))
+                        .cloned();
                     egui::ScrollArea::vertical()
                         .max_height(200.0)
                         .show(ui, |ui| {
-                            for p in list_presets()
-                                .into_iter()
-                                .chain(self.recent.iter().cloned())
-                            {
+                            for p in presets.into_iter().chain(recent) {
                                 if ui
                                     .selectable_label(false, p.display().to_string())
                                     .clicked()
                                 {
-                                    text = p.display().to_string();
+                                    *text = p.display().to_string();
                                 }
                             }
                         });
@@ -374,6 +590,11 @@ impl Files {
                     match kind {
                         DialogKind::Open => self.requested = Some(Pending::Open(p)),
                         DialogKind::SaveAs | DialogKind::Screenshot => {
+                            if let Some(d) = dialog.description.take()
+                                && d != description
+                            {
+                                out.push(FileAction::Describe(d));
+                            }
                             let action = if kind == DialogKind::SaveAs {
                                 FileAction::Save(p.clone())
                             } else {
@@ -388,11 +609,11 @@ impl Files {
                     }
                 }
             });
-            if keep {
-                self.dialog = Some((kind, text));
+            // Esc (or a click beside the dialog) closes it, as Cancel does.
+            if keep && !modal.should_close() {
+                self.dialog = Some(dialog);
             }
         }
-        out
     }
 
     fn confirm(&mut self, p: Pending) -> FileAction {

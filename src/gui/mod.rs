@@ -5,6 +5,8 @@
 mod app;
 mod compare;
 mod files;
+mod help;
+mod history;
 mod inspector;
 mod lessons;
 mod live;
@@ -14,21 +16,23 @@ mod texture_panel;
 mod viewport;
 mod widgets;
 
-pub use app::{AppOptions, ExplorerApp};
-pub use files::config_dir;
+pub use app::{AppOptions, ExplorerApp, Prefs};
+pub use files::{BrowseFor, Browser, config_dir, screenshot_default};
+pub use viewport::HINT as VIEW_HINT;
 
 use std::path::PathBuf;
 
 /// The preset the window opens on.
 pub const DEFAULT_PRESET: &str = "presets/earth.ron";
 
-/// Opens the window on `open` (a preset or a texplore PNG) or on the Earth.
+/// Opens the window on `open` (a preset or a texplore PNG), else on the scene open when it was
+/// last closed, else on the Earth. eframe keeps the window's size, the panels' widths and
+/// [`Prefs`] between runs (in its storage folder, `~/.local/share/texplore` on Linux).
 ///
 /// # Errors
 /// The window cannot be created (no display, no GPU adapter).
 pub fn run(open: Option<PathBuf>) -> anyhow::Result<()> {
-    let path = open.unwrap_or_else(|| PathBuf::from(DEFAULT_PRESET));
-    run_app(path, None)
+    run_app(open, None)
 }
 
 /// Opens the window on `lesson`: its preset, with the Lessons panel open on it.
@@ -36,10 +40,10 @@ pub fn run(open: Option<PathBuf>) -> anyhow::Result<()> {
 /// # Errors
 /// The window cannot be created (no display, no GPU adapter).
 pub fn run_lesson(lesson: crate::lesson::Lesson) -> anyhow::Result<()> {
-    run_app(lesson.preset.clone(), Some(lesson))
+    run_app(Some(lesson.preset.clone()), Some(lesson))
 }
 
-fn run_app(path: PathBuf, lesson: Option<crate::lesson::Lesson>) -> anyhow::Result<()> {
+fn run_app(open: Option<PathBuf>, lesson: Option<crate::lesson::Lesson>) -> anyhow::Result<()> {
     let options = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()
             .with_title("texplore")
@@ -52,11 +56,18 @@ fn run_app(path: PathBuf, lesson: Option<crate::lesson::Lesson>) -> anyhow::Resu
     let app_options = AppOptions {
         recent_file: config_dir().map(|d| d.join("recent.ron")),
         lesson,
+        browser: Browser::default(),
     };
     eframe::run_native(
         "texplore",
         options,
-        Box::new(move |_cc| Ok(Box::new(ExplorerApp::with_options(path, app_options)))),
+        Box::new(move |cc| {
+            Ok(Box::new(ExplorerApp::restore(
+                cc.storage,
+                open,
+                app_options,
+            )))
+        }),
     )
     .map_err(|e| anyhow::anyhow!("cannot open the window: {e}"))
 }

@@ -4,8 +4,8 @@
 
 use super::compare::AbSplit;
 use super::widgets::enum_combo;
-use crate::math::{Ray, Vec2, Vec3};
-use crate::scene::Scene;
+use crate::math::{Quat, Ray, Vec2, Vec3};
+use crate::scene::{Scene, SceneDesc, ShapeDesc};
 use crate::texture::View;
 
 /// The accessible name of the viewport's image (the A/B pair's too).
@@ -62,6 +62,10 @@ pub fn zoomed_eye(scene: Option<&Scene>, eye: Vec3, look_at: Vec3, scale: f32) -
     crate::camera::zoom_toward_surface(eye, look_at, surface, scale)
 }
 
+/// The hint under the toolbar.
+pub const HINT: &str =
+    "drag: orbit · right-drag or shift-drag: pan · wheel: zoom · click: pin the inspector";
+
 fn toolbar(ui: &mut egui::Ui, out: &mut ViewOutput, view: Option<&mut View>) {
     ui.horizontal(|ui| {
         if let Some(view) = view {
@@ -74,17 +78,140 @@ fn toolbar(ui: &mut egui::Ui, out: &mut ViewOutput, view: Option<&mut View>) {
         {
             out.edit = Some(ViewEdit::Reset);
         }
-        // Truncated, so the hint never asks the panels around the viewport for width.
-        ui.add(
-            egui::Label::new(
-                egui::RichText::new(
-                    "drag: orbit · right-drag or shift-drag: pan · wheel: zoom · click: pin the inspector",
-                )
-                .weak(),
-            )
-            .truncate(),
-        );
     });
+    // On its own line and wrapped: never cut off, and never asking the panels around the
+    // viewport for width.
+    ui.add(egui::Label::new(egui::RichText::new(HINT).weak()).wrap());
+}
+
+/// Why nothing of an object shows, when the reason is its orientation: a flat shape (plane,
+/// rectangle, disk) whose plane passes through the eye is seen exactly edge-on and covers no
+/// pixel.
+#[must_use]
+pub fn edge_on_hint(desc: &SceneDesc) -> Option<String> {
+    let eye = desc.camera.eye;
+    desc.objects.iter().enumerate().find_map(|(i, o)| {
+        if !matches!(
+            o.shape,
+            ShapeDesc::Plane | ShapeDesc::Rectangle | ShapeDesc::Disk
+        ) {
+            return None;
+        }
+        let r = o.transform.rotate;
+        let rotation = Quat::from_rotation_z(r.z.to_radians())
+            * Quat::from_rotation_y(r.y.to_radians())
+            * Quat::from_rotation_x(r.x.to_radians());
+        // The generic flat shapes lie in y = 0; a scale keeps the normal's direction.
+        let normal = rotation * Vec3::Y;
+        let to_eye = eye - o.transform.translate;
+        let distance = to_eye.dot(normal).abs();
+        (distance <= 1e-3 * to_eye.length().max(1e-6)).then(|| {
+            let name = if o.name.is_empty() {
+                format!("object {i}")
+            } else {
+                o.name.clone()
+            };
+            format!(
+                "{name} is edge-on to the camera: the eye lies in its plane, so it covers no \
+                 pixel. Rotate it or move the camera."
+            )
+        })
+    })
+}
+
+/// A small key to the colours of debug view `view`, drawn in the image's bottom-left corner.
+fn colour_key(ui: &egui::Ui, image: egui::Rect, view: View) {
+    let srgb = |c: crate::math::Rgb| {
+        let e = |v: f32| crate::math::encode_srgb8(v);
+        egui::Color32::from_rgb(e(c.0), e(c.1), e(c.2))
+    };
+    let levels = || {
+        (-1..=5).map(move |l| {
+            let name = match l {
+                -1 => "magnified".to_owned(),
+                5 => "5+".to_owned(),
+                l => l.to_string(),
+            };
+            (srgb(crate::texture::mip_level_color(l as f32)), name)
+        })
+    };
+    let entries: Vec<(egui::Color32, String)> = match view {
+        View::Shaded => return,
+        View::Uv => vec![
+            (egui::Color32::from_rgb(255, 0, 0), "red: u".to_owned()),
+            (egui::Color32::from_rgb(0, 255, 0), "green: v".to_owned()),
+            (egui::Color32::from_rgb(255, 255, 0), "u = v = 1".to_owned()),
+            (egui::Color32::from_gray(40), "no texture".to_owned()),
+        ],
+        View::MipLevel => levels().map(|(c, n)| (c, format!("level {n}"))).collect(),
+        View::TexelGrid => std::iter::once((
+            egui::Color32::WHITE,
+            "lines: texel edges, in their level's colour".to_owned(),
+        ))
+        .chain(levels().map(|(c, n)| (c, format!("level {n}"))))
+        .collect(),
+        View::Seams => vec![
+            (
+                egui::Color32::from_rgb(255, 0, 255),
+                "seam: u wraps".to_owned(),
+            ),
+            (egui::Color32::from_rgb(255, 255, 0), "pole".to_owned()),
+            (egui::Color32::from_rgb(0, 255, 255), "tile edge".to_owned()),
+        ],
+    };
+    let font = egui::FontId::proportional(12.0);
+    let painter = ui.painter().with_clip_rect(image);
+    let row = 16.0;
+    let width = entries
+        .iter()
+        .map(|(_, t)| {
+            painter
+                .layout_no_wrap(t.clone(), font.clone(), egui::Color32::WHITE)
+                .size()
+                .x
+        })
+        .fold(0.0_f32, f32::max)
+        + 26.0;
+    let height = row * entries.len() as f32 + 6.0;
+    let key = egui::Rect::from_min_size(
+        egui::pos2(image.left() + 6.0, image.bottom() - 6.0 - height),
+        egui::vec2(width, height),
+    );
+    painter.rect_filled(key, 3.0, egui::Color32::from_black_alpha(170));
+    for (i, (colour, text)) in entries.into_iter().enumerate() {
+        let y = key.top() + 3.0 + row * i as f32 + row / 2.0;
+        let swatch =
+            egui::Rect::from_center_size(egui::pos2(key.left() + 11.0, y), egui::vec2(10.0, 10.0));
+        painter.rect_filled(swatch, 1.0, colour);
+        let r = painter.text(
+            egui::pos2(key.left() + 22.0, y),
+            egui::Align2::LEFT_CENTER,
+            &text,
+            font.clone(),
+            egui::Color32::WHITE,
+        );
+        // Each entry is a label for screen readers (and the tests).
+        let id = ui.scope_id().with(("colour-key", i));
+        let response = ui.interact(r, id, egui::Sense::hover());
+        response.widget_info(|| egui::WidgetInfo::labeled(egui::Role::Label, true, &text));
+    }
+}
+
+/// A message over the top of the image (why nothing renders).
+fn image_hint(ui: &egui::Ui, image: egui::Rect, hint: &str) {
+    let painter = ui.painter().with_clip_rect(image);
+    let galley = painter.layout(
+        hint.to_owned(),
+        egui::FontId::proportional(14.0),
+        egui::Color32::from_rgb(255, 220, 120),
+        (image.width() - 24.0).max(40.0),
+    );
+    let pos = egui::pos2(image.center().x - galley.size().x / 2.0, image.top() + 10.0);
+    let back = egui::Rect::from_min_size(pos, galley.size()).expand(5.0);
+    painter.rect_filled(back, 3.0, egui::Color32::from_black_alpha(190));
+    let response = ui.interact(back, ui.scope_id().with("image-hint"), egui::Sense::hover());
+    response.widget_info(|| egui::WidgetInfo::labeled(egui::Role::Label, true, hint));
+    painter.galley(pos, galley, egui::Color32::WHITE);
 }
 
 /// The rectangle an image of `size` pixels takes, fitted and centred in `avail`.
@@ -136,14 +263,17 @@ fn interact(
 }
 
 /// Draws the toolbar and `texture` (an image of `size` pixels) fitted and centred in the space
-/// left, or a spinner until there is one; returns what the pointer did over it.
+/// left, or a spinner until there is one, with the debug view's colour key and `hint` over it;
+/// returns what the pointer did over it.
 pub fn show(
     ui: &mut egui::Ui,
     texture: Option<&egui::TextureHandle>,
     size: Option<Vec2>,
     view: Option<&mut View>,
+    hint: Option<&str>,
 ) -> ViewOutput {
     let mut out = ViewOutput::default();
+    let shown_view = view.as_deref().copied().unwrap_or_default();
     toolbar(ui, &mut out, view);
     let avail = ui.available_rect_before_wrap();
     let (Some(t), Some(size)) = (texture, size) else {
@@ -159,6 +289,10 @@ pub fn show(
         egui::Color32::WHITE,
     );
     super::overlay::paint(ui, rect);
+    colour_key(ui, rect, shown_view);
+    if let Some(hint) = hint {
+        image_hint(ui, rect, hint);
+    }
     out
 }
 
@@ -168,8 +302,10 @@ pub fn show_split(
     ab: &mut AbSplit,
     size: Option<Vec2>,
     view: Option<&mut View>,
+    hint: Option<&str>,
 ) -> ViewOutput {
     let mut out = ViewOutput::default();
+    let shown_view = view.as_deref().copied().unwrap_or_default();
     toolbar(ui, &mut out, view);
     ab.controls(ui);
     let avail = ui.available_rect_before_wrap();
@@ -245,6 +381,10 @@ pub fn show_split(
             egui::Color32::from_black_alpha(160),
         );
         painter.text(anchor, align, text, font.clone(), egui::Color32::WHITE);
+    }
+    colour_key(ui, rect, shown_view);
+    if let Some(hint) = hint {
+        image_hint(ui, rect, hint);
     }
     out
 }

@@ -42,6 +42,25 @@ pub fn number(
     .inner
 }
 
+/// [`number`] with a tooltip saying what the value does.
+pub fn number_tip(
+    ui: &mut egui::Ui,
+    label: &str,
+    tip: &str,
+    value: &mut f32,
+    range: std::ops::RangeInclusive<f32>,
+    speed: f64,
+) -> bool {
+    ui.horizontal(|ui| {
+        let l = ui.label(label).on_hover_text(tip);
+        ui.add(egui::DragValue::new(value).range(range).speed(speed))
+            .labelled_by(l.id)
+            .on_hover_text(tip)
+            .changed()
+    })
+    .inner
+}
+
 /// Three labelled drag values for a vector. Returns whether any changed.
 pub fn vec3(ui: &mut egui::Ui, label: &str, v: &mut Vec3, speed: f64) -> bool {
     ui.horizontal(|ui| {

@@ -87,6 +87,8 @@ struct Published {
     done: bool,
     /// Why the job stopped without finishing, when it was not cancelled.
     failure: Option<String>,
+    /// Called after each publication (a viewer asking for a repaint).
+    on_publish: Option<Arc<dyn Fn() + Send + Sync>>,
 }
 
 /// What a job and its viewers share: the published state and the signal that the task ended.
@@ -192,6 +194,21 @@ impl RenderJob {
         self.shared.lock().film.clone()
     }
 
+    /// Calls `f` (on a render thread) after each image the job publishes from now on, and at
+    /// once if one is already published: a viewer repaints when there is something new instead
+    /// of polling for it.
+    pub fn on_publish(&self, f: impl Fn() + Send + Sync + 'static) {
+        let f: Arc<dyn Fn() + Send + Sync> = Arc::new(f);
+        let published = {
+            let mut p = self.shared.lock();
+            p.on_publish = Some(f.clone());
+            p.serial > 0
+        };
+        if published {
+            f();
+        }
+    }
+
     /// Stops this job (and any other of the same generation).
     pub fn cancel(&self) {
         if self.generation.current() == self.started_at {
@@ -249,6 +266,11 @@ fn run(
         }
         p.progress = progress;
         p.serial += 1;
+        let notify = p.on_publish.clone();
+        drop(p);
+        if let Some(f) = notify {
+            f();
+        }
     };
     let mut progress = Progress {
         spp_target: s.max_spp(),

@@ -253,3 +253,87 @@ fn relative_to(target: &Path, base: &Path) -> PathBuf {
     }
     out
 }
+
+/// The built-in presets in the order the lecture meets them: the Earth (its running example,
+/// and the window's first scene), then the rectangular, cylindrical and spherical maps side by
+/// side on the UV grid, the light probe and the panorama camera, the triangle meshes with their
+/// own (u, v), and last the checkers that show aliasing (beyond the lecture). Menus list the
+/// presets in this order; a preset not named here comes after them, by name.
+pub const LECTURE_ORDER: [&str; 10] = [
+    "earth",
+    "rectangle",
+    "cylinder",
+    "uv-grid",
+    "light-probe",
+    "panorama",
+    "two-triangles",
+    "mesh",
+    "checker",
+    "checker-plane",
+];
+
+/// The presets (`*.ron`) in `dir` in [`LECTURE_ORDER`], each with its description (empty for a
+/// file that does not parse); a missing folder lists none.
+#[must_use]
+pub fn presets_in_lecture_order(dir: &Path) -> Vec<(PathBuf, String)> {
+    let mut presets = super::list_presets(dir).unwrap_or_default();
+    let rank = |p: &PathBuf| {
+        let stem = p.file_stem().map(|s| s.to_string_lossy().into_owned());
+        let at = stem
+            .as_deref()
+            .and_then(|s| LECTURE_ORDER.iter().position(|o| *o == s));
+        (at.unwrap_or(LECTURE_ORDER.len()), p.clone())
+    };
+    presets.sort_by_key(rank);
+    presets
+        .into_iter()
+        .map(|p| {
+            let description = super::load_preset(&p)
+                .map(|d| d.description)
+                .unwrap_or_default();
+            (p, description)
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod lecture_order_tests {
+    use super::*;
+
+    #[test]
+    fn the_built_in_presets_come_in_the_lecture_order_with_their_descriptions() {
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("presets");
+        let listed = presets_in_lecture_order(&dir);
+        let stems: Vec<String> = listed
+            .iter()
+            .map(|(p, _)| p.file_stem().expect("stem").to_string_lossy().into_owned())
+            .collect();
+        // Every built-in preset has its place in the order (a new one must be given one).
+        assert_eq!(stems, LECTURE_ORDER, "presets/ and LECTURE_ORDER differ");
+        for (p, d) in &listed {
+            assert!(!d.is_empty(), "{} has no description", p.display());
+        }
+        assert_eq!(
+            listed[0].1,
+            "The Blue Marble under the spherical map: the lecture's Earth"
+        );
+    }
+
+    #[test]
+    fn presets_not_in_the_order_follow_it_by_name() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        for name in ["zebra", "cylinder", "apple", "earth"] {
+            std::fs::write(
+                dir.path().join(format!("{name}.ron")),
+                format!("(version: 1, description: \"{name}\", objects: [])"),
+            )
+            .expect("write");
+        }
+        std::fs::write(dir.path().join("notes.txt"), "not a preset").expect("write");
+        let stems: Vec<String> = presets_in_lecture_order(dir.path())
+            .into_iter()
+            .map(|(p, _)| p.file_stem().expect("stem").to_string_lossy().into_owned())
+            .collect();
+        assert_eq!(stems, ["earth", "cylinder", "apple", "zebra"]);
+    }
+}

@@ -12,8 +12,9 @@ pub use build::{
 };
 pub use desc::*;
 pub use files::{
-    PRESET_CHUNK, asset_paths, read_png_preset, read_preset_or_png, rebase_assets,
-    relative_asset_path, save_render_png, save_render_png_checked,
+    LECTURE_ORDER, PRESET_CHUNK, asset_paths, presets_in_lecture_order, read_png_preset,
+    read_preset_or_png, rebase_assets, relative_asset_path, save_render_png,
+    save_render_png_checked,
 };
 
 use crate::camera::Camera;

@@ -34,9 +34,14 @@ pub fn small_earth(dir: &Path) -> PathBuf {
 
 /// The app on the preset at `path`, in a [`WINDOW`]-sized harness, with its first render done.
 pub fn harness(path: PathBuf) -> Harness<'static, ExplorerApp> {
+    harness_with(path, AppOptions::default())
+}
+
+/// [`harness`] with `options` (a replaced file dialog, say).
+pub fn harness_with(path: PathBuf, options: AppOptions) -> Harness<'static, ExplorerApp> {
     let mut h = Harness::builder()
         .with_size(WINDOW)
-        .build_eframe(move |_cc| ExplorerApp::with_options(path, AppOptions::default()));
+        .build_eframe(move |_cc| ExplorerApp::with_options(path, options));
     settle(&mut h);
     h
 }

@@ -1,16 +1,28 @@
 //! The camera editor: the projection and its angles, the eye and the point looked at.
 
 use crate::gui::widgets::{enum_combo, number, vec3};
-use crate::scene::{ProjectionDesc, SceneDesc};
+use crate::scene::{ProjectionDesc, ProjectionKind, SceneDesc};
+use std::collections::HashMap;
 
-/// The camera settings. Returns whether any changed.
-pub(super) fn camera_ui(ui: &mut egui::Ui, desc: &mut SceneDesc) -> bool {
+/// The camera settings. Returns whether any changed. `earlier` holds each projection as it
+/// was when the user switched away from it: switching back restores its angles (Pinhole ->
+/// Fisheye -> Pinhole gives the preset's 40 degrees back, not the default 45).
+pub(super) fn camera_ui(
+    ui: &mut egui::Ui,
+    desc: &mut SceneDesc,
+    earlier: &mut HashMap<ProjectionKind, ProjectionDesc>,
+) -> bool {
     let mut changed = false;
     ui.heading("Camera");
     let c = &mut desc.camera;
-    let mut kind = c.projection.kind();
+    let before = c.projection.kind();
+    let mut kind = before;
     if enum_combo(ui, "Camera", &mut kind) {
-        c.projection = kind.default_desc();
+        earlier.insert(before, c.projection);
+        c.projection = earlier
+            .get(&kind)
+            .copied()
+            .unwrap_or_else(|| kind.default_desc());
         changed = true;
     }
     match &mut c.projection {

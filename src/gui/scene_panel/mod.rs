@@ -14,8 +14,11 @@ mod render;
 mod texture;
 
 use crate::geometry::Shading;
+use crate::gui::files::{BrowseFor, Browser};
 use crate::names::Named;
-use crate::scene::{ObjectDesc, SceneDesc, ShapeDesc, TextureDesc, TextureKind};
+use crate::scene::{
+    ObjectDesc, ProjectionDesc, ProjectionKind, SceneDesc, ShapeDesc, TextureDesc, TextureKind,
+};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
@@ -35,7 +38,13 @@ pub struct ScenePanel {
     /// Per object, the image texture it had before its kind was switched away from Image, its
     /// path absolute (so a "Save as" into another folder does not break it).
     last_image: HashMap<usize, TextureDesc>,
-    assets: Option<Vec<PathBuf>>,
+    /// The images in assets/, and the preset they were listed for (listed again when the scene
+    /// moves to another folder, after *Save as* or opening another file).
+    assets: Option<(PathBuf, Vec<PathBuf>)>,
+    /// What the *Browse…* buttons ask.
+    browser: Browser,
+    /// Each camera projection as it was when switched away from (restored when switched back).
+    projections: HashMap<ProjectionKind, ProjectionDesc>,
 }
 
 /// The text of a path field: a view of one object's path in one preset, read again from the
@@ -83,6 +92,15 @@ fn object_label(i: usize, o: &ObjectDesc) -> String {
 }
 
 impl ScenePanel {
+    /// A panel whose *Browse…* buttons ask `browser`.
+    #[must_use]
+    pub fn with_browser(browser: Browser) -> Self {
+        Self {
+            browser,
+            ..Self::default()
+        }
+    }
+
     /// Puts the image at `path` (relative to the preset) on the selected object, keeping its
     /// mapping.
     pub fn use_image(&mut self, desc: &mut SceneDesc, path: String) {
@@ -108,6 +126,7 @@ impl ScenePanel {
         self.mesh_prompt = None;
         self.last_image.clear();
         self.assets = None;
+        self.projections.clear();
     }
 
     /// Makes the selected object the mesh at `path` (relative to the preset).
@@ -186,15 +205,17 @@ impl ScenePanel {
         ui.separator();
         changed |= render::render_ui(ui, desc, resolution_scale);
         ui.separator();
-        changed |= camera::camera_ui(ui, desc);
+        changed |= camera::camera_ui(ui, desc, &mut self.projections);
         ui.separator();
         changed |= lights::lights_ui(ui, desc);
         changed
     }
 }
 
-/// A labelled path field for `object`'s `path` in `preset`, applied with Enter or "Load";
-/// `text` holds the typing while it is about that path (see [`PathText`]).
+/// A labelled path field for `object`'s `path` in `preset`, applied with Enter or "Load", or
+/// chosen with *Browse…* (`browser`, for `what`); `text` holds the typing while it is about
+/// that path (see [`PathText`]).
+#[allow(clippy::too_many_arguments)]
 fn path_field(
     ui: &mut egui::Ui,
     label: &str,
@@ -202,13 +223,18 @@ fn path_field(
     text: &mut Option<PathText>,
     object: usize,
     preset: &Path,
+    browser: &Browser,
+    what: BrowseFor,
 ) -> bool {
     let buf = PathText::synced(text, object, path, preset);
     let mut changed = false;
     ui.horizontal(|ui| {
         let l = ui.label(label);
         let r = ui
-            .add(egui::TextEdit::singleline(buf).desired_width(150.0))
+            .add(
+                egui::TextEdit::singleline(buf)
+                    .desired_width((ui.available_width() - 130.0).max(80.0)),
+            )
             .labelled_by(l.id)
             .on_hover_text("Path relative to the preset's folder; Enter loads it");
         let enter = r.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
@@ -222,9 +248,35 @@ fn path_field(
             path.clone_from(buf);
             changed = true;
         }
+        if let Some(p) = browse_button(ui, browser, what, preset) {
+            *path = p;
+            changed = true;
+        }
     });
     if changed {
         *text = None;
     }
     changed
+}
+
+/// A *Browse…* button: the file chosen, relative to `preset`'s folder.
+fn browse_button(
+    ui: &mut egui::Ui,
+    browser: &Browser,
+    what: BrowseFor,
+    preset: &Path,
+) -> Option<String> {
+    let clicked = ui
+        .button("Browse…")
+        .on_hover_text("Choose the file in the system's file dialog")
+        .clicked();
+    if !clicked {
+        return None;
+    }
+    let dir = preset
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let picked = browser.pick(what, dir, "")?;
+    Some(crate::scene::relative_asset_path(&picked, dir))
 }

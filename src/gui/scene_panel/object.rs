@@ -1,8 +1,9 @@
 //! The object editor: the shape (with a cylinder's caps or a mesh's file and shading), the
 //! transform, and the material and texture editors below them.
 
-use super::{ScenePanel, material::material_ui, path_field};
+use super::{ScenePanel, browse_button, material::material_ui, path_field};
 use crate::geometry::Shading;
+use crate::gui::files::{BrowseFor, Browser};
 use crate::gui::widgets::{enum_combo, vec3};
 use crate::names::Named;
 use crate::scene::{ObjectDesc, ShapeDesc, ShapeKind};
@@ -69,7 +70,7 @@ impl ScenePanel {
         }
         if let Some((k, mut text)) = self.mesh_prompt.take() {
             if k == key {
-                let (loaded, keep) = mesh_prompt_ui(ui, shape, &mut text);
+                let (loaded, keep) = mesh_prompt_ui(ui, shape, &mut text, &self.browser, preset);
                 if keep {
                     self.mesh_prompt = Some((k, text));
                 }
@@ -85,7 +86,16 @@ impl ScenePanel {
                     .changed();
             }
             ShapeDesc::Mesh { path, shading } => {
-                changed |= path_field(ui, "mesh file", path, &mut self.mesh_text, key, preset);
+                changed |= path_field(
+                    ui,
+                    "mesh file",
+                    path,
+                    &mut self.mesh_text,
+                    key,
+                    preset,
+                    &self.browser,
+                    BrowseFor::Mesh,
+                );
                 changed |= enum_combo(ui, "Shading", shading);
             }
             ShapeDesc::Sphere | ShapeDesc::Plane | ShapeDesc::Rectangle | ShapeDesc::Disk => {}
@@ -97,7 +107,13 @@ impl ScenePanel {
 /// The question Shape -> Mesh asks: which file. "Load" (or Enter) makes the shape that mesh;
 /// "Cancel" keeps the shape it was. Returns whether the shape changed and whether to keep
 /// asking.
-fn mesh_prompt_ui(ui: &mut egui::Ui, shape: &mut ShapeDesc, text: &mut String) -> (bool, bool) {
+fn mesh_prompt_ui(
+    ui: &mut egui::Ui,
+    shape: &mut ShapeDesc,
+    text: &mut String,
+    browser: &Browser,
+    preset: &Path,
+) -> (bool, bool) {
     let mut changed = false;
     let mut cancel = false;
     ui.label(format!(
@@ -108,7 +124,10 @@ fn mesh_prompt_ui(ui: &mut egui::Ui, shape: &mut ShapeDesc, text: &mut String) -
     ui.horizontal(|ui| {
         let l = ui.label("mesh file");
         let r = ui
-            .add(egui::TextEdit::singleline(text).desired_width(150.0))
+            .add(
+                egui::TextEdit::singleline(text)
+                    .desired_width((ui.available_width() - 50.0).max(80.0)),
+            )
             .labelled_by(l.id)
             .on_hover_text("Path relative to the preset's folder; Enter loads it");
         let enter = r.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
@@ -120,6 +139,17 @@ fn mesh_prompt_ui(ui: &mut egui::Ui, shape: &mut ShapeDesc, text: &mut String) -
         if (load || enter) && ready {
             *shape = ShapeDesc::Mesh {
                 path: text.trim().to_owned(),
+                shading: Shading::default(),
+            };
+            changed = true;
+        }
+    });
+    // A second row, so that every button stays inside the panel's width.
+    ui.horizontal(|ui| {
+        if let Some(p) = browse_button(ui, browser, BrowseFor::Mesh, preset) {
+            text.clone_from(&p);
+            *shape = ShapeDesc::Mesh {
+                path: p,
                 shading: Shading::default(),
             };
             changed = true;

@@ -2,33 +2,27 @@
 //! path, filter, lookup, wrap and scale; a checker's squares and colours), with the list of
 //! images in `assets/`.
 
-use super::{PathText, ScenePanel};
-use crate::gui::widgets::{colour, enum_combo, number};
+use super::{PathText, ScenePanel, browse_button};
+use crate::gui::files::{BrowseFor, IMAGE_EXTENSIONS};
+use crate::gui::widgets::{colour, enum_combo, number, number_tip};
 use crate::scene::{TextureDesc, TextureKind, relative_asset_path};
-use crate::texture::MAX_ANISOTROPY_LIMIT;
+use crate::texture::{Filter, MAX_ANISOTROPY_LIMIT};
 use std::path::{Path, PathBuf};
 
-/// Image files the texture list offers.
-const IMAGE_EXTENSIONS: [&str; 9] = [
-    "png", "jpg", "jpeg", "hdr", "exr", "tif", "tiff", "ppm", "pgm",
-];
-
-/// The folders the image list is read from: `assets/` beside the preset's folder and in the
-/// working directory.
+/// The folders the image list is read from: `assets/` in the preset's folder and beside it
+/// (the built-in presets' `../assets`).
 fn asset_dirs(preset: &Path) -> Vec<PathBuf> {
-    let mut v = Vec::new();
-    if let Some(dir) = preset.parent() {
-        v.push(dir.join("../assets"));
-        v.push(dir.join("assets"));
-    }
-    v.push(PathBuf::from("assets"));
-    v
+    let dir = preset
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    vec![dir.join("assets"), dir.join("../assets")]
 }
 
-fn list_images(preset: &Path) -> Vec<PathBuf> {
+fn list_images(dirs: &[PathBuf]) -> Vec<PathBuf> {
     let mut out: Vec<PathBuf> = Vec::new();
-    for dir in asset_dirs(preset) {
-        let Ok(rd) = std::fs::read_dir(&dir) else {
+    for dir in dirs {
+        let Ok(rd) = std::fs::read_dir(dir) else {
             continue;
         };
         for e in rd.flatten() {
@@ -86,10 +80,18 @@ impl ScenePanel {
             } => {
                 changed |= self.image_path_ui(ui, path, preset);
                 changed |= enum_combo(ui, "Filter", filter);
-                changed |= anisotropy(ui, max_anisotropy);
+                changed |= anisotropy(ui, *filter, max_anisotropy);
                 changed |= enum_combo(ui, "Lookup", lookup);
                 changed |= enum_combo(ui, "Wrap", wrap);
-                changed |= number(ui, "scale", scale, 0.0..=1e4, 0.01);
+                changed |= number_tip(
+                    ui,
+                    "brightness multiplier",
+                    "Multiplies every texel value: 1 shows the file as it is, 2 twice as \
+                     bright, 0.5 half (the preset's `scale`)",
+                    scale,
+                    0.0..=1e4,
+                    0.01,
+                );
                 changed |= ui
                     .checkbox(srgb, "sRGB file")
                     .on_hover_text(
@@ -117,7 +119,7 @@ impl ScenePanel {
                 ..
             } => {
                 changed |= enum_combo(ui, "Filter", filter);
-                changed |= anisotropy(ui, max_anisotropy);
+                changed |= anisotropy(ui, *filter, max_anisotropy);
                 changed |= enum_combo(ui, "Lookup", lookup);
                 changed |= enum_combo(ui, "Wrap", wrap);
             }
@@ -128,7 +130,7 @@ impl ScenePanel {
                 ..
             } => {
                 changed |= enum_combo(ui, "Filter", filter);
-                changed |= anisotropy(ui, max_anisotropy);
+                changed |= anisotropy(ui, *filter, max_anisotropy);
                 changed |= enum_combo(ui, "Wrap", wrap);
             }
         }
@@ -164,16 +166,29 @@ impl ScenePanel {
             }
             return earlier;
         }
+        // The preset's assets, else the working directory's (a preset saved elsewhere).
+        let first = self
+            .assets(preset)
+            .first()
+            .cloned()
+            .or_else(|| list_images(&[PathBuf::from("assets")]).into_iter().next());
         if let TextureDesc::Image { path, .. } = &mut new
-            && let Some(first) = self.assets(preset).first()
+            && let Some(first) = first
         {
-            *path = relative_asset_path(first, dir);
+            *path = relative_asset_path(&first, dir);
         }
         new
     }
 
+    /// The images in the preset's assets folders, listed once per preset.
     fn assets(&mut self, preset: &Path) -> &[PathBuf] {
-        self.assets.get_or_insert_with(|| list_images(preset))
+        if self.assets.as_ref().is_some_and(|(p, _)| p != preset) {
+            self.assets = None;
+        }
+        &self
+            .assets
+            .get_or_insert_with(|| (preset.to_path_buf(), list_images(&asset_dirs(preset))))
+            .1
     }
 
     fn image_path_ui(&mut self, ui: &mut egui::Ui, path: &mut String, preset: &Path) -> bool {
@@ -181,11 +196,15 @@ impl ScenePanel {
         let key = self.selected;
         let dir = preset.parent().unwrap_or(Path::new(".")).to_path_buf();
         let assets = self.assets(preset).to_vec();
+        let browser = self.browser.clone();
         let text = PathText::synced(&mut self.path_text, key, path, preset);
         ui.horizontal(|ui| {
             let l = ui.label("image");
             let r = ui
-                .add(egui::TextEdit::singleline(text).desired_width(150.0))
+                .add(
+                    egui::TextEdit::singleline(text)
+                        .desired_width((ui.available_width() - 130.0).max(80.0)),
+                )
                 .labelled_by(l.id)
                 .on_hover_text(
                     "Path relative to the preset's folder; Enter loads it. \
@@ -202,12 +221,31 @@ impl ScenePanel {
                 path.clone_from(text);
                 changed = true;
             }
+            if let Some(p) = browse_button(ui, &browser, BrowseFor::Image, preset) {
+                *path = p;
+                changed = true;
+            }
         });
         ui.horizontal(|ui| {
             let l = ui.label("from assets/");
-            let shown = Path::new(path.as_str())
-                .file_name()
-                .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+            // The file's name when it is one of the list's, else say it is not.
+            let current = dir.join(path.as_str());
+            let current = std::fs::canonicalize(&current).unwrap_or(current);
+            let shown = assets
+                .iter()
+                .find(|a| std::fs::canonicalize(a).is_ok_and(|a| a == current))
+                .and_then(|a| a.file_name())
+                .map_or_else(
+                    || "(a file elsewhere)".to_owned(),
+                    |n| n.to_string_lossy().into_owned(),
+                );
+            // Short enough that Rescan stays inside the panel (a long name is cut; the list
+            // shows it whole).
+            let shown = if shown.chars().count() > 18 {
+                format!("{}…", shown.chars().take(17).collect::<String>())
+            } else {
+                shown
+            };
             egui::ComboBox::from_id_salt("assets")
                 .selected_text(shown)
                 .show_ui(ui, |ui| {
@@ -223,7 +261,14 @@ impl ScenePanel {
                 })
                 .response
                 .labelled_by(l.id)
-                .on_hover_text("The images in assets/");
+                .on_hover_text(format!(
+                    "The images in {}",
+                    asset_dirs(preset)
+                        .iter()
+                        .map(|d| d.display().to_string())
+                        .collect::<Vec<_>>()
+                        .join(" and ")
+                ));
             if ui
                 .button("Rescan")
                 .on_hover_text("Read the assets folder again")
@@ -239,8 +284,12 @@ impl ScenePanel {
     }
 }
 
-/// The largest footprint elongation the EWA and trilinear filters follow before they blur.
-fn anisotropy(ui: &mut egui::Ui, value: &mut f32) -> bool {
+/// The largest footprint elongation the EWA filter follows before it blurs; shown only for
+/// EWA, the one filter that reads it.
+fn anisotropy(ui: &mut egui::Ui, filter: Filter, value: &mut f32) -> bool {
+    if filter != Filter::Ewa {
+        return false;
+    }
     ui.horizontal(|ui| {
         let l = ui.label("max anisotropy");
         ui.add(
@@ -250,8 +299,8 @@ fn anisotropy(ui: &mut egui::Ui, value: &mut f32) -> bool {
         )
         .labelled_by(l.id)
         .on_hover_text(
-            "How elongated a pixel's footprint may be before the filter blurs it instead \
-             (EWA and trilinear)",
+            "How elongated a pixel's footprint may be (longest over shortest axis) before the \
+             EWA filter blurs it instead",
         )
         .changed()
     })

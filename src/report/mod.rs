@@ -221,6 +221,10 @@ pub struct ReferenceSettings {
     pub sampler: PixelSampler,
     /// Where references are cached (`None`: not cached).
     pub cache_dir: Option<PathBuf>,
+    /// An image made outside texplore (linear OpenEXR or Radiance HDR, the render's size) to
+    /// judge against instead of rendering a reference: `report --reference FILE.exr`. The
+    /// settings above are then unused.
+    pub file: Option<PathBuf>,
 }
 
 /// The reference's seed is the scene's plus this, so its samples are independent of the
@@ -234,6 +238,7 @@ impl Default for ReferenceSettings {
             filter: Filter::Bilinear,
             sampler: PixelSampler::Jittered,
             cache_dir: None,
+            file: None,
         }
     }
 }
@@ -260,6 +265,12 @@ impl ReferenceSettings {
     /// One line for reports.
     #[must_use]
     pub fn describe(&self) -> String {
+        if let Some(file) = &self.file {
+            return format!(
+                "the linear image {} (made outside texplore, compared as it is)",
+                file.display()
+            );
+        }
         format!(
             "{} spp, {} texture filter, {} sampler, box pixel filter (equal-weight mean of the samples), seed = scene seed + {REFERENCE_SEED_OFFSET:#x}",
             self.spp,
@@ -433,9 +444,11 @@ pub fn run_scene(
 
     // The reference: from the cache, or rendered now (and stored).
     let key = cache_key(&ref_desc, preset_path);
+    // An external reference is never cached.
     let cached = r
         .cache_dir
         .as_ref()
+        .filter(|_| r.file.is_none())
         .map(|dir| CachedReference::new(dir, &key));
     let t0 = Instant::now();
     let (stored, reference_problem) = match cached.as_ref().map(|c| c.load(&key, width, height)) {
@@ -443,7 +456,9 @@ pub fn run_scene(
         Some(Err(problem)) => (None, Some(problem)),
         None => (None, None),
     };
-    let (reference_linear, reference_cached) = if let Some(img) = stored {
+    let (reference_linear, reference_cached) = if let Some(file) = &r.file {
+        (reference::load_linear(file, width, height)?, false)
+    } else if let Some(img) = stored {
         (img, true)
     } else {
         let ref_scene = build_scene(&ref_desc, preset_path, &mut assets)?;
@@ -453,7 +468,7 @@ pub fn run_scene(
         }
         (img, false)
     };
-    let reference_time = if reference_cached {
+    let reference_time = if reference_cached || r.file.is_some() {
         Duration::ZERO
     } else {
         t0.elapsed()
@@ -463,6 +478,7 @@ pub fn run_scene(
         name,
         config,
         reference: EncodedImage::from_linear(width, height, &reference_linear, exposure),
+        reference_linear,
         exposure,
         cancel,
     };
@@ -492,7 +508,7 @@ pub fn run_scene(
         rows,
         reference: r.clone(),
         reference_cached,
-        reference_file: cached.map(|c| c.exr),
+        reference_file: r.file.clone().or_else(|| cached.map(|c| c.exr)),
         reference_problem,
         reference_time,
         error_maps,
@@ -572,6 +588,8 @@ struct Target<'a> {
     config: &'a ReportConfig,
     /// The reference, display-encoded.
     reference: EncodedImage,
+    /// The reference's linear radiance.
+    reference_linear: Vec<crate::math::Rgb>,
     /// The scene's exposure as a scale.
     exposure: f32,
     cancel: &'a AtomicBool,
@@ -603,8 +621,10 @@ impl Target<'_> {
         // Skipped runs count as done, so the ETA stays honest.
         tally.done += cell * (repeat - runs) as u64;
         times.sort();
-        let test = EncodedImage::from_linear(width, height, &film.to_linear(), self.exposure);
-        let (metrics, flip_map) = compare(&self.reference, &test);
+        let linear = film.to_linear();
+        let test = EncodedImage::from_linear(width, height, &linear, self.exposure);
+        let (mut metrics, flip_map) = compare(&self.reference, &test);
+        metrics.rmse_linear = metrics::rmse_linear(&self.reference_linear, &linear);
         let row = Row {
             scene: self.name.to_string(),
             mode,

@@ -357,7 +357,11 @@ mod tests {
             assert_eq!(back.dimensions(), (3, 2));
             for (a, b) in back.as_raw().iter().zip(&rgb) {
                 // RGBE keeps 8 mantissa bits per channel against the pixel's largest.
-                let tol = if *ext == "exr" { 0.0 } else { 0.03 * b.max(1.0) };
+                let tol = if *ext == "exr" {
+                    0.0
+                } else {
+                    0.03 * b.max(1.0)
+                };
                 assert!((a - b).abs() <= tol, "{ext}: {a} vs {b}");
             }
         }
@@ -369,13 +373,21 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let p = dir.path().join("out.png");
         let e = write_linear_image(&p, &[], 1, 1, &[0.0; 3]).unwrap_err();
-        assert!(e.to_string().contains("out.png") && e.to_string().contains(".exr, .hdr"), "{e}");
+        assert!(
+            e.to_string().contains("out.png") && e.to_string().contains(".exr, .hdr"),
+            "{e}"
+        );
         let p = dir.path().join("out.exr");
         let e = write_linear_image(&p, &[], 2, 1, &[0.0, 0.0, 0.0, 0.1, f32::NAN, 0.0])
             .unwrap_err()
             .to_string();
-        assert!(e.contains("out.exr") && e.contains("pixel (1, 0)") && e.contains("NaN"), "{e}");
-        let e = write_linear_image(&p, &[], 2, 2, &[0.0; 3]).unwrap_err().to_string();
+        assert!(
+            e.contains("out.exr") && e.contains("pixel (1, 0)") && e.contains("NaN"),
+            "{e}"
+        );
+        let e = write_linear_image(&p, &[], 2, 2, &[0.0; 3])
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("3 values for a 2x2"), "{e}");
         assert!(names(dir.path()).is_empty());
     }

@@ -13,7 +13,15 @@ use texplore::scene::{AssetCache, Overrides, load_preset};
 const PEER: &str = "presets/peer-sphere.ron";
 
 fn render(args: &[&str], out: &Path) {
-    let mut all = vec!["render", PEER, "-q", "--threads", "2", "-o", out.to_str().unwrap()];
+    let mut all = vec![
+        "render",
+        PEER,
+        "-q",
+        "--threads",
+        "2",
+        "-o",
+        out.to_str().unwrap(),
+    ];
     all.extend_from_slice(args);
     success(&texplore(&all));
 }
@@ -66,7 +74,10 @@ fn render_writes_the_linear_image_as_exr_and_hdr() {
     for (a, b) in hdr.pixels().zip(exr.pixels()) {
         let top = b.0.iter().copied().fold(0.0f32, f32::max);
         for k in 0..3 {
-            assert!((a.0[k] - b.0[k]).abs() <= top / 128.0 + 1e-6, "{a:?} vs {b:?}");
+            assert!(
+                (a.0[k] - b.0[k]).abs() <= top / 128.0 + 1e-6,
+                "{a:?} vs {b:?}"
+            );
         }
     }
 }
@@ -82,7 +93,14 @@ fn report_judges_against_an_external_reference_in_linear_units() {
     render(
         &[
             &size[..],
-            &["--spp", "1", "--filter", "bilinear", "--sampler", "jittered"],
+            &[
+                "--spp",
+                "1",
+                "--filter",
+                "bilinear",
+                "--sampler",
+                "jittered",
+            ],
         ]
         .concat(),
         &test,
@@ -116,9 +134,17 @@ fn report_judges_against_an_external_reference_in_linear_units() {
     };
     let want = rmse(rgb32(&reference).as_raw(), rgb32(&test).as_raw());
     assert!(want > 0.005, "{want}");
-    assert!((col("rmse_linear") - want).abs() < 2e-7, "{} vs {want}", col("rmse_linear"));
+    assert!(
+        (col("rmse_linear") - want).abs() < 2e-7,
+        "{} vs {want}",
+        col("rmse_linear")
+    );
     // The display-encoded RMSE is another number (the sRGB curve in between).
-    assert!((col("rmse") - want).abs() > 1e-3, "{} vs {want}", col("rmse"));
+    assert!(
+        (col("rmse") - want).abs() > 1e-3,
+        "{} vs {want}",
+        col("rmse")
+    );
     let md = std::fs::read_to_string(out.join("report.md")).unwrap();
     assert!(md.contains("RMSE linear") && md.contains("ref.exr"), "{md}");
 }
@@ -127,7 +153,10 @@ fn report_judges_against_an_external_reference_in_linear_units() {
 fn a_reference_of_another_size_or_kind_is_refused_naming_the_file() {
     let dir = tempfile::tempdir().unwrap();
     let reference = dir.path().join("small.exr");
-    render(&["--width", "20", "--height", "10", "--spp", "1"], &reference);
+    render(
+        &["--width", "20", "--height", "10", "--spp", "1"],
+        &reference,
+    );
     let out = dir.path().join("rep");
     let run = |reference: &Path, presets: &[&str]| {
         let mut args = vec!["report"];
@@ -163,7 +192,10 @@ fn a_reference_of_another_size_or_kind_is_refused_naming_the_file() {
     let broken = dir.path().join("broken.exr");
     std::fs::write(&broken, b"v/1\x01 not really").unwrap();
     let e = run(&broken, &[PEER]);
-    assert!(e.contains("broken.exr") && e.contains("not a readable image"), "{e}");
+    assert!(
+        e.contains("broken.exr") && e.contains("not a readable image"),
+        "{e}"
+    );
 }
 
 #[test]
@@ -187,7 +219,11 @@ fn the_peer_scene_error_falls_with_the_sample_count() {
     let reference = at(1024, PixelSampler::Jittered, 99, &mut cache);
     let flat = |v: &[Rgb]| v.iter().flat_map(|c| c.to_array()).collect::<Vec<f32>>();
     let reference = flat(&reference);
-    for sampler in [PixelSampler::Regular, PixelSampler::Jittered, PixelSampler::MultiJittered] {
+    for sampler in [
+        PixelSampler::Regular,
+        PixelSampler::Jittered,
+        PixelSampler::MultiJittered,
+    ] {
         let e: Vec<f64> = [27, 30, 32, 36]
             .iter()
             .map(|&n| rmse(&flat(&at(n, sampler, 1, &mut cache)), &reference))
@@ -195,7 +231,10 @@ fn the_peer_scene_error_falls_with_the_sample_count() {
         // Monotone within noise: each count at most 10 % above the one before it, and 36 below
         // 27 by more than the noise.
         for w in e.windows(2) {
-            assert!(w[1] <= w[0] * 1.1, "{sampler:?}: RMSE at 27, 30, 32, 36 spp: {e:?}");
+            assert!(
+                w[1] <= w[0] * 1.1,
+                "{sampler:?}: RMSE at 27, 30, 32, 36 spp: {e:?}"
+            );
         }
         assert!(e[3] < e[0] * 0.95, "{sampler:?}: {e:?}");
     }

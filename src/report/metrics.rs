@@ -361,7 +361,11 @@ mod tests {
         let t = [Rgb(0.1, 0.0, 0.0), Rgb(1.0, 2.0, 3.5)];
         // (0.1^2 + 0.5^2) / 6 values; 3.0 and 3.5 are both above 1 and still differ.
         let want = ((0.01f64 + 0.25) / 6.0).sqrt();
-        assert!((rmse_linear(&r, &t) - want).abs() < 1e-7, "{}", rmse_linear(&r, &t));
+        assert!(
+            (rmse_linear(&r, &t) - want).abs() < 1e-7,
+            "{}",
+            rmse_linear(&r, &t)
+        );
         assert_eq!(rmse_linear(&r, &r), 0.0);
     }
 

@@ -313,7 +313,8 @@ pub fn load_linear(path: &Path, width: u32, height: u32) -> Result<Vec<Rgb>, Rep
     };
     // Room for an uncompressed float image of the render's size and some headers.
     let max = (1 << 20) + 16 * u64::from(width) * u64::from(height);
-    let bytes = crate::input::read_input(path, max).map_err(|e| ReportError::Invalid(e.to_string()))?;
+    let bytes =
+        crate::input::read_input(path, max).map_err(|e| ReportError::Invalid(e.to_string()))?;
     let img = image::load_from_memory_with_format(&bytes, format)
         .map_err(|e| bad(format!("not a readable image ({e})")))?
         .to_rgb32f();

@@ -427,7 +427,10 @@ mod tests {
             for j in 0..layout.rows {
                 let cells = layout.start(j + 1) - layout.start(j);
                 // Rows of n / rows cells, rounded down or up: near-square cells.
-                assert!(cells == n / layout.rows || cells == n / layout.rows + 1, "{n}: row {j}");
+                assert!(
+                    cells == n / layout.rows || cells == n / layout.rows + 1,
+                    "{n}: row {j}"
+                );
             }
             for pixel in 0..10 {
                 for s in [PixelSampler::Jittered, PixelSampler::MultiJittered] {
@@ -447,7 +450,10 @@ mod tests {
                             let cols = layout.start(j + 1) - layout.start(j);
                             layout.start(j) + (p.x * cols as f32) as u32
                         };
-                        assert!(!seen[cell as usize], "{s:?} {n}: two points in cell {cell} (sample {i})");
+                        assert!(
+                            !seen[cell as usize],
+                            "{s:?} {n}: two points in cell {cell} (sample {i})"
+                        );
                         seen[cell as usize] = true;
                     }
                 }
@@ -456,7 +462,10 @@ mod tests {
                     for p in points(PixelSampler::MultiJittered, n, pixel) {
                         strips[(p.y * n as f32) as usize] += 1;
                     }
-                    assert!(strips.iter().all(|&c| c == 1), "multi-jittered {n}: {strips:?}");
+                    assert!(
+                        strips.iter().all(|&c| c == 1),
+                        "multi-jittered {n}: {strips:?}"
+                    );
                 }
             }
         }

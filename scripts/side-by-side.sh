@@ -27,7 +27,7 @@ MI_SPP=${MI_SPP:-1,4,9,16,25,36,64}
 TX_SPP=${TX_SPP:-1,4,9,16,25,36,64}
 TX_MODES=${TX_MODES:-bilinear/jittered,bilinear/regular}
 # Modes that need few samples: their own (short) spp list.
-TX_FAST_MODES=${TX_FAST_MODES:-ewa/regular+adaptive}
+TX_FAST_MODES=${TX_FAST_MODES:-footprint/regular,footprint/regular+adaptive,ewa/regular+adaptive}
 TX_FAST_SPP=${TX_FAST_SPP:-1,2,4}
 
 if [ ! -f "$PEERS_DIR/mi_bench.py" ]; then

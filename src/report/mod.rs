@@ -147,8 +147,11 @@ impl Mode {
                 v.push(m);
             }
         }
-        // Adaptive sampling with the filter that needs the fewest samples inside textures.
-        for filter in [Filter::Ewa, Filter::Bilinear] {
+        // The footprint filter at the pixel centre, where it integrates the pixel's own
+        // footprint (with jittered samples the footprint moves with the sample).
+        v.push(Self::new(Filter::Footprint, PixelSampler::Regular));
+        // Adaptive sampling with the filters that need the fewest samples inside textures.
+        for filter in [Filter::Footprint, Filter::Ewa, Filter::Bilinear] {
             v.push(Self {
                 adaptive: true,
                 ..Self::new(filter, PixelSampler::Regular)
@@ -710,12 +713,13 @@ mod tests {
             Filter::VARIANTS.len()
         );
         let d = Mode::default_set();
-        // Every filter with jittered, bilinear with the other samplers, two adaptive modes.
+        // Every filter with jittered, bilinear with the other samplers, footprint/regular,
+        // three adaptive modes.
         assert_eq!(
             d.len(),
-            Filter::VARIANTS.len() + PixelSampler::VARIANTS.len() - 1 + 2
+            Filter::VARIANTS.len() + PixelSampler::VARIANTS.len() - 1 + 1 + 3
         );
-        assert_eq!(d.iter().filter(|m| m.adaptive).count(), 2);
+        assert_eq!(d.iter().filter(|m| m.adaptive).count(), 3);
         let e = Mode::parse_list("bilinear/zigzag").unwrap_err().to_string();
         assert!(e.contains("zigzag") && e.contains("jittered"), "{e}");
         assert!(Mode::parse_list("bilinear").is_err());

@@ -170,7 +170,7 @@ impl Cell {
     #[inline]
     pub fn point(self, fx: f32, fy: f32) -> Vec2 {
         let x = (self.col as f32 + fx) / self.cols as f32;
-        let y = if self.count % self.rows == 0 {
+        let y = if self.count.is_multiple_of(self.rows) {
             // Equal rows: the plain grid, computed as it always was (bit for bit).
             (self.row as f32 + fy) / self.rows as f32
         } else {
@@ -252,7 +252,7 @@ fn randfloat(mut i: u32, p: u32) -> f32 {
 #[inline]
 fn cmj(s: u32, count: u32, p: u32) -> Vec2 {
     let m = (count as f32).sqrt().floor().max(1.0) as u32;
-    if count % m != 0 {
+    if !count.is_multiple_of(m) {
         let cell = Rows::new(count).cell(s);
         let sub_y = permute(cell.col, cell.cols, p.wrapping_mul(0xa511_e9b3));
         let sub_x = permute(cell.row, cell.rows, p.wrapping_mul(0x63d8_3595));

@@ -340,4 +340,3 @@ mod tests {
         assert!(e.contains("0abc.exr") && e.contains("No such file"), "{e}");
     }
 }
-

@@ -125,6 +125,8 @@ pub struct Cell {
     pub count: u32,
     /// The number of rows.
     pub rows: u32,
+    /// Whether every row has the same number of cells (`rows` divides `count`).
+    pub equal_rows: bool,
 }
 
 impl Rows {
@@ -148,6 +150,22 @@ impl Rows {
     #[must_use]
     #[inline]
     pub fn cell(self, index: u32) -> Cell {
+        // Equal rows (every square count and most others): the plain grid, one division for the
+        // row as before the rows were introduced (the per-sample cost of the common case).
+        let cols = self.count / self.rows;
+        if cols * self.rows == self.count {
+            let row = index / cols;
+            let before = row * cols;
+            return Cell {
+                row,
+                col: index - before,
+                cols,
+                before,
+                count: self.count,
+                rows: self.rows,
+                equal_rows: true,
+            };
+        }
         let (n, r) = (u64::from(self.count), u64::from(self.rows));
         // The row j with start(j) <= index < start(j + 1).
         let row = (((u64::from(index) + 1) * r - 1) / n) as u32;
@@ -160,6 +178,7 @@ impl Rows {
             before,
             count: self.count,
             rows: self.rows,
+            equal_rows: false,
         }
     }
 }
@@ -170,7 +189,7 @@ impl Cell {
     #[inline]
     pub fn point(self, fx: f32, fy: f32) -> Vec2 {
         let x = (self.col as f32 + fx) / self.cols as f32;
-        let y = if self.count.is_multiple_of(self.rows) {
+        let y = if self.equal_rows {
             // Equal rows: the plain grid, computed as it always was (bit for bit).
             (self.row as f32 + fy) / self.rows as f32
         } else {

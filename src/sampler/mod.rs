@@ -94,6 +94,32 @@ impl PixelSampler {
     }
 }
 
+impl PixelSampler {
+    /// The size (pixels along x and y) of the part of the pixel that sample `index` of `count`
+    /// stands for: its cell for the stratified layouts (regular, jittered, multi-jittered),
+    /// which tile the pixel; a square of area 1 / `count` for the others. Texture footprints
+    /// take this size, so a footprint filter over all of a pixel's samples covers the pixel
+    /// once.
+    #[must_use]
+    #[inline]
+    pub fn cell_size(self, index: u32, count: u32) -> Vec2 {
+        let count = count.max(1);
+        let index = if index < count { index } else { index % count };
+        match self {
+            Self::Regular | Self::Jittered => Rows::new(count).cell(index).size(),
+            Self::MultiJittered => {
+                let m = count.isqrt().max(1);
+                if count.is_multiple_of(m) {
+                    Vec2::new(1.0 / m as f32, 1.0 / (count / m) as f32)
+                } else {
+                    Rows::new(count).cell(index).size()
+                }
+            }
+            _ => Vec2::splat(1.0 / (count as f32).sqrt()),
+        }
+    }
+}
+
 /// The pixel cut into exactly `count` cells of equal area: `rows` = round(sqrt(count)) rows,
 /// row `j` holding `floor((j + 1) count / rows) - floor(j count / rows)` cells (count / rows,
 /// rounded down or up) side by side across the full width, and as tall as its share of the
@@ -187,6 +213,17 @@ impl Rows {
 }
 
 impl Cell {
+    /// The cell's width and height (pixels): 1 / cols by cols / count.
+    #[must_use]
+    #[inline]
+    pub fn size(self) -> Vec2 {
+        if self.equal_rows {
+            Vec2::new(1.0 / self.cols as f32, 1.0 / self.rows as f32)
+        } else {
+            Vec2::new(1.0 / self.cols as f32, self.cols as f32 / self.count as f32)
+        }
+    }
+
     /// The point at (`fx`, `fy`) in [0, 1)^2 within the cell, as a pixel offset.
     #[must_use]
     #[inline]
@@ -385,6 +422,39 @@ mod tests {
             }
         }
         worst
+    }
+
+    #[test]
+    fn cell_sizes_tile_the_pixel_and_hold_their_points() {
+        for n in 1..=60u32 {
+            for s in [
+                PixelSampler::Regular,
+                PixelSampler::Jittered,
+                PixelSampler::MultiJittered,
+            ] {
+                let area: f32 = (0..n)
+                    .map(|i| {
+                        let c = s.cell_size(i, n);
+                        c.x * c.y
+                    })
+                    .sum();
+                assert!((area - 1.0).abs() < 1e-4, "{s:?} {n}: {area}");
+            }
+            // A regular point is its cell's centre: the cell around it stays in the pixel.
+            for i in 0..n {
+                let (p, c) = (
+                    PixelSampler::Regular.sample(1, 0, i, n),
+                    PixelSampler::Regular.cell_size(i, n),
+                );
+                let (lo, hi) = (p - c * 0.5, p + c * 0.5);
+                assert!(
+                    lo.min_element() > -1e-6 && hi.max_element() < 1.0 + 1e-6,
+                    "{n} {i}: {p} {c}"
+                );
+            }
+            let r = PixelSampler::Random.cell_size(0, n);
+            assert!((r.x * r.y * n as f32 - 1.0).abs() < 1e-5);
+        }
     }
 
     #[test]

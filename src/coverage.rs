@@ -254,7 +254,7 @@ impl PixelMask {
 
 /// Calls `f(column, row_from_bottom)` for every texel of level 0 that `texture`'s filter reads
 /// at `tex` (with repeats for texels a wrap brings back twice): the nearest filter's texel under
-/// its lookup, bilinear's 4 taps, bicubic's 16; trilinear and EWA read their footprint: the
+/// its lookup, bilinear's 4 taps, bicubic's 16; trilinear, EWA and footprint read their footprint: the
 /// texels whose centres lie in the parallelogram the pixel square maps to (half of d(u, v)/dx
 /// and d(u, v)/dy either side of the centre, see [`footprint_texels`]), with bilinear's 4 taps
 /// around its centre (what they read when the texture is magnified).
@@ -287,7 +287,7 @@ pub fn texels_read(texture: &ImageTexture, tex: &TexCoord, mut f: impl FnMut(u32
         }
         Filter::Bilinear => taps(x.floor() as i64, y.floor() as i64, 2, &mut f),
         Filter::Bicubic => taps(x.floor() as i64 - 1, y.floor() as i64 - 1, 4, &mut f),
-        Filter::Trilinear | Filter::Ewa => {
+        Filter::Trilinear | Filter::Ewa | Filter::Footprint => {
             if texture.mip.is_none() {
                 // Without a pyramid they fall back to bilinear.
                 taps(x.floor() as i64, y.floor() as i64, 2, &mut f);

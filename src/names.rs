@@ -115,7 +115,14 @@ mod tests {
         );
         assert_eq!(
             round_trips::<Filter>(),
-            ["nearest", "bilinear", "bicubic", "trilinear", "ewa"]
+            [
+                "nearest",
+                "bilinear",
+                "bicubic",
+                "trilinear",
+                "ewa",
+                "footprint"
+            ]
         );
         assert_eq!(round_trips::<Lookup>(), ["lecture", "centred"]);
         assert_eq!(
@@ -180,7 +187,9 @@ mod tests {
             .to_string();
         assert!(err.contains("'linear'"), "{err}");
         assert!(
-            err.contains("[possible values: nearest, bilinear, bicubic, trilinear, ewa]"),
+            err.contains(
+                "[possible values: nearest, bilinear, bicubic, trilinear, ewa, footprint]"
+            ),
             "{err}"
         );
     }

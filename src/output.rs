@@ -286,9 +286,111 @@ pub fn write_bytes(path: &Path, inputs: &[&Path], bytes: &[u8]) -> Result<()> {
     write_atomically(path, inputs, |w| w.write_all(bytes))
 }
 
+/// The extensions [`write_linear_image`] writes: OpenEXR (32-bit float RGB) and Radiance HDR
+/// (RGBE, 8-bit mantissas with a shared exponent).
+pub const LINEAR_EXTS: &[&str] = &["exr", "hdr"];
+
+/// Writes linear RGB floats (3 per pixel, row-major from the top-left pixel) as OpenEXR
+/// (`.exr`, 32-bit float, lossless) or Radiance HDR (`.hdr`), chosen by the extension, through
+/// [`write_atomically`].
+///
+/// # Errors
+/// "cannot write FILE: reason": an extension not in [`LINEAR_EXTS`], `rgb` not holding
+/// `3 * width * height` values, a negative or non-finite value (neither format stores one
+/// faithfully), or any refusal of [`write_atomically`].
+pub fn write_linear_image(
+    path: &Path,
+    inputs: &[&Path],
+    width: u32,
+    height: u32,
+    rgb: &[f32],
+) -> Result<()> {
+    check_extension(path, LINEAR_EXTS)?;
+    if rgb.len() != width as usize * height as usize * 3 {
+        return Err(refuse(
+            path,
+            format!(
+                "{} values for a {width}x{height} RGB image (needs {})",
+                rgb.len(),
+                width as usize * height as usize * 3
+            ),
+        ));
+    }
+    if let Some(i) = rgb.iter().position(|v| !(v.is_finite() && *v >= 0.0)) {
+        return Err(refuse(
+            path,
+            format!(
+                "pixel ({}, {}) has the value {} (radiance must be finite and not negative)",
+                (i / 3) % width.max(1) as usize,
+                (i / 3) / width.max(1) as usize,
+                rgb[i]
+            ),
+        ));
+    }
+    let img = image::Rgb32FImage::from_raw(width, height, rgb.to_vec())
+        .ok_or_else(|| refuse(path, "image size"))?;
+    let format = if extension(path) == "exr" {
+        image::ImageFormat::OpenExr
+    } else {
+        image::ImageFormat::Hdr
+    };
+    write_atomically(path, inputs, |w| {
+        image::DynamicImage::ImageRgb32F(img)
+            .write_to(w, format)
+            .map_err(io::Error::other)
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn linear_images_round_trip_through_exr_exactly_and_hdr_closely() {
+        let dir = tempfile::tempdir().unwrap();
+        // 3 x 2, distinct values, one above 1 (radiance is not clipped).
+        let rgb: Vec<f32> = (0..18).map(|i| i as f32 * 0.37 + 0.01).collect();
+        for ext in LINEAR_EXTS {
+            let p = dir.path().join(format!("lin.{ext}"));
+            write_linear_image(&p, &[], 3, 2, &rgb).unwrap();
+            let back = image::open(&p).unwrap().to_rgb32f();
+            assert_eq!(back.dimensions(), (3, 2));
+            for (a, b) in back.as_raw().iter().zip(&rgb) {
+                // RGBE keeps 8 mantissa bits per channel against the pixel's largest.
+                let tol = if *ext == "exr" {
+                    0.0
+                } else {
+                    0.03 * b.max(1.0)
+                };
+                assert!((a - b).abs() <= tol, "{ext}: {a} vs {b}");
+            }
+        }
+        assert_eq!(names(dir.path()), ["lin.exr", "lin.hdr"]);
+    }
+
+    #[test]
+    fn linear_images_refuse_other_extensions_and_bad_values_naming_the_file() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("out.png");
+        let e = write_linear_image(&p, &[], 1, 1, &[0.0; 3]).unwrap_err();
+        assert!(
+            e.to_string().contains("out.png") && e.to_string().contains(".exr, .hdr"),
+            "{e}"
+        );
+        let p = dir.path().join("out.exr");
+        let e = write_linear_image(&p, &[], 2, 1, &[0.0, 0.0, 0.0, 0.1, f32::NAN, 0.0])
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("out.exr") && e.contains("pixel (1, 0)") && e.contains("NaN"),
+            "{e}"
+        );
+        let e = write_linear_image(&p, &[], 2, 2, &[0.0; 3])
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("3 values for a 2x2"), "{e}");
+        assert!(names(dir.path()).is_empty());
+    }
 
     fn names(dir: &Path) -> Vec<String> {
         let mut v: Vec<String> = std::fs::read_dir(dir)

@@ -303,11 +303,11 @@ fn the_extension_is_checked_before_any_work() {
     let dt = t0.elapsed();
     assert_refused(&o, &noext, "no extension (use .hdr, .exr, .png");
     assert!(dt < Duration::from_secs(1), "took {dt:?}");
-    // A render is a PNG (its preset travels in a PNG text chunk): .jpg is refused, not
-    // written as a PNG under a JPEG name.
+    // A render is a PNG (its preset travels in a PNG text chunk) or the linear EXR / HDR:
+    // .jpg is refused, not written as a PNG under a JPEG name.
     let jpg = dir.path().join("out.jpg");
     let o = render("presets/checker.ron", &jpg);
-    assert_refused(&o, &jpg, "unknown extension '.jpg' (use .png)");
+    assert_refused(&o, &jpg, "unknown extension '.jpg' (use .png, .exr, .hdr)");
     assert!(names(dir.path()).is_empty());
     // A probe writes the format its extension names.
     let probe_jpg = dir.path().join("probe.jpg");

@@ -13,16 +13,18 @@ use anyhow::Result;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-/// What `render -o` accepts: a render is a PNG, because its preset travels in a PNG text chunk.
-pub const RENDER_EXTS: &[&str] = &["png"];
+/// What `render -o` accepts: a PNG (display-encoded, with its preset in a text chunk), or the
+/// linear float image as OpenEXR or Radiance HDR (for measuring outside texplore).
+pub const RENDER_EXTS: &[&str] = &["png", "exr", "hdr"];
 
 /// `texplore render`.
 #[derive(Debug, clap::Args)]
 pub struct RenderArgs {
     /// The preset (.ron), or a PNG saved by texplore with its preset inside.
     pub preset: PathBuf,
-    /// Output PNG (with the preset inside; other extensions are refused). Never an input of
-    /// the render; a symbolic link is followed.
+    /// Output: a PNG (display-encoded, with the preset inside), or `.exr` / `.hdr` for the
+    /// linear radiance as floats (before exposure; what `report --reference` reads). Other
+    /// extensions are refused. Never an input of the render; a symbolic link is followed.
     #[arg(short, long)]
     pub output: PathBuf,
     /// Image width (overrides the preset).
@@ -67,7 +69,7 @@ pub struct RenderArgs {
     pub quiet: bool,
 }
 
-/// Renders the preset and writes the PNG.
+/// Renders the preset and writes the PNG (or the linear EXR / HDR).
 ///
 /// # Errors
 /// The preset, its assets or the output cannot be read or written.
@@ -117,13 +119,18 @@ pub fn run(a: &RenderArgs) -> Result<()> {
     let film = pool.install(|| render_blocking(&scene, |n| bar.set_position(u64::from(n))));
     let dt = t0.elapsed();
     bar.finish_and_clear();
-    save_render_png_checked(
-        &a.output,
-        &[&a.preset],
-        &film.to_display(s.exposure_scale),
-        &desc,
-        preset_dir,
-    )?;
+    if crate::output::LINEAR_EXTS.contains(&crate::output::extension(&a.output).as_str()) {
+        let rgb: Vec<f32> = film.to_linear().iter().flat_map(|c| c.to_array()).collect();
+        crate::output::write_linear_image(&a.output, &inputs, s.width, s.height, &rgb)?;
+    } else {
+        save_render_png_checked(
+            &a.output,
+            &[&a.preset],
+            &film.to_display(s.exposure_scale),
+            &desc,
+            preset_dir,
+        )?;
+    }
     if !a.quiet {
         let rays = film.total_samples();
         let pixels = f64::from(s.width) * f64::from(s.height);

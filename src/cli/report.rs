@@ -51,6 +51,11 @@ pub struct ReportArgs {
     /// Pixel sampler of the reference.
     #[arg(long, default_value = "jittered", value_parser = value_parser::<PixelSampler>())]
     pub reference_sampler: PixelSampler,
+    /// Judge against this image instead of rendering a reference: a linear OpenEXR or
+    /// Radiance HDR made outside texplore (e.g. Mitsuba's), of the render's size; one preset
+    /// only. The display metrics encode it like a render; `rmse_linear` compares it as it is.
+    #[arg(long, value_name = "FILE.exr")]
+    pub reference: Option<PathBuf>,
     /// Where references are cached (default: the user's cache directory,
     /// ~/.cache/texplore/references, else OUTPUT/.refs).
     #[arg(long)]
@@ -151,6 +156,15 @@ pub fn run(a: &ReportArgs) -> Result<()> {
     } else {
         a.presets.clone()
     };
+    if let Some(r) = &a.reference
+        && presets.len() != 1
+    {
+        bail!(
+            "--reference {} judges one scene: give exactly one preset (not {})",
+            r.display(),
+            presets.len()
+        );
+    }
     check_output_dir(&a.output, &presets)?;
     let modes = Mode::parse_list(&a.modes)?;
     check_numbers(a)?;
@@ -175,6 +189,7 @@ pub fn run(a: &ReportArgs) -> Result<()> {
             filter: a.reference_filter,
             sampler: a.reference_sampler,
             cache_dir: cache_dir.clone(),
+            file: a.reference.clone(),
         },
         heatmap_spp: Some(
             a.heatmap_spp
@@ -232,7 +247,9 @@ pub fn run(a: &ReportArgs) -> Result<()> {
                 "{}: {} renders; reference {}",
                 rep.scene,
                 rep.rows.len(),
-                if rep.reference_cached {
+                if let Some(file) = rep.reference.file.as_ref() {
+                    format!("{} (external)", file.display())
+                } else if rep.reference_cached {
                     "from the cache".to_string()
                 } else {
                     let again = rep

@@ -53,20 +53,36 @@ pub fn render_pass(
 #[must_use]
 #[inline]
 pub fn sample_position(s: &RenderSettings, x: u32, y: u32, k: u32) -> Vec2 {
+    sample_position_and_cell(s, x, y, k).0
+}
+
+/// [`sample_position`] and the size (pixels along x and y) of the part of the pixel the sample
+/// stands for ([`crate::sampler::PixelSampler::cell_size`] in its set): the texture footprint
+/// of the sample, so that the footprints of a stratified set tile the pixel for any count.
+#[must_use]
+#[inline]
+pub fn sample_position_and_cell(s: &RenderSettings, x: u32, y: u32, k: u32) -> (Vec2, Vec2) {
     let pixel = y * s.width + x;
-    let offset = if k < s.spp {
-        s.sampler.sample(s.seed, pixel, k, s.spp)
+    let (offset, cell) = if k < s.spp {
+        (
+            s.sampler.sample(s.seed, pixel, k, s.spp),
+            s.sampler.cell_size(k, s.spp),
+        )
     } else {
         let n = s.max_spp().saturating_sub(s.spp).max(1);
         let j = permute((k - s.spp) % n, n, hash3(s.seed, pixel, ADAPTIVE_STREAM));
-        s.sampler.sample(s.seed ^ ADAPTIVE_STREAM, pixel, j, n)
+        (
+            s.sampler.sample(s.seed ^ ADAPTIVE_STREAM, pixel, j, n),
+            s.sampler.cell_size(j, n),
+        )
     };
     let corner = Vec2::new(x as f32, y as f32);
-    match s.pixel_filter {
+    let pos = match s.pixel_filter {
         // Kept as the corner plus the offset, bit for bit the box sampling of earlier versions.
         PixelFilter::Box => corner + offset,
         f => corner + Vec2::splat(0.5) + f.warp(offset),
-    }
+    };
+    (pos, cell)
 }
 
 /// Seeds the second sample set of adaptive passes apart from the first.
@@ -87,12 +103,6 @@ pub fn render_pass_masked(
 ) -> Result<(), Cancelled> {
     let s = &scene.settings;
     let width = film.width() as usize;
-    // Adaptive samples past `spp` are finer: their footprints shrink with `max_spp`.
-    let spacing = if sample < s.spp {
-        1.0 / (s.spp as f32).sqrt()
-    } else {
-        1.0 / (s.max_spp() as f32).sqrt()
-    };
     let stats_on = s.adaptive.is_some();
     let rows = width * TILE_ROWS;
     let (sums, stats, keys) = film.buffers_mut();
@@ -118,8 +128,10 @@ pub fn render_pass_masked(
                     if row_mask.is_some_and(|m| !m[x]) {
                         continue;
                     }
-                    let pos = sample_position(s, x as u32, y as u32, sample);
-                    let (l, edge_key) = radiance_keyed(scene, pos, spacing);
+                    // Each sample's footprint is its cell: a stratified set's footprints tile
+                    // the pixel, whatever the count.
+                    let (pos, cell) = sample_position_and_cell(s, x as u32, y as u32, sample);
+                    let (l, edge_key) = radiance_keyed_cell(scene, pos, cell);
                     debug_assert!(l.is_finite(), "non-finite radiance at pixel ({x}, {y})");
                     if stats_on {
                         if px[3] == 0.0 {
@@ -195,6 +207,33 @@ pub fn radiance_keyed(scene: &Scene, pos: Vec2, spacing: f32) -> (Rgb, u32) {
     match scene.camera.ray(pos, spacing) {
         Some((ray, diff)) => {
             let diff = diff.scaled_about(&ray, spacing.max(MIN_FOOTPRINT_SCALE));
+            scene.trace_keyed(&ray, Some(&diff))
+        }
+        None => (Rgb::BLACK, 0),
+    }
+}
+
+/// [`radiance_keyed`] for a sample standing for a `cell` (pixels along x and y) of its pixel:
+/// the texture footprint is `cell.x` pixels wide and `cell.y` high (each at least
+/// [`MIN_FOOTPRINT_SCALE`]); a square cell is exactly [`radiance_keyed`] with that spacing.
+#[must_use]
+#[inline]
+pub fn radiance_keyed_cell(scene: &Scene, pos: Vec2, cell: Vec2) -> (Rgb, u32) {
+    if cell.x == cell.y || !scene.needs_differentials {
+        return radiance_keyed(scene, pos, cell.x);
+    }
+    match scene.camera.ray(pos, cell.x.min(cell.y)) {
+        Some((ray, d)) => {
+            let (sx, sy) = (
+                cell.x.max(MIN_FOOTPRINT_SCALE),
+                cell.y.max(MIN_FOOTPRINT_SCALE),
+            );
+            let diff = crate::math::RayDifferential {
+                rx_origin: ray.origin + (d.rx_origin - ray.origin) * sx,
+                rx_dir: ray.dir + (d.rx_dir - ray.dir) * sx,
+                ry_origin: ray.origin + (d.ry_origin - ray.origin) * sy,
+                ry_dir: ray.dir + (d.ry_dir - ray.dir) * sy,
+            };
             scene.trace_keyed(&ray, Some(&diff))
         }
         None => (Rgb::BLACK, 0),

@@ -41,6 +41,10 @@ pub const METRIC_DEFINITIONS: &[(&str, &str)] = &[
         "FLIP",
         "mean of NVIDIA's LDR-FLIP error map (nv-flip crate) between the 8-bit sRGB images at 67 pixels per degree (0.7 m from a 0.7 m wide 4K screen); 0 = identical, 1 = maximal",
     ),
+    (
+        "RMSE linear",
+        "root of the mean over pixels and R, G, B of (test - reference)^2 on the linear radiance itself (no exposure, no clipping, no sRGB curve): the peer renderers' metric, in the texture's units",
+    ),
 ];
 
 /// A display-encoded image: sRGB values as floats in [0, 1] and as bytes, 3 per pixel,
@@ -133,6 +137,9 @@ pub struct Metrics {
     pub ssim: f64,
     /// Mean LDR-FLIP error (0 for identical images).
     pub flip: f64,
+    /// RMSE of the linear radiance (before exposure, not clipped), over every pixel and R, G,
+    /// B: the metric of the peer renderers (`report --reference FILE.exr`).
+    pub rmse_linear: f64,
 }
 
 /// Compares `test` with `reference`; also returns FLIP's per-pixel error map (row-major, values
@@ -161,8 +168,34 @@ pub fn compare(reference: &EncodedImage, test: &EncodedImage) -> (Metrics, Vec<f
             &test.luma(),
         ),
         flip,
+        rmse_linear: 0.0,
     };
     (metrics, flip_map)
+}
+
+/// RMSE of linear radiance over every pixel and R, G, B (no exposure, no clipping): the
+/// metric Mitsuba's benchmark and the peer baseline compute.
+///
+/// # Panics
+/// If the images differ in length (a programming error: the caller checks the sizes).
+#[must_use]
+pub fn rmse_linear(reference: &[Rgb], test: &[Rgb]) -> f64 {
+    assert_eq!(reference.len(), test.len(), "images differ in size");
+    let sum: f64 = reference
+        .iter()
+        .zip(test)
+        .map(|(r, t)| {
+            r.to_array()
+                .iter()
+                .zip(t.to_array())
+                .map(|(a, b)| {
+                    let d = f64::from(b) - f64::from(*a);
+                    d * d
+                })
+                .sum::<f64>()
+        })
+        .sum();
+    (sum / (3 * reference.len().max(1)) as f64).sqrt()
 }
 
 /// RMSE of `test` against `reference` (the report's RMSE column), or `None` if the sizes
@@ -320,6 +353,20 @@ mod tests {
             }
         }
         EncodedImage::from_srgb(w, h, v)
+    }
+
+    #[test]
+    fn linear_rmse_is_over_every_channel_of_the_unclipped_radiance() {
+        let r = [Rgb(0.0, 0.0, 0.0), Rgb(1.0, 2.0, 3.0)];
+        let t = [Rgb(0.1, 0.0, 0.0), Rgb(1.0, 2.0, 3.5)];
+        // (0.1^2 + 0.5^2) / 6 values; 3.0 and 3.5 are both above 1 and still differ.
+        let want = ((0.01f64 + 0.25) / 6.0).sqrt();
+        assert!(
+            (rmse_linear(&r, &t) - want).abs() < 1e-7,
+            "{}",
+            rmse_linear(&r, &t)
+        );
+        assert_eq!(rmse_linear(&r, &r), 0.0);
     }
 
     #[test]

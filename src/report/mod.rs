@@ -147,8 +147,11 @@ impl Mode {
                 v.push(m);
             }
         }
-        // Adaptive sampling with the filter that needs the fewest samples inside textures.
-        for filter in [Filter::Ewa, Filter::Bilinear] {
+        // The footprint filter at the pixel centre, where it integrates the pixel's own
+        // footprint (with jittered samples the footprint moves with the sample).
+        v.push(Self::new(Filter::Footprint, PixelSampler::Regular));
+        // Adaptive sampling with the filters that need the fewest samples inside textures.
+        for filter in [Filter::Footprint, Filter::Ewa, Filter::Bilinear] {
             v.push(Self {
                 adaptive: true,
                 ..Self::new(filter, PixelSampler::Regular)
@@ -221,6 +224,10 @@ pub struct ReferenceSettings {
     pub sampler: PixelSampler,
     /// Where references are cached (`None`: not cached).
     pub cache_dir: Option<PathBuf>,
+    /// An image made outside texplore (linear OpenEXR or Radiance HDR, the render's size) to
+    /// judge against instead of rendering a reference: `report --reference FILE.exr`. The
+    /// settings above are then unused.
+    pub file: Option<PathBuf>,
 }
 
 /// The reference's seed is the scene's plus this, so its samples are independent of the
@@ -234,6 +241,7 @@ impl Default for ReferenceSettings {
             filter: Filter::Bilinear,
             sampler: PixelSampler::Jittered,
             cache_dir: None,
+            file: None,
         }
     }
 }
@@ -260,6 +268,12 @@ impl ReferenceSettings {
     /// One line for reports.
     #[must_use]
     pub fn describe(&self) -> String {
+        if let Some(file) = &self.file {
+            return format!(
+                "the linear image {} (made outside texplore, compared as it is)",
+                file.display()
+            );
+        }
         format!(
             "{} spp, {} texture filter, {} sampler, box pixel filter (equal-weight mean of the samples), seed = scene seed + {REFERENCE_SEED_OFFSET:#x}",
             self.spp,
@@ -433,9 +447,11 @@ pub fn run_scene(
 
     // The reference: from the cache, or rendered now (and stored).
     let key = cache_key(&ref_desc, preset_path);
+    // An external reference is never cached.
     let cached = r
         .cache_dir
         .as_ref()
+        .filter(|_| r.file.is_none())
         .map(|dir| CachedReference::new(dir, &key));
     let t0 = Instant::now();
     let (stored, reference_problem) = match cached.as_ref().map(|c| c.load(&key, width, height)) {
@@ -443,7 +459,9 @@ pub fn run_scene(
         Some(Err(problem)) => (None, Some(problem)),
         None => (None, None),
     };
-    let (reference_linear, reference_cached) = if let Some(img) = stored {
+    let (reference_linear, reference_cached) = if let Some(file) = &r.file {
+        (reference::load_linear(file, width, height)?, false)
+    } else if let Some(img) = stored {
         (img, true)
     } else {
         let ref_scene = build_scene(&ref_desc, preset_path, &mut assets)?;
@@ -453,7 +471,7 @@ pub fn run_scene(
         }
         (img, false)
     };
-    let reference_time = if reference_cached {
+    let reference_time = if reference_cached || r.file.is_some() {
         Duration::ZERO
     } else {
         t0.elapsed()
@@ -463,6 +481,7 @@ pub fn run_scene(
         name,
         config,
         reference: EncodedImage::from_linear(width, height, &reference_linear, exposure),
+        reference_linear,
         exposure,
         cancel,
     };
@@ -492,7 +511,7 @@ pub fn run_scene(
         rows,
         reference: r.clone(),
         reference_cached,
-        reference_file: cached.map(|c| c.exr),
+        reference_file: r.file.clone().or_else(|| cached.map(|c| c.exr)),
         reference_problem,
         reference_time,
         error_maps,
@@ -572,6 +591,8 @@ struct Target<'a> {
     config: &'a ReportConfig,
     /// The reference, display-encoded.
     reference: EncodedImage,
+    /// The reference's linear radiance.
+    reference_linear: Vec<crate::math::Rgb>,
     /// The scene's exposure as a scale.
     exposure: f32,
     cancel: &'a AtomicBool,
@@ -603,8 +624,10 @@ impl Target<'_> {
         // Skipped runs count as done, so the ETA stays honest.
         tally.done += cell * (repeat - runs) as u64;
         times.sort();
-        let test = EncodedImage::from_linear(width, height, &film.to_linear(), self.exposure);
-        let (metrics, flip_map) = compare(&self.reference, &test);
+        let linear = film.to_linear();
+        let test = EncodedImage::from_linear(width, height, &linear, self.exposure);
+        let (mut metrics, flip_map) = compare(&self.reference, &test);
+        metrics.rmse_linear = metrics::rmse_linear(&self.reference_linear, &linear);
         let row = Row {
             scene: self.name.to_string(),
             mode,
@@ -690,12 +713,13 @@ mod tests {
             Filter::VARIANTS.len()
         );
         let d = Mode::default_set();
-        // Every filter with jittered, bilinear with the other samplers, two adaptive modes.
+        // Every filter with jittered, bilinear with the other samplers, footprint/regular,
+        // three adaptive modes.
         assert_eq!(
             d.len(),
-            Filter::VARIANTS.len() + PixelSampler::VARIANTS.len() - 1 + 2
+            Filter::VARIANTS.len() + PixelSampler::VARIANTS.len() - 1 + 1 + 3
         );
-        assert_eq!(d.iter().filter(|m| m.adaptive).count(), 2);
+        assert_eq!(d.iter().filter(|m| m.adaptive).count(), 3);
         let e = Mode::parse_list("bilinear/zigzag").unwrap_err().to_string();
         assert!(e.contains("zigzag") && e.contains("jittered"), "{e}");
         assert!(Mode::parse_list("bilinear").is_err());

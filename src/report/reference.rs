@@ -235,6 +235,53 @@ fn split_key_file(stored: &str) -> Option<(&str, (u64, u64))> {
     ))
 }
 
+/// Reads a reference made outside texplore: a linear OpenEXR or Radiance HDR file of
+/// `width` x `height` pixels (the render's size), as it is (no exposure, no curve).
+///
+/// # Errors
+/// [`ReportError::Invalid`] naming the file: it cannot be read, is not an EXR or HDR image, has
+/// another size, or holds a negative or non-finite value.
+pub fn load_linear(path: &Path, width: u32, height: u32) -> Result<Vec<Rgb>, ReportError> {
+    let bad = |why: String| ReportError::Invalid(format!("{}: {why}", path.display()));
+    let format = match crate::output::extension(path).as_str() {
+        "exr" => image::ImageFormat::OpenExr,
+        "hdr" => image::ImageFormat::Hdr,
+        other => {
+            return Err(bad(format!(
+                "a reference is a linear .exr or .hdr image, not '.{other}'"
+            )));
+        }
+    };
+    // Room for an uncompressed float image of the render's size and some headers.
+    let max = (1 << 20) + 16 * u64::from(width) * u64::from(height);
+    let bytes =
+        crate::input::read_input(path, max).map_err(|e| ReportError::Invalid(e.to_string()))?;
+    let img = image::load_from_memory_with_format(&bytes, format)
+        .map_err(|e| bad(format!("not a readable image ({e})")))?
+        .to_rgb32f();
+    if img.dimensions() != (width, height) {
+        return Err(bad(format!(
+            "{}x{} pixels, but the render is {width}x{height} (give the reference's size with \
+             --width and --height)",
+            img.width(),
+            img.height()
+        )));
+    }
+    if let Some((i, v)) = img
+        .as_raw()
+        .iter()
+        .enumerate()
+        .find(|(_, v)| !(v.is_finite() && **v >= 0.0))
+    {
+        return Err(bad(format!(
+            "pixel ({}, {}) holds {v}, not a radiance",
+            (i / 3) % width as usize,
+            (i / 3) / width as usize
+        )));
+    }
+    Ok(img.pixels().map(|p| Rgb::from_array(p.0)).collect())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

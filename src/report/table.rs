@@ -10,7 +10,7 @@ use std::time::Duration;
 pub const RMSE_TARGETS: [f64; 3] = [0.03, 0.01, 0.003];
 
 /// The columns of `report.csv`, in order.
-pub const CSV_COLUMNS: [&str; 18] = [
+pub const CSV_COLUMNS: [&str; 19] = [
     "scene",
     "mode",
     "filter",
@@ -28,6 +28,7 @@ pub const CSV_COLUMNS: [&str; 18] = [
     "rel_mse",
     "ssim",
     "flip",
+    "rmse_linear",
     "pareto",
 ];
 
@@ -186,6 +187,8 @@ pub struct CsvRow<'a> {
     pub ssim: Fixed<6>,
     /// Mean FLIP.
     pub flip: Fixed<6>,
+    /// RMSE of the linear radiance.
+    pub rmse_linear: Fixed<7>,
     /// 1 on the Pareto front of (time, RMSE), else 0.
     pub pareto: u8,
 }
@@ -214,6 +217,7 @@ impl<'a> CsvRow<'a> {
             rel_mse: Fixed(m.rel_mse),
             ssim: Fixed(m.ssim),
             flip: Fixed(m.flip),
+            rmse_linear: Fixed(m.rmse_linear),
             pareto: u8::from(on_front),
         }
     }
@@ -248,7 +252,7 @@ pub fn csv(reports: &[SceneReport]) -> Result<String, csv::Error> {
 #[must_use]
 pub fn metrics_section() -> String {
     let mut s = String::from(
-        "## Metrics\n\nAll metrics compare display-encoded images against the reference:\n\n",
+        "## Metrics\n\nAll metrics but the last compare display-encoded images against the reference:\n\n",
     );
     for (name, how) in METRIC_DEFINITIONS {
         let _ = writeln!(s, "- **{name}**: {how}.");
@@ -286,7 +290,9 @@ pub fn markdown_scene(rep: &SceneReport, files: &SceneFiles) -> String {
         s,
         "{w}x{h} pixels, {threads} threads. Reference: {}; {}.\n",
         rep.reference.describe(),
-        if rep.reference_cached {
+        if rep.reference.file.is_some() {
+            "read from that file".to_string()
+        } else if rep.reference_cached {
             "loaded from the cache".to_string()
         } else {
             format!("rendered now in {:.1} s", rep.reference_time.as_secs_f64())
@@ -302,15 +308,15 @@ pub fn markdown_scene(rep: &SceneReport, files: &SceneFiles) -> String {
     order.sort_by(|&a, &b| rep.rows[a].time.cmp(&rep.rows[b].time));
     s.push_str("Sorted by time; ★ marks the Pareto front (no faster render has a lower RMSE).\n\n");
     s.push_str(
-        "| front | mode | spp | time | M samples/s | RMSE | PSNR dB | relMSE | SSIM | FLIP |\n",
+        "| front | mode | spp | time | M samples/s | RMSE | PSNR dB | relMSE | SSIM | FLIP | RMSE linear |\n",
     );
-    s.push_str("|:-:|---|--:|--:|--:|--:|--:|--:|--:|--:|\n");
+    s.push_str("|:-:|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n");
     for i in order {
         let r = &rep.rows[i];
         let m = r.metrics;
         let _ = writeln!(
             s,
-            "| {} | {} | {} | {} | {:.1} | {:.4} | {:.2} | {:.5} | {:.4} | {:.4} |",
+            "| {} | {} | {} | {} | {:.1} | {:.4} | {:.2} | {:.5} | {:.4} | {:.4} | {:.5} |",
             if front[i] { "★" } else { "" },
             r.mode.name(),
             r.spp,
@@ -320,7 +326,8 @@ pub fn markdown_scene(rep: &SceneReport, files: &SceneFiles) -> String {
             m.psnr,
             m.rel_mse,
             m.ssim,
-            m.flip
+            m.flip,
+            m.rmse_linear
         );
     }
 
@@ -464,7 +471,7 @@ mod tests {
         // 10 ms for 100 samples, then the metrics with their fixed decimals.
         assert!(
             lines[1].ends_with(
-                ",1,10,10,2,3,10.0000,10.0000,10000,0.050000,0.000,0.000000,0.000000,0.000000,1"
+                ",1,10,10,2,3,10.0000,10.0000,10000,0.050000,0.000,0.000000,0.000000,0.000000,0.0000000,1"
             ),
             "{}",
             lines[1]

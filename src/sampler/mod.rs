@@ -63,14 +63,13 @@ impl PixelSampler {
             Self::Regular if count == 1 => Vec2::splat(0.5),
             Self::Jittered if count == 1 => Vec2::new(rng.next_f32(), rng.next_f32()),
             Self::Regular | Self::Jittered => {
-                let (cols, rows) = grid(count);
-                let (i, j) = (index % cols, index / cols);
                 let (jx, jy) = if self == Self::Regular {
                     (0.5, 0.5)
                 } else {
                     (rng.next_f32(), rng.next_f32())
                 };
-                Vec2::new((i as f32 + jx) / cols as f32, (j as f32 + jy) / rows as f32)
+                let cell = Rows::new(count).cell(index);
+                cell.point(jx, jy)
             }
             Self::Random => Vec2::new(rng.next_f32(), rng.next_f32()),
             Self::NRooks => {
@@ -95,12 +94,149 @@ impl PixelSampler {
     }
 }
 
-/// A near-square grid with at least `count` cells: columns x rows.
-#[must_use]
-pub fn grid(count: u32) -> (u32, u32) {
-    let cols = (count as f32).sqrt().ceil().max(1.0) as u32;
-    let rows = count.div_ceil(cols);
-    (cols, rows)
+impl PixelSampler {
+    /// The size (pixels along x and y) of the part of the pixel that sample `index` of `count`
+    /// stands for: its cell for the stratified layouts (regular, jittered, multi-jittered),
+    /// which tile the pixel; a square of area 1 / `count` for the others. Texture footprints
+    /// take this size, so a footprint filter over all of a pixel's samples covers the pixel
+    /// once.
+    #[must_use]
+    #[inline]
+    pub fn cell_size(self, index: u32, count: u32) -> Vec2 {
+        let count = count.max(1);
+        let index = if index < count { index } else { index % count };
+        match self {
+            Self::Regular | Self::Jittered => Rows::new(count).cell(index).size(),
+            Self::MultiJittered => {
+                let m = count.isqrt().max(1);
+                if count.is_multiple_of(m) {
+                    Vec2::new(1.0 / m as f32, 1.0 / (count / m) as f32)
+                } else {
+                    Rows::new(count).cell(index).size()
+                }
+            }
+            _ => Vec2::splat(1.0 / (count as f32).sqrt()),
+        }
+    }
+}
+
+/// The pixel cut into exactly `count` cells of equal area: `rows` = round(sqrt(count)) rows,
+/// row `j` holding `floor((j + 1) count / rows) - floor(j count / rows)` cells (count / rows,
+/// rounded down or up) side by side across the full width, and as tall as its share of the
+/// count (cells / count). Every cell has area 1 / count, so one point per cell covers the whole
+/// pixel evenly for any count; when `rows` divides `count` it is the plain cols x rows grid.
+///
+/// (A ceil(sqrt n)-column grid filled row by row leaves its last cells empty when n does not
+/// fill it, 8, 15, 27, 32, 60 ...: part of every pixel was never sampled.)
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Rows {
+    /// The number of cells.
+    pub count: u32,
+    /// The number of rows.
+    pub rows: u32,
+}
+
+/// One cell of [`Rows`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Cell {
+    /// Its row.
+    pub row: u32,
+    /// Its column within the row.
+    pub col: u32,
+    /// How many cells the row has.
+    pub cols: u32,
+    /// How many cells the rows above it hold together (its row's top edge is at `before / count`).
+    pub before: u32,
+    /// The total number of cells.
+    pub count: u32,
+    /// The number of rows.
+    pub rows: u32,
+    /// Whether every row has the same number of cells (`rows` divides `count`).
+    pub equal_rows: bool,
+}
+
+impl Rows {
+    /// The layout of `count` cells (at least 1).
+    #[must_use]
+    #[inline]
+    pub fn new(count: u32) -> Self {
+        let count = count.max(1);
+        // round(sqrt(count)) in integers: without SSE4.1 (the x86-64 baseline) f32::round is
+        // a libm call, 1 % of a 16-spp render. n is never (r + 1/2)^2, so no ties.
+        let r = count.isqrt();
+        let rows = if count - r * r > r { r + 1 } else { r };
+        Self { count, rows }
+    }
+
+    /// The cells above row `j` (row `j` starts at this index).
+    #[must_use]
+    #[inline]
+    pub fn start(self, j: u32) -> u32 {
+        (u64::from(j) * u64::from(self.count) / u64::from(self.rows)) as u32
+    }
+
+    /// Cell `index` (below `count`), rows filled left to right, top to bottom.
+    #[must_use]
+    #[inline]
+    pub fn cell(self, index: u32) -> Cell {
+        // Equal rows (every square count and most others): the plain grid, one division for the
+        // row as before the rows were introduced (the per-sample cost of the common case).
+        let cols = self.count / self.rows;
+        if cols * self.rows == self.count {
+            let row = index / cols;
+            let before = row * cols;
+            return Cell {
+                row,
+                col: index - before,
+                cols,
+                before,
+                count: self.count,
+                rows: self.rows,
+                equal_rows: true,
+            };
+        }
+        let (n, r) = (u64::from(self.count), u64::from(self.rows));
+        // The row j with start(j) <= index < start(j + 1).
+        let row = (((u64::from(index) + 1) * r - 1) / n) as u32;
+        let before = self.start(row);
+        let cols = self.start(row + 1) - before;
+        Cell {
+            row,
+            col: index - before,
+            cols,
+            before,
+            count: self.count,
+            rows: self.rows,
+            equal_rows: false,
+        }
+    }
+}
+
+impl Cell {
+    /// The cell's width and height (pixels): 1 / cols by cols / count.
+    #[must_use]
+    #[inline]
+    pub fn size(self) -> Vec2 {
+        if self.equal_rows {
+            Vec2::new(1.0 / self.cols as f32, 1.0 / self.rows as f32)
+        } else {
+            Vec2::new(1.0 / self.cols as f32, self.cols as f32 / self.count as f32)
+        }
+    }
+
+    /// The point at (`fx`, `fy`) in [0, 1)^2 within the cell, as a pixel offset.
+    #[must_use]
+    #[inline]
+    pub fn point(self, fx: f32, fy: f32) -> Vec2 {
+        let x = (self.col as f32 + fx) / self.cols as f32;
+        let y = if self.equal_rows {
+            // Equal rows: the plain grid, computed as it always was (bit for bit).
+            (self.row as f32 + fy) / self.rows as f32
+        } else {
+            (self.before as f32 + self.cols as f32 * fy) / self.count as f32
+        };
+        Vec2::new(x, y)
+    }
 }
 
 /// Van der Corput's radical inverse in base 2, as 32 fraction bits.
@@ -166,10 +302,27 @@ fn randfloat(mut i: u32, p: u32) -> f32 {
 /// Correlated multi-jittered sample `s` of `count` (Kensler, "Correlated Multi-Jittered
 /// Sampling", 2013): an m x n jittered grid whose points also fall one per column and row of the
 /// fine grid.
+///
+/// When m = floor(sqrt(count)) does not divide `count`, the m x n grid would have empty cells at
+/// the bottom; the points go instead into the equal-area cells of [`Rows`], one per cell, with
+/// the same correlated construction: exactly one point in each of `count` horizontal strips
+/// (a permutation of the row's cells, shared by the rows of equal length) and, within rows of
+/// equal length, one per fine column.
 #[inline]
 fn cmj(s: u32, count: u32, p: u32) -> Vec2 {
-    let m = (count as f32).sqrt().floor().max(1.0) as u32;
-    let n = count.div_ceil(m);
+    let m = count.isqrt().max(1);
+    if !count.is_multiple_of(m) {
+        let cell = Rows::new(count).cell(s);
+        let sub_y = permute(cell.col, cell.cols, p.wrapping_mul(0xa511_e9b3));
+        let sub_x = permute(cell.row, cell.rows, p.wrapping_mul(0x63d8_3595));
+        let jx = randfloat(s, p.wrapping_mul(0xa399_d265));
+        let jy = randfloat(s, p.wrapping_mul(0x711a_d6a5));
+        return Vec2::new(
+            (cell.col as f32 + (sub_x as f32 + jx) / cell.rows as f32) / cell.cols as f32,
+            (cell.before as f32 + sub_y as f32 + jy) / count as f32,
+        );
+    }
+    let n = count / m;
     let sx = permute(s % m, m, p.wrapping_mul(0xa511_e9b3));
     let sy = permute(s / m, n, p.wrapping_mul(0x63d8_3595));
     let jx = randfloat(s, p.wrapping_mul(0xa399_d265));
@@ -257,38 +410,162 @@ mod tests {
         }
     }
 
+    /// The largest distance from any point of the pixel (a 64 x 64 grid of probes, corners
+    /// included) to its nearest sample: the biggest hole the samples leave.
+    fn covering_radius(pts: &[Vec2]) -> f32 {
+        let mut worst = 0.0f32;
+        for a in 0..=64 {
+            for b in 0..=64 {
+                let q = Vec2::new(a as f32 / 64.0, b as f32 / 64.0);
+                let d = pts.iter().map(|p| p.distance(q)).fold(f32::MAX, f32::min);
+                worst = worst.max(d);
+            }
+        }
+        worst
+    }
+
     #[test]
-    fn jittered_and_multi_jittered_fill_their_grid_for_any_count() {
-        // Non-square counts: jittered uses a cols x rows grid with at least `count` cells, one
-        // point in each of `count` distinct cells; multi-jittered an m x n grid (m = floor(sqrt)),
-        // one point per coarse cell, and at most one per fine column (m n of them) and per fine
-        // row.
-        for n in [2, 3, 5, 7, 12, 17, 30] {
-            for pixel in 0..10 {
-                let (cols, rows) = grid(n);
-                let mut seen = vec![false; (cols * rows) as usize];
-                for p in points(PixelSampler::Jittered, n, pixel) {
-                    let cell = (p.y * rows as f32) as u32 * cols + (p.x * cols as f32) as u32;
-                    assert!(
-                        !seen[cell as usize],
-                        "jittered {n}: two points in cell {cell}"
-                    );
-                    seen[cell as usize] = true;
-                }
-                let m = (n as f32).sqrt().floor() as u32;
-                let k = n.div_ceil(m);
-                let fine = (m * k) as usize;
-                let (mut coarse, mut fx, mut fy) = (vec![0; fine], vec![0; fine], vec![0; fine]);
-                for p in points(PixelSampler::MultiJittered, n, pixel) {
-                    coarse[(p.y * k as f32) as usize * m as usize + (p.x * m as f32) as usize] += 1;
-                    fx[(p.x * fine as f32) as usize] += 1;
-                    fy[(p.y * fine as f32) as usize] += 1;
-                }
-                assert!(
-                    coarse.iter().all(|&c| c <= 1),
-                    "multi-jittered {n}: {coarse:?}"
+    fn cell_sizes_tile_the_pixel_and_hold_their_points() {
+        for n in 1..=60u32 {
+            for s in [
+                PixelSampler::Regular,
+                PixelSampler::Jittered,
+                PixelSampler::MultiJittered,
+            ] {
+                let area: f32 = (0..n)
+                    .map(|i| {
+                        let c = s.cell_size(i, n);
+                        c.x * c.y
+                    })
+                    .sum();
+                assert!((area - 1.0).abs() < 1e-4, "{s:?} {n}: {area}");
+            }
+            // A regular point is its cell's centre: the cell around it stays in the pixel.
+            for i in 0..n {
+                let (p, c) = (
+                    PixelSampler::Regular.sample(1, 0, i, n),
+                    PixelSampler::Regular.cell_size(i, n),
                 );
-                assert!(fx.iter().chain(&fy).all(|&c| c <= 1), "multi-jittered {n}");
+                let (lo, hi) = (p - c * 0.5, p + c * 0.5);
+                assert!(
+                    lo.min_element() > -1e-6 && hi.max_element() < 1.0 + 1e-6,
+                    "{n} {i}: {p} {c}"
+                );
+            }
+            let r = PixelSampler::Random.cell_size(0, n);
+            assert!((r.x * r.y * n as f32 - 1.0).abs() < 1e-5);
+        }
+    }
+
+    #[test]
+    fn rows_are_the_rounded_square_root() {
+        for n in 1..200_000u32 {
+            assert_eq!(Rows::new(n).rows, f64::from(n).sqrt().round() as u32, "{n}");
+        }
+    }
+
+    #[test]
+    fn regular_covers_the_pixel_evenly_for_every_count() {
+        // n = 1..100: the grid's centroid is the pixel centre (a linear ramp is seen at its
+        // mean value) and no hole is wider than a cell of area 1 / n would allow. A
+        // ceil(sqrt n)-column grid filled row by row fails both at 3, 8, 15, 27, 32, 60 ...
+        for n in 1..=100u32 {
+            let pts = points(PixelSampler::Regular, n, 0);
+            let mean = pts.iter().fold(Vec2::ZERO, |a, p| a + *p) / n as f32;
+            assert!(
+                (mean - Vec2::splat(0.5)).abs().max_element() < 1e-5,
+                "regular {n}: centroid {mean}"
+            );
+            let r = covering_radius(&pts);
+            assert!(
+                r <= 1.0 / (n as f32).sqrt(),
+                "regular {n}: a hole of radius {r}"
+            );
+        }
+    }
+
+    #[test]
+    fn every_random_sampler_fills_the_pixel_evenly_for_every_count() {
+        // n = 1..100: the points of many pixels, binned on an 8 x 8 grid, give every bin its
+        // share (1/64) within 12 %: five standard deviations of independent points, which the
+        // stratified samplers beat by far. A pattern that never samples part of the pixel leaves
+        // a bin (nearly) empty.
+        let k = 8usize;
+        for &s in PixelSampler::VARIANTS {
+            if s == PixelSampler::Regular {
+                continue;
+            }
+            for n in 1..=100u32 {
+                let pixels = 128_000 / n;
+                let mut bins = vec![0u32; k * k];
+                for pixel in 0..pixels {
+                    for i in 0..n {
+                        let p = s.sample(3, pixel, i, n);
+                        bins[(p.y * k as f32) as usize * k + (p.x * k as f32) as usize] += 1;
+                    }
+                }
+                let expect = f64::from(pixels * n) / (k * k) as f64;
+                let worst = bins
+                    .iter()
+                    .map(|&b| (f64::from(b) / expect - 1.0).abs())
+                    .fold(0.0, f64::max);
+                assert!(worst < 0.12, "{s:?} {n}: a bin off its share by {worst:.3}");
+            }
+        }
+    }
+
+    #[test]
+    fn jittered_and_multi_jittered_put_one_point_in_each_equal_area_cell_for_any_count() {
+        // Row j of `Rows` is cells_j / n tall with cells_j cells across it: the cells tile the
+        // pixel with area 1 / n each, and each holds one point; multi-jittered also puts one
+        // point in each of n horizontal strips of height 1 / n.
+        for n in 1..=100u32 {
+            let layout = Rows::new(n);
+            assert_eq!(layout.start(0), 0);
+            assert_eq!(layout.start(layout.rows), n);
+            for j in 0..layout.rows {
+                let cells = layout.start(j + 1) - layout.start(j);
+                // Rows of n / rows cells, rounded down or up: near-square cells.
+                assert!(
+                    cells == n / layout.rows || cells == n / layout.rows + 1,
+                    "{n}: row {j}"
+                );
+            }
+            for pixel in 0..10 {
+                for s in [PixelSampler::Jittered, PixelSampler::MultiJittered] {
+                    let mut seen = vec![false; n as usize];
+                    // Multi-jittered keeps Kensler's m x (n / m) grid (m = floor(sqrt n)) when
+                    // it is full.
+                    let m = (n as f32).sqrt().floor() as u32;
+                    let kensler = s == PixelSampler::MultiJittered && n % m == 0;
+                    for (i, p) in points(s, n, pixel).into_iter().enumerate() {
+                        let cell = if kensler {
+                            (p.y * (n / m) as f32) as u32 * m + (p.x * m as f32) as u32
+                        } else {
+                            // The cell holding p: its row by its band of y, its column by x.
+                            let j = (0..layout.rows)
+                                .find(|&j| p.y * (n as f32) < layout.start(j + 1) as f32)
+                                .unwrap();
+                            let cols = layout.start(j + 1) - layout.start(j);
+                            layout.start(j) + (p.x * cols as f32) as u32
+                        };
+                        assert!(
+                            !seen[cell as usize],
+                            "{s:?} {n}: two points in cell {cell} (sample {i})"
+                        );
+                        seen[cell as usize] = true;
+                    }
+                }
+                if n % (n as f32).sqrt().floor() as u32 != 0 {
+                    let mut strips = vec![0; n as usize];
+                    for p in points(PixelSampler::MultiJittered, n, pixel) {
+                        strips[(p.y * n as f32) as usize] += 1;
+                    }
+                    assert!(
+                        strips.iter().all(|&c| c == 1),
+                        "multi-jittered {n}: {strips:?}"
+                    );
+                }
             }
         }
     }

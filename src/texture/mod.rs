@@ -6,6 +6,7 @@
 
 mod debug;
 mod explain;
+mod footprint;
 mod image;
 mod mip;
 mod procedural;
@@ -207,8 +208,8 @@ impl Wrap {
 /// How texels are combined into one colour.
 ///
 /// On the procedural checker, which has no texels, `Nearest`, `Bilinear` and `Bicubic` all
-/// point-sample, and `Trilinear` and `Ewa` use the closed-form box filter of the checker over
-/// the footprint's bounding box (pbrt's analytically filtered checkerboard).
+/// point-sample, and `Trilinear`, `Ewa` and `Footprint` use the closed-form box filter of the
+/// checker over the footprint's bounding box (pbrt's analytically filtered checkerboard).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[derive(Serialize, Deserialize)]
 #[derive(strum::VariantArray, strum::IntoStaticStr, strum::Display)]
@@ -237,6 +238,12 @@ pub enum Filter {
         message = "Elliptical weighted average: follows the pixel's stretched footprint; sharp and alias-free."
     )]
     Ewa,
+    /// The mean of the bilinear texture over the pixel's footprint parallelogram (texture-space
+    /// supersampling, `footprint.rs`): one sample per pixel converges to the box-filtered image.
+    #[strum(
+        message = "Integrates the texture over the pixel's footprint: one sample gives the supersampled pixel, no blur."
+    )]
+    Footprint,
 }
 
 impl crate::names::Named for Filter {
@@ -247,13 +254,13 @@ impl Filter {
     /// Whether this filter needs the pixel's footprint in texture space (ray differentials).
     #[must_use]
     pub const fn needs_footprint(self) -> bool {
-        matches!(self, Self::Trilinear | Self::Ewa)
+        matches!(self, Self::Trilinear | Self::Ewa | Self::Footprint)
     }
 
     /// Whether this filter reads a mip pyramid (built only then).
     #[must_use]
     pub const fn needs_mip(self) -> bool {
-        matches!(self, Self::Trilinear | Self::Ewa)
+        matches!(self, Self::Trilinear | Self::Ewa | Self::Footprint)
     }
 }
 
@@ -310,6 +317,9 @@ impl ImageTexture {
             (Filter::Bicubic, _) => self.image.bicubic(tc.uv, wu, wv),
             (Filter::Trilinear, Some(m)) => m.trilinear(tc.uv, tc.duvdx, tc.duvdy, wu, wv),
             (Filter::Ewa, Some(m)) => m.ewa(tc.uv, tc.duvdx, tc.duvdy, self.max_anisotropy, wu, wv),
+            (Filter::Footprint, m) => {
+                footprint::footprint(m.as_deref(), &self.image, tc.uv, tc.duvdx, tc.duvdy, wu, wv)
+            }
         }
     }
 

@@ -1,0 +1,64 @@
+#!/usr/bin/env python3
+"""The side-by-side table (scripts/side-by-side.sh): texplore against Mitsuba 3, from the rounds in WORK.
+
+usage: side_by_side_table.py WORK ROUNDS
+
+Per configuration: the median over rounds of each round's best time (the fastest of its timed
+renders, as the peers' harness reports it), the RMSE against Mitsuba's 16384-spp reference
+(linear, over all W x H x 3 values), samples per second; then the time to reach RMSE 0.009 and
+0.003 (the fastest configuration at or below it) and the ratios texplore / Mitsuba.
+Standard library only.
+"""
+import csv
+import glob
+import json
+import statistics
+import sys
+
+work, rounds = sys.argv[1], int(sys.argv[2])
+rows = {}  # (renderer, config) -> {"times": [...], "rmse": [...], "samples": n}
+for r in range(1, rounds + 1):
+    mi = json.load(open(f"{work}/round-{r}-mitsuba.json"))
+    for row in mi["rows"]:
+        key = ("Mitsuba 3 llvm", f"stratified {row['spp']} spp", row["spp"])
+        e = rows.setdefault(key, {"times": [], "rmse": [], "samples": 640 * 480 * row["spp"]})
+        e["times"].append(row["best"])
+        e["rmse"].append(row["rmse"])
+    for path in sorted(glob.glob(f"{work}/tx-round-{r}-*/report.csv")):
+        for row in csv.DictReader(open(path)):
+            spp = int(row["spp"])
+            key = ("texplore", f"{row['mode']} {spp} spp", spp)
+            e = rows.setdefault(key, {"times": [], "rmse": [], "samples": float(row["samples_per_s"]) * float(row["time_ms_median"]) / 1e3})
+            e["times"].append(float(row["time_ms_min"]) / 1e3)
+            e["rmse"].append(float(row["rmse_linear"]))
+
+def med(v):
+    return statistics.median(v)
+
+print(f"Medians over {rounds} alternating rounds (each round: the best of its timed renders).\n")
+print("| renderer | configuration | time | RMSE | M samples/s | time / Mitsuba's at this spp |")
+print("|---|---|--:|--:|--:|--:|")
+mi_time = {k[2]: med(v["times"]) for k, v in rows.items() if k[0].startswith("Mitsuba")}
+for key in sorted(rows, key=lambda k: (k[0] != "Mitsuba 3 llvm", k[1].split()[0], k[2])):
+    v = rows[key]
+    t = med(v["times"])
+    ratio = ""
+    if key[0] == "texplore" and key[2] in mi_time and "bilinear" in key[1]:
+        ratio = f"{t / mi_time[key[2]]:.2f}x"
+    print(f"| {key[0]} | {key[1]} | {t * 1e3:.1f} ms | {med(v['rmse']):.5f} | {v['samples'] / t / 1e6:.1f} | {ratio} |")
+
+print("\n| target | Mitsuba 3 llvm (fastest) | texplore (fastest) | texplore / Mitsuba |")
+print("|---|---|---|--:|")
+for target in (0.009, 0.003):
+    best = {}
+    for key, v in rows.items():
+        t, e = med(v["times"]), med(v["rmse"])
+        if e <= target and (key[0] not in best or t < best[key[0]][0]):
+            best[key[0]] = (t, key[1])
+    cells = []
+    for who in ("Mitsuba 3 llvm", "texplore"):
+        cells.append(f"{best[who][0] * 1e3:.1f} ms ({best[who][1]})" if who in best else "not reached")
+    ratio = ""
+    if len(best) == 2:
+        ratio = f"{best['texplore'][0] / best['Mitsuba 3 llvm'][0]:.2f}x"
+    print(f"| RMSE <= {target} | {cells[0]} | {cells[1]} | {ratio} |")

@@ -9,7 +9,7 @@ use crate::mapping::{Mapping, TexCoord, explain_mapping};
 use crate::math::{Rgb, Vec2, Vec3A};
 use crate::names::Named as _;
 use crate::texture::{Filter, ImageData, Lookup, Texture, Wrap, explain_lookup};
-use crate::{material::Material, scene::Scene};
+use crate::{material::ParamValue, scene::Scene};
 use std::sync::Arc;
 use strum::VariantArray;
 
@@ -89,6 +89,9 @@ pub struct Inspection {
     pub footprint: Option<Footprint>,
     /// The texture's colour here (linear, before lighting).
     pub texture_colour: Rgb,
+    /// Every other material parameter that is a texture (`ks`, `cs`, ...), by preset name,
+    /// with its value here; constants are not listed.
+    pub parameters: Vec<(&'static str, ParamValue)>,
     /// The radiance of the ray through the film position (linear, before exposure).
     pub radiance: Rgb,
 }
@@ -110,10 +113,7 @@ impl Scene {
         let (dpdx, dpdy) = d.footprint_on_plane(hit.local.p, hit.local.n);
         let ctx = self.texture_context_at(&hit, dpdx, dpdy);
         let material = &self.materials[obj.material];
-        let texture = match material {
-            Material::Matte { cd, .. } | Material::Phong { cd, .. } => cd,
-            Material::Emissive { ce, .. } => ce,
-        };
+        let texture = material.texture();
         let (kind, mapping, image) = match texture {
             Texture::Constant(_) => ("constant", None, None),
             Texture::Checker(c) => ("checker", Some(c.mapping), None),
@@ -133,7 +133,7 @@ impl Scene {
             (Mapping::Uv, None) => ctx.natural,
             (m, _) => m,
         });
-        let tex = mapping.map(|m| ctx.tex_coord(m));
+        let tex = texture.tex_coord(&ctx);
         let mapping_lines = match (effective, mapping) {
             (Some(Mapping::Uv), _) => vec!["(u, v) carried by the shape's vertices".to_owned()],
             (Some(e), Some(m)) => {
@@ -192,6 +192,7 @@ impl Scene {
             }
         });
         let texture_colour = texture.eval(&ctx);
+        let parameters = material.textured_values(&ctx);
         let radiance = self.trace(&ray, self.needs_differentials.then_some(&diff));
         Some(Inspection {
             pixel,
@@ -209,6 +210,7 @@ impl Scene {
             texels,
             footprint,
             texture_colour,
+            parameters,
             radiance,
         })
     }

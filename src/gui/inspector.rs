@@ -152,6 +152,12 @@ impl Inspector {
                     ui.label(format!("({:.3}, {:.3}, {:.3}) linear", c.0, c.1, c.2));
                 });
                 ui.end_row();
+                for (name, v) in &i.parameters {
+                    ui.label(*name)
+                        .on_hover_text("this material parameter's texture, here");
+                    ui.monospace(v.to_string());
+                    ui.end_row();
+                }
                 ui.label("pixel radiance");
                 let c = i.radiance;
                 ui.label(format!("({:.3}, {:.3}, {:.3})", c.0, c.1, c.2));

@@ -183,8 +183,10 @@ pub fn asset_paths(desc: &SceneDesc, preset_dir: &Path) -> Vec<PathBuf> {
         }
     };
     for o in &desc.objects {
-        if let TextureDesc::Image { path, .. } = o.material.texture() {
-            add(preset_dir.join(path));
+        for (_, t) in o.material.textures() {
+            if let TextureDesc::Image { path, .. } = t {
+                add(preset_dir.join(path));
+            }
         }
         if let ShapeDesc::Mesh { path, .. } = &o.shape {
             let mesh = preset_dir.join(path);
@@ -213,8 +215,10 @@ pub fn rebase_assets(desc: &mut SceneDesc, from: &Path, to: &Path) {
             .into_owned();
     };
     for o in &mut desc.objects {
-        if let TextureDesc::Image { path, .. } = o.material.texture_mut() {
-            rebase(path);
+        for t in o.material.textures_mut() {
+            if let TextureDesc::Image { path, .. } = t {
+                rebase(path);
+            }
         }
         if let ShapeDesc::Mesh { path, .. } = &mut o.shape {
             rebase(path);

@@ -71,6 +71,8 @@ pub struct RenderSettings {
     pub adaptive: Option<AdaptiveDesc>,
     /// The shaded image or a debug view.
     pub view: View,
+    /// How many mirror bounces a ray may take.
+    pub reflection_depth: u32,
 }
 
 impl RenderSettings {
@@ -278,6 +280,25 @@ impl Scene {
     #[must_use]
     #[inline]
     pub fn shade_keyed(&self, hit: &SurfaceHit, diff: Option<&RayDifferential>) -> (Rgb, u32) {
+        self.shade_at_depth(hit, diff, 0)
+    }
+
+    /// Radiance along a ray that has already been mirrored `depth` times (0 for a camera ray).
+    fn trace_at_depth(&self, ray: &Ray, diff: Option<&RayDifferential>, depth: u32) -> Rgb {
+        match self.hit(ray) {
+            Some(hit) => self.shade_at_depth(&hit, diff, depth).0,
+            None => self.settings.background,
+        }
+    }
+
+    /// Shades a hit reached after `depth` mirror bounces; a mirror adds the radiance along its
+    /// reflected ray while `depth` is below `settings.reflection_depth`.
+    fn shade_at_depth(
+        &self,
+        hit: &SurfaceHit,
+        diff: Option<&RayDifferential>,
+        depth: u32,
+    ) -> (Rgb, u32) {
         let obj = &self.objects[hit.object];
         let material = &self.materials[obj.material];
         let ctx = self.texture_context(hit, diff);
@@ -325,11 +346,72 @@ impl Scene {
             }
             l += sp.direct(hit.ns, hit.wo, wi, li);
         }
+        if sp.mirror != Rgb::BLACK && depth < self.settings.reflection_depth {
+            l += sp.mirror * self.reflected(hit, diff, offset, depth);
+        }
         let l = match view {
             View::Shaded => l,
             _ => material.texture().debug_color(&ctx, view, l),
         };
         (l, key)
+    }
+}
+
+impl Scene {
+    /// Radiance along the mirror direction at `hit` (the book's `Reflective`, a perfect
+    /// specular BRDF `kr cr / (n . wi)`, so the cosine cancels). When the hit carries ray
+    /// differentials they are mirrored too (pbrt's specular reflection differentials: the
+    /// offset rays leave from the neighbouring pixels' hits, mirrored about the normal there),
+    /// so a texture seen in a mirror is filtered over its true footprint.
+    fn reflected(
+        &self,
+        hit: &SurfaceHit,
+        diff: Option<&RayDifferential>,
+        offset: f32,
+        depth: u32,
+    ) -> Rgb {
+        let (n, wo) = (hit.ns, hit.wo);
+        let cos = n.dot(wo);
+        let wi = (2.0 * cos * n - wo).normalize_or(hit.ng);
+        // Leave on the side the reflected ray goes to.
+        let side = if wi.dot(hit.ng) >= 0.0 { 1.0 } else { -1.0 };
+        let ray = Ray::new(hit.p + hit.ng * (offset * side), wi);
+        let mirrored = diff.map(|d| {
+            let (dpdx, dpdy) = d.footprint_on_plane(hit.p, hit.ng);
+            let mirror = |dp: Vec3A, dir: Vec3A| {
+                let dn = self.normal_change(hit, dp);
+                let dwo = -dir.normalize_or(-wo) - wo;
+                let ddn = dwo.dot(n) + wo.dot(dn);
+                let dir = wi - dwo + 2.0 * (cos * dn + ddn * n);
+                (hit.p + dp, if dir.is_finite() { dir } else { wi })
+            };
+            let (rx_origin, rx_dir) = mirror(dpdx, d.rx_dir);
+            let (ry_origin, ry_dir) = mirror(dpdy, d.ry_dir);
+            RayDifferential {
+                rx_origin,
+                rx_dir,
+                ry_origin,
+                ry_dir,
+            }
+        });
+        self.trace_at_depth(&ray, mirrored.as_ref(), depth + 1)
+    }
+
+    /// The change of the world shading normal from `hit` to the point `dp` away on its tangent
+    /// plane: exact for spheres and cylinder walls (whose normals follow the point), zero for
+    /// flat shapes and meshes (flat per triangle; smooth meshes are treated as flat here).
+    fn normal_change(&self, hit: &SurfaceHit, dp: Vec3A) -> Vec3A {
+        let obj = &self.objects[hit.object];
+        let q = hit.local.p + obj.object_from_world.transform_vector3a(dp);
+        let local = match obj.shape {
+            Shape::Sphere => q,
+            Shape::Cylinder { .. } if hit.local.n.y.abs() < 0.5 => Vec3A::new(q.x, 0.0, q.z),
+            _ => return Vec3A::ZERO,
+        };
+        let side = if hit.front_face { 1.0 } else { -1.0 };
+        let n = (obj.normal_to_world(local.normalize_or(hit.local.n)) * side).normalize_or(hit.ns);
+        let dn = n - hit.ns;
+        if dn.is_finite() { dn } else { Vec3A::ZERO }
     }
 }
 

@@ -19,7 +19,7 @@ pub use image::{
 pub use mip::{DEFAULT_MAX_ANISOTROPY, EWA_FOOTPRINT_SCALE, MAX_ANISOTROPY_LIMIT, MipPyramid};
 pub use procedural::{Checker, uv_grid_image};
 
-use crate::mapping::{Mapping, TexCoord};
+use crate::mapping::{Mapping, TexCoord, UvAffine};
 use crate::math::{Rgb, Vec2, Vec3A};
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;
@@ -81,6 +81,17 @@ impl Texture {
         }
     }
 
+    /// Texture coordinates of a hit under the texture's mapping and (u, v) transform; `None`
+    /// for a constant.
+    #[must_use]
+    pub fn tex_coord(&self, ctx: &TextureContext) -> Option<TexCoord> {
+        match self {
+            Self::Constant(_) => None,
+            Self::Image(t) => Some(t.tex_coord(ctx)),
+            Self::Checker(c) => Some(c.tex_coord(ctx)),
+        }
+    }
+
     /// The mapping, for textures that have one.
     #[must_use]
     pub const fn mapping(&self) -> Option<Mapping> {
@@ -88,6 +99,47 @@ impl Texture {
             Self::Constant(_) => None,
             Self::Image(t) => Some(t.mapping),
             Self::Checker(c) => Some(c.mapping),
+        }
+    }
+}
+
+/// Which number a texture gives where a material wants one (a coefficient such as `ks`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[derive(Serialize, Deserialize)]
+#[derive(strum::VariantArray, strum::IntoStaticStr, strum::Display)]
+#[derive(strum::EnumString, strum::EnumMessage)]
+pub enum Channel {
+    /// Rec. 709 luminance of the linear colour.
+    #[default]
+    #[strum(message = "Rec. 709 luminance of the linear colour.")]
+    Luminance,
+    /// The red channel.
+    #[strum(message = "The red channel.")]
+    Red,
+    /// The green channel.
+    #[strum(message = "The green channel.")]
+    Green,
+    /// The blue channel.
+    #[strum(message = "The blue channel.")]
+    Blue,
+}
+
+impl crate::names::Named for Channel {
+    const WHAT: &'static str = "channel";
+}
+
+impl Channel {
+    /// The number this channel reads from a linear colour. A grey's luminance is its grey
+    /// exactly (the weighted sum could round it), so `Constant((v, v, v))` means `v`.
+    #[must_use]
+    #[inline]
+    pub fn of(self, c: Rgb) -> f32 {
+        match self {
+            Self::Luminance if c.0 == c.1 && c.1 == c.2 => c.0,
+            Self::Luminance => c.luminance(),
+            Self::Red => c.0,
+            Self::Green => c.1,
+            Self::Blue => c.2,
         }
     }
 }
@@ -278,6 +330,8 @@ pub struct ImageTexture {
     pub mip: Option<Arc<MipPyramid>>,
     /// The longest footprint EWA follows, as a ratio of major to minor axis.
     pub max_anisotropy: f32,
+    /// The (u, v) transform after the mapping; `None` for none (costs nothing).
+    pub transform: Option<UvAffine>,
 }
 
 impl ImageTexture {
@@ -285,16 +339,33 @@ impl ImageTexture {
     /// map clamps v at its poles, whatever the texture's own mode.
     #[must_use]
     #[inline]
+    ///
+    /// A texture with a (u, v) transform uses its own wrap mode on both axes: tiled or rotated,
+    /// its coordinates no longer follow the mapping's seam and poles.
     pub fn wraps(&self) -> (Wrap, Wrap) {
-        Wrap::for_mapping(self.mapping, self.wrap)
+        if self.transform.is_some() {
+            (self.wrap, self.wrap)
+        } else {
+            Wrap::for_mapping(self.mapping, self.wrap)
+        }
+    }
+
+    /// Texture coordinates of a hit: the mapping's, then the (u, v) transform if any.
+    #[must_use]
+    #[inline]
+    pub fn tex_coord(&self, ctx: &TextureContext) -> TexCoord {
+        let tc = ctx.tex_coord(self.mapping);
+        match &self.transform {
+            None => tc,
+            Some(a) => a.apply(tc),
+        }
     }
 
     /// The colour at a hit.
     #[must_use]
     #[inline]
     pub fn eval(&self, ctx: &TextureContext) -> Rgb {
-        let tc = ctx.tex_coord(self.mapping);
-        self.sample(tc) * self.scale
+        self.sample(self.tex_coord(ctx)) * self.scale
     }
 
     /// The filtered colour at texture coordinates (before `scale`).

@@ -516,3 +516,80 @@ fn the_mirror_ball_preset_is_the_mirror_ball_probe_of_its_panorama() {
     let mean = b.iter().map(|&v| f64::from(v)).sum::<f64>() / b.len() as f64 / 255.0;
     assert!(mean > 0.1, "{mean}");
 }
+
+/// The ocean mask of `earth-day-night` (its `ks`), derived from the Blue Marble: a day pixel is
+/// ocean where blue leads red by more than 10 (of 255) and is at least green (the dark navy of
+/// the sea; not ice, desert or forest); each mask pixel is the share of ocean in a 2 x 2 block
+/// of the day image, as 0-255 grey. This test is the recipe: it derives the mask again and
+/// compares it with the shipped file byte for byte; `TEXPLORE_WRITE_OCEAN_MASK=1` writes it.
+#[test]
+fn the_ocean_mask_is_derived_from_the_day_image() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let day = image::open(root.join("assets/earth_2048x1024.jpg"))
+        .unwrap()
+        .to_rgb8();
+    let (w, h) = (day.width() / 2, day.height() / 2);
+    let ocean = |x: u32, y: u32| {
+        let [r, g, b] = day.get_pixel(x, y).0.map(i32::from);
+        u32::from(b > r + 10 && b >= g)
+    };
+    let mask = image::GrayImage::from_fn(w, h, |x, y| {
+        let n = ocean(2 * x, 2 * y)
+            + ocean(2 * x + 1, 2 * y)
+            + ocean(2 * x, 2 * y + 1)
+            + ocean(2 * x + 1, 2 * y + 1);
+        image::Luma([(n * 255 / 4) as u8])
+    });
+    let shipped = root.join("assets/earth_ocean_mask_1024x512.png");
+    if std::env::var_os("TEXPLORE_WRITE_OCEAN_MASK").is_some() {
+        mask.save(&shipped).unwrap();
+    }
+    let on_disk = image::open(&shipped).unwrap().to_luma8();
+    assert!(
+        on_disk == mask,
+        "{} differs from its recipe",
+        shipped.display()
+    );
+    // Most of the Earth is ocean; the mask says so (about 70 % of the map's pixels are ocean;
+    // the poles' ice is not).
+    let share = mask.pixels().map(|p| f64::from(p.0[0])).sum::<f64>() / (255.0 * f64::from(w * h));
+    assert!((0.5..0.8).contains(&share), "ocean share {share}");
+}
+
+#[test]
+fn the_glow_shows_only_where_the_light_does_not_reach() {
+    let sphere = |extra: &str| {
+        render_text(&format!(
+            "(version: 1, camera: (eye: (0, 0, 4)),
+              render: (width: 40, height: 30, spp: 1, sampler: Regular),
+              ambient: (ls: 0.1),
+              lights: [Directional(direction: (1, 0, 0))],
+              objects: [(shape: Sphere,
+                         material: Phong(cd: Constant((0.5, 0.5, 0.5)){extra}))])"
+        ))
+    };
+    let plain = sphere("");
+    let black = sphere(", ce: (0, 0, 0)");
+    assert!(plain == black, "a black glow is no glow");
+    let glowing = sphere(", ce: Checker(colors: ((0, 1, 0), (0, 1, 0)))");
+    let (w, h) = (40usize, 30usize);
+    let (mut dark, mut day) = (0, 0);
+    for y in 0..h {
+        for x in 0..w {
+            let i = y * w + x;
+            if plain[i] == Rgb::BLACK {
+                continue; // the background
+            }
+            if x < w / 2 - 2 {
+                // The left half faces away from the light: the glow is added in full.
+                assert_eq!(glowing[i], plain[i] + Rgb(0.0, 1.0, 0.0), "({x}, {y})");
+                dark += 1;
+            } else if x > w / 2 + 4 {
+                // Well into the lit half: unchanged.
+                assert_eq!(glowing[i], plain[i], "({x}, {y})");
+                day += 1;
+            }
+        }
+    }
+    assert!(dark > 50 && day > 30, "{dark} {day}");
+}

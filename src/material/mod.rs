@@ -36,6 +36,8 @@ pub enum Material {
         cs: Colour,
         /// Sharpness of the highlight: `(r . wo)^exp`, larger is tighter.
         exp: Scalar,
+        /// Glow on the dark side, added where direct light does not reach (black: none).
+        ce: Colour,
     },
     /// Phong plus a perfect mirror: adds `kr cr` times the radiance along the mirrored ray.
     Reflective {
@@ -93,6 +95,7 @@ impl Material {
                 ks,
                 cs,
                 exp,
+                ce,
                 ..
             } => vec![
                 ("ka", Scalar(ka)),
@@ -100,6 +103,7 @@ impl Material {
                 ("ks", Scalar(ks)),
                 ("cs", Colour(cs)),
                 ("exp", Scalar(exp)),
+                ("ce", Colour(ce)),
             ],
             Self::Reflective {
                 ka,
@@ -241,6 +245,22 @@ pub struct ShadePoint {
     /// The mirror's `kr cr` (black unless reflective): what multiplies the radiance along the
     /// mirrored ray.
     pub mirror: Rgb,
+    /// Phong's glow `ce`, added where direct light does not reach (black unless set).
+    pub glow: Rgb,
+}
+
+/// The summed `n . wi` of the unshadowed lights over which a glow fades out past the
+/// terminator.
+pub const GLOW_FADE: f32 = 0.2;
+
+impl ShadePoint {
+    /// The glow's weight given the summed `n . wi` of the lights that reach the point: 1 in
+    /// the dark, fading linearly to 0 at [`GLOW_FADE`].
+    #[must_use]
+    #[inline]
+    pub fn glow_weight(lit: f32) -> f32 {
+        (1.0 - lit / GLOW_FADE).clamp(0.0, 1.0)
+    }
 }
 
 impl Material {
@@ -256,6 +276,7 @@ impl Material {
                     diffuse: c * (kd.eval(ctx) * INV_PI),
                     specular: None,
                     mirror: Rgb::BLACK,
+                    glow: Rgb::BLACK,
                 }
             }
             Self::Phong {
@@ -265,6 +286,7 @@ impl Material {
                 ks,
                 cs,
                 exp,
+                ce,
             } => {
                 let c = cd.eval(ctx);
                 ShadePoint {
@@ -272,6 +294,7 @@ impl Material {
                     diffuse: c * (kd.eval(ctx) * INV_PI),
                     specular: Some((cs.eval(ctx) * ks.eval(ctx), exp.eval(ctx))),
                     mirror: Rgb::BLACK,
+                    glow: ce.eval(ctx),
                 }
             }
             Self::Reflective {
@@ -290,6 +313,7 @@ impl Material {
                     diffuse: c * (kd.eval(ctx) * INV_PI),
                     specular: Some((cs.eval(ctx) * ks.eval(ctx), exp.eval(ctx))),
                     mirror: cr.eval(ctx) * kr.eval(ctx),
+                    glow: Rgb::BLACK,
                 }
             }
             Self::Emissive { ls, ce } => ShadePoint {
@@ -297,6 +321,7 @@ impl Material {
                 diffuse: Rgb::BLACK,
                 specular: None,
                 mirror: Rgb::BLACK,
+                glow: Rgb::BLACK,
             },
         }
     }

@@ -591,6 +591,7 @@ fn material(m: &MaterialDesc, base: &Path, cache: &mut AssetCache) -> Result<Mat
             ks,
             cs,
             exp,
+            ce,
         } => Material::Phong {
             ka: scalar("ka", ka, base, cache)?,
             kd: scalar("kd", kd, base, cache)?,
@@ -598,6 +599,7 @@ fn material(m: &MaterialDesc, base: &Path, cache: &mut AssetCache) -> Result<Mat
             ks: scalar("ks", ks, base, cache)?,
             cs: colour("cs", cs, base, cache)?,
             exp: scalar("exp", exp, base, cache)?,
+            ce: colour("ce", ce, base, cache)?,
         },
         MaterialDesc::Reflective {
             ka,

@@ -397,6 +397,11 @@ pub enum MaterialDesc {
         /// Phong exponent: larger is a smaller, sharper highlight; default 20.
         #[serde(default = "default_exp")]
         exp: ScalarDesc,
+        /// Glow on the dark side (city lights at night): linear radiance added where direct
+        /// light does not reach, fading in over the first 0.2 of the lights' summed `n . wi`
+        /// past the terminator (and fully where every light is shadowed); default black (none).
+        #[serde(default = "black_param", skip_serializing_if = "ColorDesc::is_black")]
+        ce: ColorDesc,
     },
     /// The book's `Reflective`: Phong plus a perfect mirror, which adds `kr cr` times the
     /// radiance seen along the mirrored ray (traced up to `render.reflection_depth` bounces).
@@ -654,6 +659,12 @@ impl ScalarDesc {
 }
 
 impl ColorDesc {
+    /// Whether this is the plain colour black (a glow that is off).
+    #[must_use]
+    pub fn is_black(&self) -> bool {
+        *self == Self::Value(Rgb::BLACK)
+    }
+
     /// The texture this colour reads, if it is not a plain colour.
     #[must_use]
     pub const fn texture(&self) -> Option<&TextureDesc> {
@@ -684,6 +695,9 @@ impl From<Rgb> for ColorDesc {
     }
 }
 
+fn black_param() -> ColorDesc {
+    ColorDesc::Value(Rgb::BLACK)
+}
 fn white_param() -> ColorDesc {
     ColorDesc::Value(Rgb::WHITE)
 }
@@ -909,6 +923,7 @@ impl MaterialDesc {
                 ks,
                 cs,
                 exp,
+                ce,
                 ..
             } => vec![
                 ("ka", Scalar(ka)),
@@ -916,6 +931,7 @@ impl MaterialDesc {
                 ("ks", Scalar(ks)),
                 ("cs", Color(cs)),
                 ("exp", Scalar(exp)),
+                ("ce", Color(ce)),
             ],
             Self::Reflective {
                 ka,
@@ -950,6 +966,7 @@ impl MaterialDesc {
                 ks,
                 cs,
                 exp,
+                ce,
                 ..
             } => vec![
                 ("ka", Scalar(ka)),
@@ -957,6 +974,7 @@ impl MaterialDesc {
                 ("ks", Scalar(ks)),
                 ("cs", Color(cs)),
                 ("exp", Scalar(exp)),
+                ("ce", Color(ce)),
             ],
             Self::Reflective {
                 ka,
@@ -1008,6 +1026,7 @@ impl MaterialDesc {
                 ks,
                 cs,
                 exp,
+                ce,
             } => (
                 cd,
                 vec![
@@ -1016,6 +1035,7 @@ impl MaterialDesc {
                     ParamMut::Scalar(ks),
                     ParamMut::Color(cs),
                     ParamMut::Scalar(exp),
+                    ParamMut::Color(ce),
                 ],
             ),
             Self::Reflective {
@@ -1347,6 +1367,7 @@ impl MaterialKind {
                 ks: default_ks(),
                 cs: white_param(),
                 exp: default_exp(),
+                ce: black_param(),
             },
             Self::Reflective => MaterialDesc::Reflective {
                 ka: default_ka(),
@@ -1530,6 +1551,7 @@ mod tests {
             ks: 0.5.into(),
             cs: Rgb::WHITE.into(),
             exp: 50.0.into(),
+            ce: Rgb::BLACK.into(),
         };
         assert_eq!(
             phong.converted(MaterialKind::Matte),

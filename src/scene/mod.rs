@@ -20,7 +20,7 @@ use crate::camera::Camera;
 use crate::error::{Error, Result};
 use crate::geometry::{LocalHit, Object, Shape};
 use crate::mapping::Mapping;
-use crate::material::{Light, Material};
+use crate::material::{Light, Material, ShadePoint};
 use crate::math::{Ray, RayDifferential, Rgb, Vec3A, max_abs};
 use crate::sampler::{PixelFilter, PixelSampler};
 use crate::texture::{TextureContext, View};
@@ -327,6 +327,9 @@ impl Scene {
             Shape::Cylinder { capped: false } | Shape::Mesh(_) => true,
         };
         let skip = if self_shadows { usize::MAX } else { hit.object };
+        // Summed n . wi of the lights that reach the point, for a glow (only then).
+        let glows = sp.glow != Rgb::BLACK;
+        let mut lit = 0.0;
         for (i, light) in self.lights.iter().enumerate() {
             let (wi, dist, li, shadows) = light.incident(hit.p);
             if hit.ns.dot(wi) <= 0.0 || hit.ng.dot(wi) <= 0.0 {
@@ -345,6 +348,12 @@ impl Scene {
                 }
             }
             l += sp.direct(hit.ns, hit.wo, wi, li);
+            if glows {
+                lit += hit.ns.dot(wi);
+            }
+        }
+        if glows {
+            l += sp.glow * ShadePoint::glow_weight(lit);
         }
         if sp.mirror != Rgb::BLACK && depth < self.settings.reflection_depth {
             l += sp.mirror * self.reflected(hit, diff, offset, depth);

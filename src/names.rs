@@ -120,7 +120,7 @@ mod tests {
         assert_eq!(round_trips::<Lookup>(), ["lecture", "centred"]);
         assert_eq!(
             round_trips::<crate::texture::Channel>(),
-            ["Luminance", "Red", "Green", "Blue"]
+            ["Luminance", "Red", "Green", "Blue", "Alpha"]
         );
         assert_eq!(
             round_trips::<Wrap>(),

@@ -593,3 +593,156 @@ fn the_glow_shows_only_where_the_light_does_not_reach() {
     }
     assert!(dark > 50 && day > 30, "{dark} {day}");
 }
+
+// ---------------------------------------------------------------------------------------------
+// Clip maps (part 6).
+
+/// The cut-out of the `cutout` preset, `assets/cutout_holes_256.png`: a wooden board (RGB) with
+/// a 4 x 4 grid of round holes and a star in alpha, edges antialiased by 4 x 4 supersampling.
+/// This test is the recipe (no free image fitted): it draws the board again and compares it
+/// with the shipped file byte for byte; `TEXPLORE_WRITE_CUTOUT=1` writes it.
+#[test]
+fn the_cutout_image_is_drawn_by_its_recipe() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let n = 256u32;
+    let solid = |x: f32, y: f32| {
+        // Holes: circles of radius 0.3 cell in a 4 x 4 grid, the centre cells a five-point star.
+        let (cx, cy) = ((x * 4.0).floor(), (y * 4.0).floor());
+        let (fx, fy) = (x * 4.0 - cx - 0.5, y * 4.0 - cy - 0.5);
+        let centre = (1.0..=2.0).contains(&cx) && (1.0..=2.0).contains(&cy);
+        if centre {
+            let (dx, dy) = (x - 0.5, y - 0.5);
+            let r = (dx * dx + dy * dy).sqrt();
+            let a = dy.atan2(dx) * 5.0 / 2.0;
+            let star = 0.13 + 0.09 * (a.cos().abs() * 2.0 - 1.0).max(0.0);
+            r > star
+        } else {
+            fx * fx + fy * fy > 0.3 * 0.3
+        }
+    };
+    let board = image::RgbaImage::from_fn(n, n, |px, py| {
+        let mut cover = 0u32;
+        for sy in 0..4 {
+            for sx in 0..4 {
+                let x = (px as f32 + (sx as f32 + 0.5) / 4.0) / n as f32;
+                let y = (py as f32 + (sy as f32 + 0.5) / 4.0) / n as f32;
+                cover += u32::from(solid(x, y));
+            }
+        }
+        let grain = ((py as f32 * 0.35).sin() * 0.5 + 0.5) * 40.0;
+        let alpha = (cover * 255 / 16) as u8;
+        image::Rgba([(150.0 + grain) as u8, (95.0 + grain * 0.6) as u8, 50, alpha])
+    });
+    let shipped = root.join("assets/cutout_holes_256.png");
+    if std::env::var_os("TEXPLORE_WRITE_CUTOUT").is_some() {
+        board.save(&shipped).unwrap();
+    }
+    let on_disk = image::open(&shipped).unwrap().to_rgba8();
+    assert!(
+        on_disk == board,
+        "{} differs from its recipe",
+        shipped.display()
+    );
+}
+
+/// The floor under `cutout`'s board, lit through it, seen from straight above; and the board
+/// itself seen from straight above (white where it exists). The light comes from (-1, 1, 0), the
+/// board is 2 above the floor, so the shadow is the board moved 2 along +x.
+fn cutout_views(filter: &str) -> (Vec<Rgb>, Vec<Rgb>) {
+    let scene = |centre_x: f32, floor: bool| {
+        let floor_obj = if floor {
+            "(shape: Plane, material: Matte(ka: 0, kd: 1, cd: Constant((1, 1, 1)))),"
+        } else {
+            ""
+        };
+        let board_material = if floor {
+            "Matte(cd: Constant((0.5, 0.5, 0.5)))"
+        } else {
+            "Emissive(ce: Constant((1, 1, 1)))"
+        };
+        format!(
+            r#"(version: 1,
+                camera: (eye: ({centre_x}, 10, 0), look_at: ({centre_x}, 0, 0), up: (0, 0, -1),
+                         projection: Orthographic(height: 2)),
+                render: (width: 64, height: 64, spp: 1, sampler: Regular),
+                ambient: (ls: 0),
+                lights: [Directional(direction: (-1, 1, 0), ls: 1)],
+                objects: [
+                    {floor_obj}
+                    (shape: Rectangle, transform: (translate: (0, 2, 0), scale: (0.95, 1, 0.95)),
+                     material: {board_material}, casts_shadows: Some(true),
+                     alpha: (texture: Image(path: "assets/cutout_holes_256.png",
+                             mapping: Rectangular, filter: {filter}), channel: Alpha)),
+                ])"#
+        )
+    };
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let render_at = |text: String| {
+        let path = root.join("cutout-test.ron");
+        let desc = parse_preset(&text, &path).unwrap();
+        let scene = build_scene(&desc, &path, &mut AssetCache::new()).unwrap();
+        let film = render_blocking(&scene, |_| {});
+        assert!(film.is_finite());
+        film.to_linear()
+    };
+    (render_at(scene(2.0, true)), render_at(scene(0.0, false)))
+}
+
+#[test]
+fn a_clip_maps_shadow_has_the_cut_outs_shape() {
+    let (floor, board) = cutout_views("Nearest");
+    let lit_floor = Rgb::WHITE * (std::f32::consts::FRAC_1_SQRT_2 / std::f32::consts::PI);
+    // Seen from above against black, the white board shows its alpha `a`; the floor under it
+    // receives the light times the board's transmittance `1 - a` at the shadow ray's crossing,
+    // the same point of the board: the shadow is the cut-out, texel for texel.
+    let (mut shadow, mut hole, mut wrong) = (0, 0, 0);
+    for (f, b) in floor.iter().zip(&board) {
+        let expected = lit_floor.1 * (1.0 - b.1);
+        if (f.1 - expected).abs() > 0.01 {
+            wrong += 1;
+        }
+        shadow += usize::from(b.1 > 0.99);
+        hole += usize::from(b.1 < 0.01);
+    }
+    assert!(
+        shadow > 1000 && hole > 500,
+        "{shadow} in shadow, {hole} in holes"
+    );
+    assert!(
+        wrong < 20,
+        "{wrong} pixels disagree ({shadow} shadow, {hole} hole)"
+    );
+}
+
+#[test]
+fn a_filtered_alpha_gives_soft_edges_at_one_sample() {
+    // Seen directly, the board's edges against black: nearest alpha is 0 or 1 per pixel; the
+    // EWA-filtered alpha blends partly covered pixels.
+    let (_, hard) = cutout_views("Nearest");
+    let (_, soft) = cutout_views("Ewa");
+    let partial = |img: &[Rgb]| img.iter().filter(|c| c.1 > 0.02 && c.1 < 0.98).count();
+    let (ph, ps) = (partial(&hard), partial(&soft));
+    assert!(
+        ps > ph + 100,
+        "partly covered pixels: {ph} nearest, {ps} EWA"
+    );
+}
+
+#[test]
+fn an_image_without_alpha_is_refused_as_a_clip_map() {
+    let text = SCENE.replace(
+        "objects: [(shape: Rectangle, material: MATERIAL)]",
+        r#"objects: [(shape: Rectangle, material: Matte(cd: Constant((1, 1, 1))),
+            alpha: (texture: Image(path: "assets/earth_2048x1024.jpg"), channel: Alpha))]"#,
+    );
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let path = root.join("p.ron");
+    let desc = parse_preset(&text, &path).unwrap();
+    let e = build_scene(&desc, &path, &mut AssetCache::new())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("earth_2048x1024.jpg") && e.contains("no alpha channel"),
+        "{e}"
+    );
+}

@@ -14,7 +14,7 @@ use crate::math::{Affine3A, Quat, Vec3, Vec3A};
 use crate::sampler::{PixelFilter, PixelSampler};
 use crate::texture::{
     Channel, Checker, Filter, ImageData, ImageTexture, Lookup, MAX_ANISOTROPY_LIMIT, MipPyramid,
-    Texture, View, load_image, uv_grid_image,
+    Texture, View, load_alpha, load_image, uv_grid_image,
 };
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -186,6 +186,15 @@ impl Numbers {
         for (name, t) in o.material.textures() {
             self.texture(&format!("{at}.material.{name}"), t);
         }
+        match &o.alpha {
+            Some(ScalarDesc::Value(v)) => self.check(|| format!("{at}.alpha"), &[*v]),
+            Some(a) => {
+                if let Some(t) = a.texture() {
+                    self.texture(&format!("{at}.alpha"), t);
+                }
+            }
+            None => {}
+        }
     }
 
     /// Every number of one texture; `tex` names it.
@@ -235,6 +244,7 @@ fn not_finite(v: f32) -> String {
 #[derive(Debug, Default)]
 pub struct AssetCache {
     images: HashMap<(PathBuf, bool), Arc<ImageData>>,
+    alphas: HashMap<PathBuf, Arc<ImageData>>,
     uv_grid: Option<Arc<ImageData>>,
     meshes: HashMap<PathBuf, Arc<Mesh>>,
     /// Mip pyramids, built on first use by a mip filter and keyed by their base image (the
@@ -260,6 +270,19 @@ impl AssetCache {
         }
         let img = Arc::new(load_image(path, srgb)?);
         self.images.insert(key, img.clone());
+        Ok(img)
+    }
+
+    /// The alpha channel of the image at `path` as a grey image, decoded once.
+    ///
+    /// # Errors
+    /// See [`load_alpha`].
+    pub fn alpha(&mut self, path: &Path) -> Result<Arc<ImageData>> {
+        if let Some(img) = self.alphas.get(path) {
+            return Ok(img.clone());
+        }
+        let img = Arc::new(load_alpha(path)?);
+        self.alphas.insert(path.to_path_buf(), img.clone());
         Ok(img)
     }
 
@@ -355,6 +378,7 @@ pub fn build_scene(desc: &SceneDesc, preset_path: &Path, cache: &mut AssetCache)
     let mut objects = Vec::with_capacity(desc.objects.len());
     let mut materials = Vec::with_capacity(desc.objects.len());
     let mut needs_differentials = false;
+    let mut clips = Vec::with_capacity(desc.objects.len());
     for (i, o) in desc.objects.iter().enumerate() {
         let what = if o.name.is_empty() {
             format!("objects[{i}]")
@@ -392,11 +416,25 @@ pub fn build_scene(desc: &SceneDesc, preset_path: &Path, cache: &mut AssetCache)
             (super::ShapeDesc::Mesh { path, .. }, true) => format!("{path} {i}"),
             (s, true) => format!("{s:?} {i}"),
         };
+        let clip = match &o.alpha {
+            None => None,
+            Some(a) => match scalar("alpha", a, base, cache).map_err(|e| match e {
+                Error::Invalid { message, .. } => bad(format!("{what}.{message}")),
+                other => other,
+            })? {
+                // Solid everywhere: no clip map at all.
+                Scalar::Const(v) if v >= 1.0 => None,
+                s => Some(s),
+            },
+        };
+        needs_differentials |= clip.as_ref().is_some_and(Scalar::needs_differentials);
+        clips.push(clip);
         let mut obj = Object::new(shape, transform, materials.len(), name);
         obj.casts_shadows = o.casts_shadows.unwrap_or(material.is_lit());
         materials.push(material);
         objects.push(obj);
     }
+    let has_clips = clips.iter().any(Option::is_some);
     Ok(Scene {
         objects,
         materials,
@@ -405,6 +443,8 @@ pub fn build_scene(desc: &SceneDesc, preset_path: &Path, cache: &mut AssetCache)
         camera,
         settings,
         needs_differentials,
+        clips,
+        has_clips,
     })
 }
 
@@ -655,10 +695,59 @@ fn scalar(what: &str, s: &ScalarDesc, base: &Path, cache: &mut AssetCache) -> Re
         ScalarDesc::Texture(t) => (t, Channel::Luminance),
         ScalarDesc::Channel(c) => (&c.texture, c.channel),
     };
+    if channel == Channel::Alpha {
+        let texture = alpha_texture(t, base, cache).map_err(|e| match e {
+            Error::Invalid { path, message } => Error::Invalid {
+                path,
+                message: format!("{what}.{message}"),
+            },
+            other => other,
+        })?;
+        return Ok(Scalar::Texture(Box::new(ScalarTexture {
+            texture,
+            channel,
+        })));
+    }
     Ok(match param_texture(what, t, base, cache)? {
         Texture::Constant(c) => Scalar::Const(channel.of(c)),
         texture => Scalar::Texture(Box::new(ScalarTexture { texture, channel })),
     })
+}
+
+/// The alpha channel of an `Image` texture, read through its mapping, filter, wrap and
+/// (u, v) transform like its colour would be.
+fn alpha_texture(t: &TextureDesc, base: &Path, cache: &mut AssetCache) -> Result<Texture> {
+    let TextureDesc::Image {
+        path,
+        mapping,
+        filter,
+        lookup,
+        wrap,
+        max_anisotropy,
+        uv,
+        ..
+    } = t
+    else {
+        return Err(Error::invalid(
+            base,
+            format!("channel Alpha needs an Image texture, not {}", t.kind()),
+        ));
+    };
+    check_anisotropy("Image", *max_anisotropy).map_err(|m| Error::invalid(base, m))?;
+    let transform = uv_transform("Image", uv).map_err(|m| Error::invalid(base, m))?;
+    let image = cache.alpha(&base.join(path))?;
+    let mip = filter.needs_mip().then(|| cache.mip(&image));
+    Ok(Texture::Image(ImageTexture {
+        image,
+        mapping: *mapping,
+        filter: *filter,
+        lookup: *lookup,
+        wrap: *wrap,
+        scale: 1.0,
+        mip,
+        max_anisotropy: *max_anisotropy,
+        transform,
+    }))
 }
 
 /// A colour parameter: a constant stays a plain colour (a constant texture becomes one).
@@ -811,7 +900,8 @@ pub fn apply_overrides(desc: &mut SceneDesc, o: Overrides) {
         r.adaptive = Some(a);
     }
     for obj in &mut desc.objects {
-        for t in obj.material.textures_mut() {
+        let alpha = obj.alpha.as_mut().and_then(ScalarDesc::texture_mut);
+        for t in obj.material.textures_mut().into_iter().chain(alpha) {
             match t {
                 TextureDesc::Image {
                     filter,

@@ -288,6 +288,32 @@ pub struct ObjectDesc {
     /// Whether it blocks shadow rays (default: yes, except emissive objects).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub casts_shadows: Option<bool>,
+    /// A clip map: where the surface exists (1) or not (0), in between partly (a filtered
+    /// edge); primary, mirrored and shadow rays all pass where it is below 1. Usually an
+    /// image's alpha: `alpha: (texture: Image(path: "leaf.png", mapping: Rectangular),
+    /// channel: Alpha)`; default none (solid everywhere).
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        serialize_with = "bare_alpha",
+        deserialize_with = "some_alpha"
+    )]
+    pub alpha: Option<ScalarDesc>,
+}
+
+/// Writes `alpha` as the coefficient itself (`alpha: (texture: ..., channel: Alpha)`), without
+/// RON's `Some(...)`, as it is read.
+#[allow(clippy::ref_option)] // serde's serialize_with passes a reference to the field
+fn bare_alpha<S: serde::Serializer>(a: &Option<ScalarDesc>, s: S) -> Result<S::Ok, S::Error> {
+    match a {
+        Some(a) => a.serialize(s),
+        None => s.serialize_none(),
+    }
+}
+
+/// Reads `alpha` written as the coefficient itself.
+fn some_alpha<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Option<ScalarDesc>, D::Error> {
+    ScalarDesc::deserialize(d).map(Some)
 }
 
 /// Shapes: the lecture's generic objects, or a triangle mesh from a file.

@@ -183,7 +183,14 @@ pub fn asset_paths(desc: &SceneDesc, preset_dir: &Path) -> Vec<PathBuf> {
         }
     };
     for o in &desc.objects {
-        for (_, t) in o.material.textures() {
+        let alpha = o.alpha.as_ref().and_then(|a| a.texture());
+        for t in o
+            .material
+            .textures()
+            .into_iter()
+            .map(|(_, t)| t)
+            .chain(alpha)
+        {
             if let TextureDesc::Image { path, .. } = t {
                 add(preset_dir.join(path));
             }
@@ -215,7 +222,8 @@ pub fn rebase_assets(desc: &mut SceneDesc, from: &Path, to: &Path) {
             .into_owned();
     };
     for o in &mut desc.objects {
-        for t in o.material.textures_mut() {
+        let alpha = o.alpha.as_mut().and_then(super::ScalarDesc::texture_mut);
+        for t in o.material.textures_mut().into_iter().chain(alpha) {
             if let TextureDesc::Image { path, .. } = t {
                 rebase(path);
             }

@@ -20,7 +20,7 @@ use crate::camera::Camera;
 use crate::error::{Error, Result};
 use crate::geometry::{LocalHit, Object, Shape};
 use crate::mapping::Mapping;
-use crate::material::{Light, Material, ShadePoint};
+use crate::material::{Light, Material, Scalar, ShadePoint};
 use crate::math::{Ray, RayDifferential, Rgb, Vec3A, max_abs};
 use crate::sampler::{PixelFilter, PixelSampler};
 use crate::texture::{TextureContext, View};
@@ -101,7 +101,16 @@ pub struct Scene {
     pub settings: RenderSettings,
     /// Whether any texture needs ray differentials (computed only then).
     pub needs_differentials: bool,
+    /// Per object (as `objects`), its clip map: where the surface exists (alpha), if it has one.
+    pub clips: Vec<Option<Scalar>>,
+    /// Whether any object has a clip map; without one every ray takes the solid-surface path.
+    pub has_clips: bool,
 }
+
+/// The most clip-mapped surfaces one ray (or shadow ray) passes through before it stops: what
+/// lies behind more than this many partly transparent layers is taken as black (or, for a
+/// shadow ray, as blocked).
+pub const MAX_CLIP_LAYERS: u32 = 16;
 
 /// A hit resolved in world space, with what the shading step needs.
 #[derive(Clone, Copy, Debug)]
@@ -164,6 +173,13 @@ impl Scene {
     #[inline]
     pub fn hit(&self, ray: &Ray) -> Option<SurfaceHit> {
         let (object, local) = self.intersect(ray, f32::INFINITY)?;
+        Some(self.resolve(object, local, ray))
+    }
+
+    /// An object-space hit of `object` by `ray` resolved in world space.
+    #[must_use]
+    #[inline]
+    pub fn resolve(&self, object: usize, local: LocalHit, ray: &Ray) -> SurfaceHit {
         let obj = &self.objects[object];
         let p = obj.point_to_world(local.p);
         let mut ng = obj.normal_to_world(local.n);
@@ -179,7 +195,7 @@ impl Scene {
             ng = -ng;
             ns = -ns;
         }
-        Some(SurfaceHit {
+        SurfaceHit {
             object,
             local,
             p,
@@ -187,7 +203,7 @@ impl Scene {
             ns,
             wo,
             front_face: !back_face,
-        })
+        }
     }
 
     /// The texture context of a hit: object-space point and, when a filter needs them, the
@@ -262,10 +278,7 @@ impl Scene {
     #[must_use]
     #[inline]
     pub fn trace_keyed(&self, ray: &Ray, diff: Option<&RayDifferential>) -> (Rgb, u32) {
-        let Some(hit) = self.hit(ray) else {
-            return (self.settings.background, 0);
-        };
-        let (l, key) = self.shade_keyed(&hit, diff);
+        let (l, key) = self.radiance_keyed(ray, diff, 0, 0);
         (if l.is_finite() { l } else { Rgb::BLACK }, key)
     }
 
@@ -285,10 +298,93 @@ impl Scene {
 
     /// Radiance along a ray that has already been mirrored `depth` times (0 for a camera ray).
     fn trace_at_depth(&self, ray: &Ray, diff: Option<&RayDifferential>, depth: u32) -> Rgb {
-        match self.hit(ray) {
-            Some(hit) => self.shade_at_depth(&hit, diff, depth).0,
-            None => self.settings.background,
+        self.radiance_keyed(ray, diff, depth, 0).0
+    }
+
+    /// Radiance and edge key along a ray mirrored `depth` times that has passed `layer`
+    /// clip-mapped surfaces. A clip-mapped hit with alpha `a` below 1 blends its shading with
+    /// what lies behind it: `a L_surface + (1 - a) L_behind` (with a filtered alpha, a soft
+    /// edge at one sample per pixel).
+    fn radiance_keyed(
+        &self,
+        ray: &Ray,
+        diff: Option<&RayDifferential>,
+        depth: u32,
+        layer: u32,
+    ) -> (Rgb, u32) {
+        let Some(hit) = self.hit(ray) else {
+            return (self.settings.background, 0);
+        };
+        if self.has_clips
+            && let Some(clip) = &self.clips[hit.object]
+        {
+            let a = clip.eval(&self.texture_context(&hit, diff)).clamp(0.0, 1.0);
+            if a < 1.0 {
+                let behind = if layer + 1 < MAX_CLIP_LAYERS {
+                    let origin = hit.p + ray.dir.normalize_or_zero() * self.offset_at(&hit);
+                    self.radiance_keyed(&Ray::new(origin, ray.dir), diff, depth, layer + 1)
+                } else {
+                    (Rgb::BLACK, 0)
+                };
+                if a <= 0.0 {
+                    return behind;
+                }
+                let (l, key) = self.shade_at_depth(&hit, diff, depth);
+                return (l * a + behind.0 * (1.0 - a), key);
+            }
         }
+        self.shade_at_depth(&hit, diff, depth)
+    }
+
+    /// How far rays leave a hit point: [`SHADOW_OFFSET_RELATIVE`] of the coordinates' size.
+    #[inline]
+    fn offset_at(&self, hit: &SurfaceHit) -> f32 {
+        let obj = &self.objects[hit.object];
+        SHADOW_OFFSET_RELATIVE
+            * (max_abs(hit.p) + max_abs(obj.world_from_object.translation)).max(f32::MIN_POSITIVE)
+    }
+
+    /// The share of light that passes along a shadow ray within (0, `t_max`), ignoring object
+    /// `skip`: 0 behind a solid occluder, `1 - alpha` through each clip-mapped surface met
+    /// (its alpha point-sampled where the ray crosses it), so a cut-out casts a cut-out shadow.
+    #[must_use]
+    pub fn transmittance(&self, ray: &Ray, t_max: f32, skip: usize) -> f32 {
+        let mut tr = 1.0;
+        for (i, o) in self.objects.iter().enumerate() {
+            if i == skip || !o.casts_shadows {
+                continue;
+            }
+            let Some(clip) = &self.clips[i] else {
+                if o.intersect(ray, t_max).is_some() {
+                    return 0.0;
+                }
+                continue;
+            };
+            let mut r = *ray;
+            let mut t_left = t_max;
+            for _ in 0..MAX_CLIP_LAYERS {
+                let Some(h) = o.intersect(&r, t_left) else {
+                    break;
+                };
+                let hit = self.resolve(i, h, &r);
+                let ctx = self.texture_context_at(&hit, Vec3A::ZERO, Vec3A::ZERO);
+                tr *= 1.0 - clip.eval(&ctx).clamp(0.0, 1.0);
+                if tr <= 0.0 {
+                    return 0.0;
+                }
+                let origin = hit.p + r.dir.normalize_or_zero() * self.offset_at(&hit);
+                let len = r.dir.length();
+                if len <= 0.0 {
+                    break;
+                }
+                t_left -= (origin - r.origin).length() / len;
+                if t_left <= 0.0 {
+                    break;
+                }
+                r = Ray::new(origin, r.dir);
+            }
+        }
+        tr
     }
 
     /// Shades a hit reached after `depth` mirror bounces; a mirror adds the radiance along its
@@ -342,6 +438,18 @@ impl Scene {
                 } else {
                     f32::INFINITY
                 };
+                if self.has_clips {
+                    let tr = self.transmittance(&Ray::new(origin, wi), t_max, skip);
+                    if tr <= 0.0 {
+                        key |= (1 << (16 + i.min(14))) as u32;
+                        continue;
+                    }
+                    l += sp.direct(hit.ns, hit.wo, wi, li) * tr;
+                    if glows {
+                        lit += hit.ns.dot(wi) * tr;
+                    }
+                    continue;
+                }
                 if self.occluded_except(&Ray::new(origin, wi), t_max, skip) {
                     key |= (1 << (16 + i.min(14))) as u32;
                     continue;

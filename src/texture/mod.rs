@@ -13,8 +13,8 @@ mod procedural;
 pub use debug::{View, mip_level_color};
 pub use explain::{explain_lookup, explain_wrap};
 pub use image::{
-    ImageData, MAX_IMAGE_BYTES, MAX_IMAGE_DIMENSION, TILE, Texels, load_image, save_png,
-    save_png_checked,
+    ImageData, MAX_IMAGE_BYTES, MAX_IMAGE_DIMENSION, TILE, Texels, load_alpha, load_image,
+    save_png, save_png_checked,
 };
 pub use mip::{DEFAULT_MAX_ANISOTROPY, EWA_FOOTPRINT_SCALE, MAX_ANISOTROPY_LIMIT, MipPyramid};
 pub use procedural::{Checker, uv_grid_image};
@@ -122,6 +122,9 @@ pub enum Channel {
     /// The blue channel.
     #[strum(message = "The blue channel.")]
     Blue,
+    /// The image file's alpha channel (an `Image` texture only; for clip maps).
+    #[strum(message = "The image file's alpha (transparency) channel, for clip maps.")]
+    Alpha,
 }
 
 impl crate::names::Named for Channel {
@@ -137,7 +140,8 @@ impl Channel {
         match self {
             Self::Luminance if c.0 == c.1 && c.1 == c.2 => c.0,
             Self::Luminance => c.luminance(),
-            Self::Red => c.0,
+            // An alpha texture holds alpha in every channel.
+            Self::Red | Self::Alpha => c.0,
             Self::Green => c.1,
             Self::Blue => c.2,
         }

@@ -746,3 +746,95 @@ fn an_image_without_alpha_is_refused_as_a_clip_map() {
         "{e}"
     );
 }
+
+// ---------------------------------------------------------------------------------------------
+// Bump maps (part 5).
+
+#[test]
+fn a_flat_height_map_changes_nothing() {
+    let base = "Phong(ks: 0.5, exp: 10, cd: Checker(mapping: Rectangular))";
+    let plain = render(base);
+    for height in [
+        "Constant((0.4, 0.4, 0.4))",
+        "Checker(colors: ((0.3, 0.3, 0.3), (0.3, 0.3, 0.3)), filter: Ewa)",
+    ] {
+        let text = SCENE.replace("MATERIAL", base).replace(
+            "material: Phong",
+            &format!("bump: (height: {height}, scale: 0.5), material: Phong"),
+        );
+        let flat = render_text(&text);
+        assert!(flat == plain, "{height}");
+    }
+    // A height that varies does change the image.
+    let text = SCENE.replace("MATERIAL", base).replace(
+        "material: Phong",
+        "bump: (height: UvGrid(mapping: Rectangular), scale: 0.05), material: Phong",
+    );
+    assert!(render_text(&text) != plain);
+}
+
+#[test]
+fn bumped_normals_are_finite_and_unit_at_poles_seams_and_degenerate_triangles() {
+    use texplore::material::{Bump, dual_basis};
+    use texplore::texture::TextureContext;
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let path = root.join("bump-test.ron");
+    let text = r#"(version: 1, camera: (eye: (0, 0, 4)),
+        objects: [(shape: Sphere, material: Matte(cd: Constant((1, 1, 1))),
+                   bump: (height: Image(path: "assets/brick_gray_512.png", mapping: Spherical,
+                          filter: Ewa), scale: 0.5))])"#;
+    let desc = parse_preset(text, &path).unwrap();
+    let scene = build_scene(&desc, &path, &mut AssetCache::new()).unwrap();
+    let bump: &Bump = scene.bumps[0].as_ref().unwrap();
+    let points = [
+        Vec3A::Y,                                // north pole
+        -Vec3A::Y,                               // south pole
+        Vec3A::new(0.0, 0.0, 1.0),               // the seam (u = 0)
+        Vec3A::new(-1e-7, 0.0, 1.0).normalize(), // just across it
+        Vec3A::new(0.6, 0.0, -0.8),
+        Vec3A::new(1e-20, 1.0, 1e-20).normalize(),
+    ];
+    for p in points {
+        for (dpdx, dpdy) in [
+            (Vec3A::ZERO, Vec3A::ZERO),
+            (Vec3A::new(1e-3, 0.0, 0.0), Vec3A::new(0.0, 0.0, 1e-3)),
+        ] {
+            let ctx = TextureContext {
+                p,
+                dpdx,
+                dpdy,
+                shape_uv: None,
+                natural: Mapping::Spherical,
+            };
+            let n = bump.perturb(&ctx, p);
+            assert!(
+                n.is_finite() && (n.length() - 1.0).abs() < 1e-5,
+                "{p:?}: {n:?}"
+            );
+        }
+    }
+    // A degenerate (u, v) layout on a mesh triangle has no slope to follow: the normal stays.
+    assert_eq!(
+        dual_basis(Vec3A::X, Vec3A::X * 2.0),
+        (Vec3A::ZERO, Vec3A::ZERO)
+    );
+    let ctx = TextureContext {
+        p: Vec3A::ZERO,
+        dpdx: Vec3A::ZERO,
+        dpdy: Vec3A::ZERO,
+        shape_uv: Some((Vec2::new(0.3, 0.3), Some((Vec3A::X, Vec3A::X)))),
+        natural: Mapping::Spherical,
+    };
+    let uv_bump = Bump {
+        height: bump.height.clone(),
+        scale: 0.5,
+    };
+    let mut uv_bump = uv_bump;
+    if let texplore::texture::Texture::Image(t) = &mut uv_bump.height {
+        t.mapping = Mapping::Uv;
+    }
+    assert_eq!(uv_bump.perturb(&ctx, Vec3A::Z), Vec3A::Z);
+    // Rendered: every pixel finite, also where the bumped normal would face away.
+    let film = render_blocking(&scene, |_| {});
+    assert!(film.is_finite());
+}

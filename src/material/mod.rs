@@ -3,8 +3,10 @@
 //! Every coefficient and colour may be a texture (the lecture's "any c* or k* value can be a
 //! texture"): see [`Scalar`] and [`Colour`], which cost nothing when constant.
 
+mod bump;
 mod param;
 
+pub use bump::{Bump, MIN_BUMP_STEP, dual_basis};
 pub use param::{Colour, ParamValue, Scalar, ScalarTexture};
 
 use crate::math::{INV_PI, Rgb, Vec3A};

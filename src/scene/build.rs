@@ -9,7 +9,7 @@ use crate::camera::{Camera, Projection};
 use crate::error::{Error, Result};
 use crate::geometry::{Mesh, MeshShape, Object, Shape};
 use crate::mapping::{UvAffine, UvTransform};
-use crate::material::{Colour, Light, Material, Scalar, ScalarTexture};
+use crate::material::{Bump, Colour, Light, Material, Scalar, ScalarTexture};
 use crate::math::{Affine3A, Quat, Vec3, Vec3A};
 use crate::sampler::{PixelFilter, PixelSampler};
 use crate::texture::{
@@ -195,6 +195,10 @@ impl Numbers {
             }
             None => {}
         }
+        if let Some(b) = &o.bump {
+            self.check(|| format!("{at}.bump.scale"), &[b.scale]);
+            self.texture(&format!("{at}.bump.height"), &b.height);
+        }
     }
 
     /// Every number of one texture; `tex` names it.
@@ -379,6 +383,7 @@ pub fn build_scene(desc: &SceneDesc, preset_path: &Path, cache: &mut AssetCache)
     let mut materials = Vec::with_capacity(desc.objects.len());
     let mut needs_differentials = false;
     let mut clips = Vec::with_capacity(desc.objects.len());
+    let mut bumps = Vec::with_capacity(desc.objects.len());
     for (i, o) in desc.objects.iter().enumerate() {
         let what = if o.name.is_empty() {
             format!("objects[{i}]")
@@ -429,6 +434,31 @@ pub fn build_scene(desc: &SceneDesc, preset_path: &Path, cache: &mut AssetCache)
         };
         needs_differentials |= clip.as_ref().is_some_and(Scalar::needs_differentials);
         clips.push(clip);
+        let bump = match &o.bump {
+            None => None,
+            Some(b) => {
+                if !b.scale.is_finite() {
+                    return Err(bad(format!("{what}.bump.scale: {} is not finite", b.scale)));
+                }
+                let height =
+                    param_texture("bump.height", &b.height, base, cache).map_err(|e| match e {
+                        Error::Invalid { message, .. } => bad(format!("{what}.{message}")),
+                        other => other,
+                    })?;
+                match height {
+                    // A constant height has no slope: no bump map at all.
+                    Texture::Constant(_) => None,
+                    height => Some(Bump {
+                        height,
+                        scale: b.scale,
+                    }),
+                }
+            }
+        };
+        needs_differentials |= bump
+            .as_ref()
+            .is_some_and(|b| b.height.needs_differentials());
+        bumps.push(bump);
         let mut obj = Object::new(shape, transform, materials.len(), name);
         obj.casts_shadows = o.casts_shadows.unwrap_or(material.is_lit());
         materials.push(material);
@@ -445,6 +475,7 @@ pub fn build_scene(desc: &SceneDesc, preset_path: &Path, cache: &mut AssetCache)
         needs_differentials,
         clips,
         has_clips,
+        bumps,
     })
 }
 
@@ -901,7 +932,14 @@ pub fn apply_overrides(desc: &mut SceneDesc, o: Overrides) {
     }
     for obj in &mut desc.objects {
         let alpha = obj.alpha.as_mut().and_then(ScalarDesc::texture_mut);
-        for t in obj.material.textures_mut().into_iter().chain(alpha) {
+        let bump = obj.bump.as_mut().map(|b| &mut b.height);
+        for t in obj
+            .material
+            .textures_mut()
+            .into_iter()
+            .chain(alpha)
+            .chain(bump)
+        {
             match t {
                 TextureDesc::Image {
                     filter,

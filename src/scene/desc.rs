@@ -299,21 +299,49 @@ pub struct ObjectDesc {
         deserialize_with = "some_alpha"
     )]
     pub alpha: Option<ScalarDesc>,
+    /// A bump map: a height texture that tilts the shading normal (the surface itself stays
+    /// where it is): `bump: (height: Image(path: "bricks.png", mapping: Rectangular),
+    /// scale: 0.02)`; default none.
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        serialize_with = "bare_alpha",
+        deserialize_with = "some_alpha"
+    )]
+    pub bump: Option<BumpDesc>,
 }
 
-/// Writes `alpha` as the coefficient itself (`alpha: (texture: ..., channel: Alpha)`), without
-/// RON's `Some(...)`, as it is read.
+/// A bump map ([`ObjectDesc::bump`]).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BumpDesc {
+    /// The height field: its luminance, times `scale`, is the height.
+    pub height: TextureDesc,
+    /// The height of a texture value of 1, in the object's own units (finite; negative
+    /// engraves instead of embossing); default 0.02.
+    #[serde(default = "default_bump_scale")]
+    pub scale: f32,
+}
+
+fn default_bump_scale() -> f32 {
+    0.02
+}
+
+/// Writes an optional field (`alpha`, `bump`) as its value itself, without RON's `Some(...)`,
+/// as it is read.
 #[allow(clippy::ref_option)] // serde's serialize_with passes a reference to the field
-fn bare_alpha<S: serde::Serializer>(a: &Option<ScalarDesc>, s: S) -> Result<S::Ok, S::Error> {
+fn bare_alpha<S: serde::Serializer, T: Serialize>(a: &Option<T>, s: S) -> Result<S::Ok, S::Error> {
     match a {
         Some(a) => a.serialize(s),
         None => s.serialize_none(),
     }
 }
 
-/// Reads `alpha` written as the coefficient itself.
-fn some_alpha<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Option<ScalarDesc>, D::Error> {
-    ScalarDesc::deserialize(d).map(Some)
+/// Reads an optional field (`alpha`, `bump`) written as its value itself.
+fn some_alpha<'de, D: serde::Deserializer<'de>, T: Deserialize<'de>>(
+    d: D,
+) -> Result<Option<T>, D::Error> {
+    T::deserialize(d).map(Some)
 }
 
 /// Shapes: the lecture's generic objects, or a triangle mesh from a file.

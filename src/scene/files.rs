@@ -184,12 +184,14 @@ pub fn asset_paths(desc: &SceneDesc, preset_dir: &Path) -> Vec<PathBuf> {
     };
     for o in &desc.objects {
         let alpha = o.alpha.as_ref().and_then(|a| a.texture());
+        let bump = o.bump.as_ref().map(|b| &b.height);
         for t in o
             .material
             .textures()
             .into_iter()
             .map(|(_, t)| t)
             .chain(alpha)
+            .chain(bump)
         {
             if let TextureDesc::Image { path, .. } = t {
                 add(preset_dir.join(path));
@@ -223,7 +225,14 @@ pub fn rebase_assets(desc: &mut SceneDesc, from: &Path, to: &Path) {
     };
     for o in &mut desc.objects {
         let alpha = o.alpha.as_mut().and_then(super::ScalarDesc::texture_mut);
-        for t in o.material.textures_mut().into_iter().chain(alpha) {
+        let bump = o.bump.as_mut().map(|b| &mut b.height);
+        for t in o
+            .material
+            .textures_mut()
+            .into_iter()
+            .chain(alpha)
+            .chain(bump)
+        {
             if let TextureDesc::Image { path, .. } = t {
                 rebase(path);
             }

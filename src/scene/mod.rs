@@ -20,7 +20,7 @@ use crate::camera::Camera;
 use crate::error::{Error, Result};
 use crate::geometry::{LocalHit, Object, Shape};
 use crate::mapping::Mapping;
-use crate::material::{Light, Material, Scalar, ShadePoint};
+use crate::material::{Bump, Light, Material, Scalar, ShadePoint};
 use crate::math::{Ray, RayDifferential, Rgb, Vec3A, max_abs};
 use crate::sampler::{PixelFilter, PixelSampler};
 use crate::texture::{TextureContext, View};
@@ -105,6 +105,8 @@ pub struct Scene {
     pub clips: Vec<Option<Scalar>>,
     /// Whether any object has a clip map; without one every ray takes the solid-surface path.
     pub has_clips: bool,
+    /// Per object (as `objects`), its bump map, if it has one.
+    pub bumps: Vec<Option<Bump>>,
 }
 
 /// The most clip-mapped surfaces one ray (or shadow ray) passes through before it stops: what
@@ -336,6 +338,30 @@ impl Scene {
         self.shade_at_depth(&hit, diff, depth)
     }
 
+    /// The world shading normal of `hit` tilted by bump map `b`: on the viewer's side of the
+    /// surface, and, if the tilt would turn it away from the viewer (which would shade black),
+    /// bent back until it faces the viewer just enough (pbrt's fix for shading normals).
+    #[must_use]
+    pub fn bumped_normal(&self, hit: &SurfaceHit, b: &Bump, ctx: &TextureContext) -> Vec3A {
+        let obj = &self.objects[hit.object];
+        let n_local = if hit.local.ns == hit.local.n {
+            hit.local.n
+        } else {
+            hit.local.ns
+        };
+        let tilted = b.perturb(ctx, n_local);
+        if tilted == n_local {
+            return hit.ns;
+        }
+        let side = if hit.front_face { 1.0 } else { -1.0 };
+        let mut ns = (obj.normal_to_world(tilted) * side).normalize_or(hit.ns);
+        let facing = ns.dot(hit.wo);
+        if facing < 1e-3 {
+            ns = (ns + (1e-3 - facing) * hit.wo).normalize_or(hit.ns);
+        }
+        if ns.is_finite() { ns } else { hit.ns }
+    }
+
     /// How far rays leave a hit point: [`SHADOW_OFFSET_RELATIVE`] of the coordinates' size.
     #[inline]
     fn offset_at(&self, hit: &SurfaceHit) -> f32 {
@@ -398,6 +424,17 @@ impl Scene {
         let obj = &self.objects[hit.object];
         let material = &self.materials[obj.material];
         let ctx = self.texture_context(hit, diff);
+        let bumped;
+        let hit = match &self.bumps[hit.object] {
+            Some(b) => {
+                bumped = SurfaceHit {
+                    ns: self.bumped_normal(hit, b, &ctx),
+                    ..*hit
+                };
+                &bumped
+            }
+            None => hit,
+        };
         let view = self.settings.view;
         let filtered = diff.is_some() && material.texture().needs_differentials();
         let mut key = (hit.object as u32 + 1) & 0xffff | u32::from(filtered) << 31;

@@ -92,6 +92,33 @@ impl Texture {
         }
     }
 
+    /// The colour at texture coordinates already mapped and transformed (as
+    /// [`Texture::tex_coord`] gives them), through the texture's filter and wrap.
+    #[must_use]
+    pub fn eval_tex_coord(&self, tc: TexCoord) -> Rgb {
+        match self {
+            Self::Constant(c) => *c,
+            Self::Image(t) => t.sample(tc) * t.scale,
+            Self::Checker(c) => {
+                if c.filter.needs_footprint() {
+                    c.box_filtered(&tc)
+                } else {
+                    c.point(tc.uv)
+                }
+            }
+        }
+    }
+
+    /// The (u, v) transform, if the texture has one that is not the identity.
+    #[must_use]
+    pub const fn uv_affine(&self) -> Option<UvAffine> {
+        match self {
+            Self::Constant(_) => None,
+            Self::Image(t) => t.transform,
+            Self::Checker(c) => c.transform,
+        }
+    }
+
     /// The mapping, for textures that have one.
     #[must_use]
     pub const fn mapping(&self) -> Option<Mapping> {

@@ -66,6 +66,7 @@ fn label(name: &str) -> &'static str {
         "ls" => "ls (radiance)",
         "kr" => "kr (mirror)",
         "cr" => "mirror colour",
+        "ce" => "ce (night glow)",
         _ => "parameter",
     }
 }

@@ -280,7 +280,10 @@ impl Scene {
     #[must_use]
     #[inline]
     pub fn trace_keyed(&self, ray: &Ray, diff: Option<&RayDifferential>) -> (Rgb, u32) {
-        let (l, key) = self.radiance_keyed(ray, diff, 0, 0);
+        let Some(hit) = self.hit(ray) else {
+            return (self.settings.background, 0);
+        };
+        let (l, key) = self.shade_or_clip(ray, &hit, diff, 0, 0);
         (if l.is_finite() { l } else { Rgb::BLACK }, key)
     }
 
@@ -307,6 +310,7 @@ impl Scene {
     /// clip-mapped surfaces. A clip-mapped hit with alpha `a` below 1 blends its shading with
     /// what lies behind it: `a L_surface + (1 - a) L_behind` (with a filtered alpha, a soft
     /// edge at one sample per pixel).
+    #[inline(never)]
     fn radiance_keyed(
         &self,
         ray: &Ray,
@@ -317,31 +321,62 @@ impl Scene {
         let Some(hit) = self.hit(ray) else {
             return (self.settings.background, 0);
         };
+        self.shade_or_clip(ray, &hit, diff, depth, layer)
+    }
+
+    /// Shades `hit`, blending in what lies behind it where it has a clip map below 1.
+    #[inline]
+    fn shade_or_clip(
+        &self,
+        ray: &Ray,
+        hit: &SurfaceHit,
+        diff: Option<&RayDifferential>,
+        depth: u32,
+        layer: u32,
+    ) -> (Rgb, u32) {
         if self.has_clips
             && let Some(clip) = &self.clips[hit.object]
         {
-            let a = clip.eval(&self.texture_context(&hit, diff)).clamp(0.0, 1.0);
-            if a < 1.0 {
-                let behind = if layer + 1 < MAX_CLIP_LAYERS {
-                    let origin = hit.p + ray.dir.normalize_or_zero() * self.offset_at(&hit);
-                    self.radiance_keyed(&Ray::new(origin, ray.dir), diff, depth, layer + 1)
-                } else {
-                    (Rgb::BLACK, 0)
-                };
-                if a <= 0.0 {
-                    return behind;
-                }
-                let (l, key) = self.shade_at_depth(&hit, diff, depth);
-                return (l * a + behind.0 * (1.0 - a), key);
-            }
+            return self.clipped(ray, hit, clip, diff, depth, layer);
         }
-        self.shade_at_depth(&hit, diff, depth)
+        self.shade_at_depth(hit, diff, depth)
+    }
+
+    /// [`Scene::shade_or_clip`] for a clip-mapped hit (kept out of line: the solid path, which
+    /// every scene without clip maps takes, stays small).
+    #[cold]
+    #[inline(never)]
+    fn clipped(
+        &self,
+        ray: &Ray,
+        hit: &SurfaceHit,
+        clip: &Scalar,
+        diff: Option<&RayDifferential>,
+        depth: u32,
+        layer: u32,
+    ) -> (Rgb, u32) {
+        let a = clip.eval(&self.texture_context(hit, diff)).clamp(0.0, 1.0);
+        if a >= 1.0 {
+            return self.shade_at_depth(hit, diff, depth);
+        }
+        let behind = if layer + 1 < MAX_CLIP_LAYERS {
+            let origin = hit.p + ray.dir.normalize_or_zero() * self.offset_at(hit);
+            self.radiance_keyed(&Ray::new(origin, ray.dir), diff, depth, layer + 1)
+        } else {
+            (Rgb::BLACK, 0)
+        };
+        if a <= 0.0 {
+            return behind;
+        }
+        let (l, key) = self.shade_at_depth(hit, diff, depth);
+        (l * a + behind.0 * (1.0 - a), key)
     }
 
     /// The world shading normal of `hit` tilted by bump map `b`: on the viewer's side of the
     /// surface, and, if the tilt would turn it away from the viewer (which would shade black),
     /// bent back until it faces the viewer just enough (pbrt's fix for shading normals).
     #[must_use]
+    #[inline(never)]
     pub fn bumped_normal(&self, hit: &SurfaceHit, b: &Bump, ctx: &TextureContext) -> Vec3A {
         let obj = &self.objects[hit.object];
         let n_local = if hit.local.ns == hit.local.n {
@@ -415,6 +450,7 @@ impl Scene {
 
     /// Shades a hit reached after `depth` mirror bounces; a mirror adds the radiance along its
     /// reflected ray while `depth` is below `settings.reflection_depth`.
+    #[inline]
     fn shade_at_depth(
         &self,
         hit: &SurfaceHit,
@@ -517,6 +553,8 @@ impl Scene {
     /// differentials they are mirrored too (pbrt's specular reflection differentials: the
     /// offset rays leave from the neighbouring pixels' hits, mirrored about the normal there),
     /// so a texture seen in a mirror is filtered over its true footprint.
+    #[cold]
+    #[inline(never)]
     fn reflected(
         &self,
         hit: &SurfaceHit,

@@ -115,6 +115,7 @@ fn filters(c: &mut Criterion) {
             scale: 1.0,
             mip: filter.needs_mip().then(|| mip.clone()),
             max_anisotropy: DEFAULT_MAX_ANISOTROPY,
+            transform: None,
         };
         let mut i = 0;
         g.bench_function(filter.name(), |b| {

@@ -1,5 +1,5 @@
-//! Cameras: pinhole, fisheye and spherical panorama (the book's chapter 9-11 cameras), each
-//! turning a film position into a world-space ray.
+//! Cameras: pinhole, fisheye, spherical panorama and orthographic (the book's chapter 9-11
+//! cameras), each turning a film position into a world-space ray.
 
 use crate::math::{Quat, Ray, RayDifferential, Vec2, Vec3, Vec3A};
 
@@ -42,6 +42,13 @@ pub enum Projection {
         /// Half vertical angle, radians.
         psi_max: f32,
     },
+    /// Parallel projection: every ray runs along the view axis, from a point on the plane
+    /// through the eye perpendicular to it; the film spans `height` world units vertically
+    /// (the width follows the aspect ratio).
+    Orthographic {
+        /// Height of the film in world units.
+        height: f32,
+    },
 }
 
 impl Camera {
@@ -69,6 +76,7 @@ impl Camera {
         let v = w.cross(u);
         let pixel_scale = match projection {
             Projection::Pinhole { fov_y } => (fov_y * 0.5).tan() * 2.0 / height as f32,
+            Projection::Orthographic { height: film } => film / height as f32,
             Projection::Fisheye { .. } | Projection::Spherical { .. } => 0.0,
         };
         Self {
@@ -121,6 +129,24 @@ impl Camera {
                 let (sp, cp) = psi.sin_cos();
                 Some(cp * sl * u + sp * v - cp * cl * back)
             }
+            Projection::Orthographic { .. } => Some(-back),
+        }
+    }
+
+    /// Where the ray through film position `pos` starts: the eye, or for the orthographic
+    /// camera the point of the film plane (through the eye) under `pos`.
+    #[must_use]
+    #[inline]
+    pub fn origin(&self, pos: Vec2) -> Vec3A {
+        match self.projection {
+            Projection::Orthographic { .. } => {
+                let (w, h) = (self.width as f32, self.height as f32);
+                let [u, v, _] = self.frame;
+                let x = (pos.x - 0.5 * w) * self.pixel_scale;
+                let y = (0.5 * h - pos.y) * self.pixel_scale;
+                self.eye + x * u + y * v
+            }
+            _ => self.eye,
         }
     }
 
@@ -129,7 +155,7 @@ impl Camera {
     #[must_use]
     #[inline]
     pub fn primary_ray(&self, pos: Vec2) -> Option<Ray> {
-        self.direction(pos).map(|d| Ray::new(self.eye, d))
+        self.direction(pos).map(|d| Ray::new(self.origin(pos), d))
     }
 
     /// The ray through `pos`, with its neighbours one pixel right and one pixel down as ray
@@ -141,13 +167,20 @@ impl Camera {
         let d = self.direction(pos)?;
         let dx = self.direction(pos + Vec2::new(spacing, 0.0)).unwrap_or(d);
         let dy = self.direction(pos + Vec2::new(0.0, spacing)).unwrap_or(d);
-        let ray = Ray::new(self.eye, d);
+        let o = self.origin(pos);
+        let ray = Ray::new(o, d);
         // Differentials are expressed per whole pixel.
         let inv = 1.0 / spacing;
+        let (ox, oy) = if matches!(self.projection, Projection::Orthographic { .. }) {
+            let [u, v, _] = self.frame;
+            (o + u * self.pixel_scale, o - v * self.pixel_scale)
+        } else {
+            (o, o)
+        };
         let diff = RayDifferential {
-            rx_origin: self.eye,
+            rx_origin: ox,
             rx_dir: d + (dx - d) * inv,
-            ry_origin: self.eye,
+            ry_origin: oy,
             ry_dir: d + (dy - d) * inv,
         };
         Some((ray, diff))

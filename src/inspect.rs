@@ -11,7 +11,10 @@ use crate::math::Vec3;
 use crate::math::{Rgb, Vec2, Vec3A};
 use crate::names::Named as _;
 use crate::texture::{Filter, ImageData, Lookup, Texture, View, Wrap, explain_lookup};
-use crate::{material::Material, scene::Scene};
+use crate::{
+    material::{Material, ParamValue},
+    scene::Scene,
+};
 use std::sync::Arc;
 use strum::VariantArray;
 
@@ -109,6 +112,9 @@ pub struct Inspection {
     pub footprint: Option<Footprint>,
     /// The texture's colour here (linear, before lighting).
     pub texture_colour: Rgb,
+    /// Every other material parameter that is a texture (`ks`, `cs`, ...), by preset name,
+    /// with its value here; constants are not listed.
+    pub parameters: Vec<(&'static str, ParamValue)>,
     /// The shaded radiance of the ray through the film position (linear, before exposure):
     /// the lit, textured colour, whatever debug view is on.
     pub radiance: Rgb,
@@ -135,10 +141,7 @@ impl Scene {
         let (dpdx, dpdy) = d.footprint_on_plane(hit.local.p, hit.local.n);
         let ctx = self.texture_context_at(&hit, dpdx, dpdy);
         let material = &self.materials[obj.material];
-        let texture = match material {
-            Material::Matte { cd, .. } | Material::Phong { cd, .. } => cd,
-            Material::Emissive { ce, .. } => ce,
-        };
+        let texture = material.texture();
         let (kind, mapping, image) = match texture {
             Texture::Constant(_) => ("constant", None, None),
             Texture::Checker(c) => ("checker", Some(c.mapping), None),
@@ -158,7 +161,7 @@ impl Scene {
             (Mapping::Uv, None) => ctx.natural,
             (m, _) => m,
         });
-        let tex = mapping.map(|m| ctx.tex_coord(m));
+        let tex = texture.tex_coord(&ctx);
         // A mesh under a generated mapping: the model is fitted into [-1, 1]^3 first.
         let fit_lines = match (&obj.shape, effective) {
             (Shape::Mesh(m), Some(e)) if e != Mapping::Uv => {
@@ -243,6 +246,7 @@ impl Scene {
             }
         });
         let texture_colour = texture.eval(&ctx);
+        let parameters = material.textured_values(&ctx);
         let shown = self.trace(&ray, self.needs_differentials.then_some(&diff));
         // The shaded radiance and the debug view's value separately: under a debug view the
         // film shows the view's colour, not the light.
@@ -275,6 +279,7 @@ impl Scene {
             texels,
             footprint,
             texture_colour,
+            parameters,
             radiance,
             debug_value,
             mesh,

@@ -126,6 +126,10 @@ mod tests {
         );
         assert_eq!(round_trips::<Lookup>(), ["lecture", "centred"]);
         assert_eq!(
+            round_trips::<crate::texture::Channel>(),
+            ["Luminance", "Red", "Green", "Blue", "Alpha"]
+        );
+        assert_eq!(
             round_trips::<Wrap>(),
             ["repeat", "clamp", "mirror", "black"]
         );
@@ -160,12 +164,12 @@ mod tests {
         );
         assert_eq!(
             round_trips::<MaterialKind>(),
-            ["Matte", "Phong", "Emissive"]
+            ["Matte", "Phong", "Reflective", "Emissive"]
         );
         assert_eq!(round_trips::<LightKind>(), ["directional", "point"]);
         assert_eq!(
             round_trips::<ProjectionKind>(),
-            ["Pinhole", "Fisheye", "Spherical"]
+            ["Pinhole", "Fisheye", "Spherical", "Orthographic"]
         );
     }
 

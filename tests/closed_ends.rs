@@ -49,6 +49,7 @@ fn rendered_texel(
         scale: 1.0,
         mip: None,
         max_anisotropy: 8.0,
+        transform: None,
     };
     let tc = TexCoord {
         uv: mapping.map_uv(p),

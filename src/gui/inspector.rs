@@ -491,6 +491,12 @@ fn hit_grid(ui: &mut egui::Ui, i: &Inspection) {
                 ui.label(format!("({:.3}, {:.3}, {:.3}) linear", c.0, c.1, c.2));
             });
             ui.end_row();
+            for (name, v) in &i.parameters {
+                ui.label(*name)
+                    .on_hover_text("this material parameter's texture, here");
+                ui.monospace(v.to_string());
+                ui.end_row();
+            }
             ui.label("shaded radiance");
             let c = i.radiance;
             ui.label(format!("({:.3}, {:.3}, {:.3}) linear", c.0, c.1, c.2))

@@ -187,6 +187,86 @@ pub struct TexCoord {
     pub duvdy: Vec2,
 }
 
+/// A texture's (u, v) transform, applied after the mapping: scale, then rotate (degrees,
+/// counter-clockwise about the origin of (u, v)), then offset. `scale: (4, 4)` tiles the
+/// texture four times across the mapping's unit square (the wrap mode then decides what lies
+/// beyond 1, on every shape). A preset writes `uv: (scale: (4, 2), rotate: 30, offset: (0.5, 0))`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct UvTransform {
+    /// Multiplies u and v (not zero); default `(1, 1)`.
+    pub scale: Vec2,
+    /// Counter-clockwise rotation of the scaled (u, v), degrees; default 0.
+    pub rotate: f32,
+    /// Added last; default `(0, 0)`.
+    pub offset: Vec2,
+}
+
+impl Default for UvTransform {
+    fn default() -> Self {
+        Self::IDENTITY
+    }
+}
+
+impl UvTransform {
+    /// Leaves (u, v) as the mapping gives them.
+    pub const IDENTITY: Self = Self {
+        scale: Vec2::ONE,
+        rotate: 0.0,
+        offset: Vec2::ZERO,
+    };
+
+    /// Whether this is [`UvTransform::IDENTITY`] (a preset then leaves it out).
+    #[must_use]
+    pub fn is_identity(&self) -> bool {
+        *self == Self::IDENTITY
+    }
+
+    /// The affine map this stands for, or `None` for the identity (which then costs nothing).
+    #[must_use]
+    pub fn affine(&self) -> Option<UvAffine> {
+        if self.is_identity() {
+            return None;
+        }
+        let (sin, cos) = self.rotate.to_radians().sin_cos();
+        let (su, sv) = (self.scale.x, self.scale.y);
+        // Rotation times diagonal scale, by columns.
+        let matrix = glam::Mat2::from_cols(
+            Vec2::new(cos * su, sin * su),
+            Vec2::new(-sin * sv, cos * sv),
+        );
+        Some(UvAffine {
+            matrix,
+            offset: self.offset,
+        })
+    }
+}
+
+/// The affine map of a [`UvTransform`]: `uv' = matrix uv + offset`. Derivatives transform by
+/// the matrix alone (the chain rule), so filters see the transformed footprint.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct UvAffine {
+    /// Scale then rotation.
+    pub matrix: glam::Mat2,
+    /// Added after the matrix.
+    pub offset: Vec2,
+}
+
+impl UvAffine {
+    /// (u, v) and their screen-space derivatives after the transform.
+    #[must_use]
+    #[inline]
+    pub fn apply(&self, tc: TexCoord) -> TexCoord {
+        let uv = self.matrix * tc.uv + self.offset;
+        TexCoord {
+            uv: if uv.is_finite() { uv } else { Vec2::ZERO },
+            duvdx: self.matrix * tc.duvdx,
+            duvdy: self.matrix * tc.duvdy,
+        }
+        .bounded()
+    }
+}
+
 /// The largest footprint a filter is asked for: the whole texture. Singular points (the poles,
 /// the probe's rim) have unbounded derivatives; this keeps every footprint finite.
 pub const MAX_FOOTPRINT: f32 = 1.0;

@@ -1,4 +1,13 @@
 //! Materials (the lecture's `SV_Matte` and `SV_Emissive`, plus Phong) and lights.
+//!
+//! Every coefficient and colour may be a texture (the lecture's "any c* or k* value can be a
+//! texture"): see [`Scalar`] and [`Colour`], which cost nothing when constant.
+
+mod bump;
+mod param;
+
+pub use bump::{Bump, MIN_BUMP_STEP, dual_basis};
+pub use param::{Colour, ParamValue, Scalar, ScalarTexture};
 
 use crate::math::{INV_PI, Rgb, Vec3A};
 use crate::texture::{Texture, TextureContext};
@@ -9,31 +18,52 @@ pub enum Material {
     /// `SV_Matte`: ambient + Lambertian diffuse, both with the textured colour `cd`.
     Matte {
         /// Ambient reflection coefficient (not negative): the term is `ka cd L_ambient`.
-        ka: f32,
+        ka: Scalar,
         /// Diffuse reflection coefficient (not negative): the BRDF is `kd cd / pi`.
-        kd: f32,
+        kd: Scalar,
         /// Linear reflectance, used by both the ambient and the diffuse term.
         cd: Texture,
     },
     /// Matte plus a glossy highlight `ks cs (r . wo)^exp`.
     Phong {
         /// Ambient reflection coefficient, as for [`Material::Matte`].
-        ka: f32,
+        ka: Scalar,
         /// Diffuse reflection coefficient, as for [`Material::Matte`].
-        kd: f32,
+        kd: Scalar,
         /// Linear reflectance of the ambient and diffuse terms (the highlight uses `cs`).
         cd: Texture,
         /// Strength of the highlight (not negative).
-        ks: f32,
+        ks: Scalar,
         /// Linear colour of the highlight.
-        cs: Rgb,
+        cs: Colour,
         /// Sharpness of the highlight: `(r . wo)^exp`, larger is tighter.
-        exp: f32,
+        exp: Scalar,
+        /// Glow on the dark side, added where direct light does not reach (black: none).
+        ce: Colour,
+    },
+    /// Phong plus a perfect mirror: adds `kr cr` times the radiance along the mirrored ray.
+    Reflective {
+        /// Ambient reflection coefficient, as for [`Material::Matte`].
+        ka: Scalar,
+        /// Diffuse reflection coefficient, as for [`Material::Matte`].
+        kd: Scalar,
+        /// Linear reflectance of the ambient and diffuse terms.
+        cd: Texture,
+        /// Strength of the highlight (not negative).
+        ks: Scalar,
+        /// Linear colour of the highlight.
+        cs: Colour,
+        /// Sharpness of the highlight.
+        exp: Scalar,
+        /// Share of the mirrored radiance reflected (not negative).
+        kr: Scalar,
+        /// Linear colour of the mirror.
+        cr: Colour,
     },
     /// `SV_Emissive`: radiance `ls ce`, independent of lights (the environment sphere).
     Emissive {
         /// Multiplier on `ce` (not negative).
-        ls: f32,
+        ls: Scalar,
         /// Emitted linear radiance before `ls`.
         ce: Texture,
     },
@@ -44,7 +74,7 @@ impl Material {
     #[must_use]
     pub fn texture(&self) -> &Texture {
         match self {
-            Self::Matte { cd, .. } | Self::Phong { cd, .. } => cd,
+            Self::Matte { cd, .. } | Self::Phong { cd, .. } | Self::Reflective { cd, .. } => cd,
             Self::Emissive { ce, .. } => ce,
         }
     }
@@ -53,6 +83,105 @@ impl Material {
     #[must_use]
     pub const fn is_lit(&self) -> bool {
         !matches!(self, Self::Emissive { .. })
+    }
+
+    /// The coefficients and colours besides `cd` and `ce`, by preset name.
+    #[must_use]
+    pub fn params(&self) -> Vec<(&'static str, Param<'_>)> {
+        use Param::{Colour, Scalar};
+        match self {
+            Self::Matte { ka, kd, .. } => vec![("ka", Scalar(ka)), ("kd", Scalar(kd))],
+            Self::Phong {
+                ka,
+                kd,
+                ks,
+                cs,
+                exp,
+                ce,
+                ..
+            } => vec![
+                ("ka", Scalar(ka)),
+                ("kd", Scalar(kd)),
+                ("ks", Scalar(ks)),
+                ("cs", Colour(cs)),
+                ("exp", Scalar(exp)),
+                ("ce", Colour(ce)),
+            ],
+            Self::Reflective {
+                ka,
+                kd,
+                ks,
+                cs,
+                exp,
+                kr,
+                cr,
+                ..
+            } => vec![
+                ("ka", Scalar(ka)),
+                ("kd", Scalar(kd)),
+                ("ks", Scalar(ks)),
+                ("cs", Colour(cs)),
+                ("exp", Scalar(exp)),
+                ("kr", Scalar(kr)),
+                ("cr", Colour(cr)),
+            ],
+            Self::Emissive { ls, .. } => vec![("ls", Scalar(ls))],
+        }
+    }
+
+    /// Whether any texture of the material (the colour or a textured parameter) needs the
+    /// hit's footprint.
+    #[must_use]
+    pub fn needs_differentials(&self) -> bool {
+        self.texture().needs_differentials()
+            || self.params().iter().any(|(_, p)| p.needs_differentials())
+    }
+
+    /// The value at a hit of every parameter that is a texture (constants are left out), by
+    /// preset name: what the inspector lists.
+    #[must_use]
+    pub fn textured_values(&self, ctx: &TextureContext) -> Vec<(&'static str, ParamValue)> {
+        self.params()
+            .into_iter()
+            .filter_map(|(name, p)| match p {
+                Param::Scalar(s @ Scalar::Texture(_)) => {
+                    Some((name, ParamValue::Scalar(s.eval(ctx))))
+                }
+                Param::Colour(c @ Colour::Texture(_)) => {
+                    Some((name, ParamValue::Colour(c.eval(ctx))))
+                }
+                _ => None,
+            })
+            .collect()
+    }
+}
+
+/// A material's coefficient or colour ([`Material::params`]).
+#[derive(Clone, Copy, Debug)]
+pub enum Param<'a> {
+    /// A coefficient.
+    Scalar(&'a Scalar),
+    /// A colour.
+    Colour(&'a Colour),
+}
+
+impl<'a> Param<'a> {
+    /// Whether evaluating it needs the hit's footprint.
+    #[must_use]
+    pub fn needs_differentials(self) -> bool {
+        match self {
+            Self::Scalar(s) => s.needs_differentials(),
+            Self::Colour(c) => c.needs_differentials(),
+        }
+    }
+
+    /// The texture it reads, if it is not a constant.
+    #[must_use]
+    pub fn texture(self) -> Option<&'a Texture> {
+        match self {
+            Self::Scalar(s) => s.texture(),
+            Self::Colour(c) => c.texture(),
+        }
     }
 }
 
@@ -115,6 +244,25 @@ pub struct ShadePoint {
     pub diffuse: Rgb,
     /// Specular `ks cs` and exponent, if Phong.
     pub specular: Option<(Rgb, f32)>,
+    /// The mirror's `kr cr` (black unless reflective): what multiplies the radiance along the
+    /// mirrored ray.
+    pub mirror: Rgb,
+    /// Phong's glow `ce`, added where direct light does not reach (black unless set).
+    pub glow: Rgb,
+}
+
+/// The summed `n . wi` of the unshadowed lights over which a glow fades out past the
+/// terminator.
+pub const GLOW_FADE: f32 = 0.2;
+
+impl ShadePoint {
+    /// The glow's weight given the summed `n . wi` of the lights that reach the point: 1 in
+    /// the dark, fading linearly to 0 at [`GLOW_FADE`].
+    #[must_use]
+    #[inline]
+    pub fn glow_weight(lit: f32) -> f32 {
+        (1.0 - lit / GLOW_FADE).clamp(0.0, 1.0)
+    }
 }
 
 impl Material {
@@ -126,9 +274,11 @@ impl Material {
             Self::Matte { ka, kd, cd } => {
                 let c = cd.eval(ctx);
                 ShadePoint {
-                    base: c * ambient * *ka,
-                    diffuse: c * (*kd * INV_PI),
+                    base: c * ambient * ka.eval(ctx),
+                    diffuse: c * (kd.eval(ctx) * INV_PI),
                     specular: None,
+                    mirror: Rgb::BLACK,
+                    glow: Rgb::BLACK,
                 }
             }
             Self::Phong {
@@ -138,18 +288,42 @@ impl Material {
                 ks,
                 cs,
                 exp,
+                ce,
             } => {
                 let c = cd.eval(ctx);
                 ShadePoint {
-                    base: c * ambient * *ka,
-                    diffuse: c * (*kd * INV_PI),
-                    specular: Some((*cs * *ks, *exp)),
+                    base: c * ambient * ka.eval(ctx),
+                    diffuse: c * (kd.eval(ctx) * INV_PI),
+                    specular: Some((cs.eval(ctx) * ks.eval(ctx), exp.eval(ctx))),
+                    mirror: Rgb::BLACK,
+                    glow: ce.eval(ctx),
+                }
+            }
+            Self::Reflective {
+                ka,
+                kd,
+                cd,
+                ks,
+                cs,
+                exp,
+                kr,
+                cr,
+            } => {
+                let c = cd.eval(ctx);
+                ShadePoint {
+                    base: c * ambient * ka.eval(ctx),
+                    diffuse: c * (kd.eval(ctx) * INV_PI),
+                    specular: Some((cs.eval(ctx) * ks.eval(ctx), exp.eval(ctx))),
+                    mirror: cr.eval(ctx) * kr.eval(ctx),
+                    glow: Rgb::BLACK,
                 }
             }
             Self::Emissive { ls, ce } => ShadePoint {
-                base: ce.eval(ctx) * *ls,
+                base: ce.eval(ctx) * ls.eval(ctx),
                 diffuse: Rgb::BLACK,
                 specular: None,
+                mirror: Rgb::BLACK,
+                glow: Rgb::BLACK,
             },
         }
     }

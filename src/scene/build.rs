@@ -1,19 +1,20 @@
 //! Reading, validating and writing presets, and building the runtime [`Scene`] from one.
 
 use super::desc::{
-    AdaptiveDesc, CameraDesc, LightDesc, MaterialDesc, PRESET_VERSION, ProjectionDesc, RenderDesc,
-    SceneDesc, TextureDesc, TransformDesc,
+    AdaptiveDesc, CameraDesc, ColorDesc, LightDesc, MaterialDesc, PRESET_VERSION, ParamRef,
+    ProjectionDesc, RenderDesc, ScalarDesc, SceneDesc, TextureDesc, TransformDesc,
 };
 use super::{RenderSettings, Scene};
 use crate::camera::{Camera, Projection};
 use crate::error::{Error, Result};
 use crate::geometry::{Mesh, MeshShape, Object, Shape};
-use crate::material::{Light, Material};
+use crate::mapping::{UvAffine, UvTransform};
+use crate::material::{Bump, Colour, Light, Material, Scalar, ScalarTexture};
 use crate::math::{Affine3A, Quat, Vec3, Vec3A};
 use crate::sampler::{PixelFilter, PixelSampler};
 use crate::texture::{
-    Checker, Filter, ImageData, ImageTexture, Lookup, MAX_ANISOTROPY_LIMIT, MipPyramid, Texture,
-    View, load_image, uv_grid_image,
+    Channel, Checker, Filter, ImageData, ImageTexture, Lookup, MAX_ANISOTROPY_LIMIT, MipPyramid,
+    Texture, View, load_alpha, load_image, uv_grid_image,
 };
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -111,6 +112,9 @@ pub fn check_numbers(desc: &SceneDesc) -> std::result::Result<(), String> {
             n.check(|| "camera.h_fov".into(), &[h_fov]);
             n.check(|| "camera.v_fov".into(), &[v_fov]);
         }
+        ProjectionDesc::Orthographic { height } => {
+            n.check(|| "camera.height".into(), &[height]);
+        }
     }
     let r = &desc.render;
     n.check(|| "render.exposure".into(), &[r.exposure]);
@@ -168,31 +172,44 @@ impl Numbers {
         );
         self.check(|| format!("{at}.transform.rotate"), &t.rotate.to_array());
         self.check(|| format!("{at}.transform.scale"), &t.scale.to_array());
-        let (coefficients, cs, tex): (Vec<(&str, f32)>, _, _) = match &o.material {
-            MaterialDesc::Matte { ka, kd, .. } => (vec![("ka", *ka), ("kd", *kd)], None, "cd"),
-            MaterialDesc::Phong {
-                ka,
-                kd,
-                ks,
-                cs,
-                exp,
-                ..
-            } => (
-                vec![("ka", *ka), ("kd", *kd), ("ks", *ks), ("exp", *exp)],
-                Some(*cs),
-                "cd",
-            ),
-            MaterialDesc::Emissive { ls, .. } => (vec![("ls", *ls)], None, "ce"),
-        };
-        for (name, v) in coefficients {
-            self.check(|| format!("{at}.material.{name}"), &[v]);
+        for (name, p) in o.material.params() {
+            match p {
+                ParamRef::Scalar(ScalarDesc::Value(v)) => {
+                    self.check(|| format!("{at}.material.{name}"), &[*v]);
+                }
+                ParamRef::Color(ColorDesc::Value(c)) => {
+                    self.check(|| format!("{at}.material.{name}"), &c.to_array());
+                }
+                _ => {}
+            }
         }
-        if let Some(cs) = cs {
-            self.check(|| format!("{at}.material.cs"), &cs.to_array());
+        for (name, t) in o.material.textures() {
+            self.texture(&format!("{at}.material.{name}"), t);
         }
-        let tex = format!("{at}.material.{tex}");
-        match o.material.texture() {
-            TextureDesc::Constant(c) => self.check(|| tex.clone(), &c.to_array()),
+        match &o.alpha {
+            Some(ScalarDesc::Value(v)) => self.check(|| format!("{at}.alpha"), &[*v]),
+            Some(a) => {
+                if let Some(t) = a.texture() {
+                    self.texture(&format!("{at}.alpha"), t);
+                }
+            }
+            None => {}
+        }
+        if let Some(b) = &o.bump {
+            self.check(|| format!("{at}.bump.scale"), &[b.scale]);
+            self.texture(&format!("{at}.bump.height"), &b.height);
+        }
+    }
+
+    /// Every number of one texture; `tex` names it.
+    fn texture(&mut self, tex: &str, t: &TextureDesc) {
+        if let Some(uv) = t.uv_transform() {
+            self.check(|| format!("{tex}.uv.scale"), &uv.scale.to_array());
+            self.check(|| format!("{tex}.uv.rotate"), &[uv.rotate]);
+            self.check(|| format!("{tex}.uv.offset"), &uv.offset.to_array());
+        }
+        match t {
+            TextureDesc::Constant(c) => self.check(|| tex.to_owned(), &c.to_array()),
             TextureDesc::Image {
                 scale,
                 max_anisotropy,
@@ -231,6 +248,7 @@ fn not_finite(v: f32) -> String {
 #[derive(Debug, Default)]
 pub struct AssetCache {
     images: HashMap<(PathBuf, bool), Arc<ImageData>>,
+    alphas: HashMap<PathBuf, Arc<ImageData>>,
     uv_grid: Option<Arc<ImageData>>,
     meshes: HashMap<PathBuf, Arc<Mesh>>,
     /// Mip pyramids, built on first use by a mip filter and keyed by their base image (the
@@ -256,6 +274,19 @@ impl AssetCache {
         }
         let img = Arc::new(load_image(path, srgb)?);
         self.images.insert(key, img.clone());
+        Ok(img)
+    }
+
+    /// The alpha channel of the image at `path` as a grey image, decoded once.
+    ///
+    /// # Errors
+    /// See [`load_alpha`].
+    pub fn alpha(&mut self, path: &Path) -> Result<Arc<ImageData>> {
+        if let Some(img) = self.alphas.get(path) {
+            return Ok(img.clone());
+        }
+        let img = Arc::new(load_alpha(path)?);
+        self.alphas.insert(path.to_path_buf(), img.clone());
         Ok(img)
     }
 
@@ -351,6 +382,8 @@ pub fn build_scene(desc: &SceneDesc, preset_path: &Path, cache: &mut AssetCache)
     let mut objects = Vec::with_capacity(desc.objects.len());
     let mut materials = Vec::with_capacity(desc.objects.len());
     let mut needs_differentials = false;
+    let mut clips = Vec::with_capacity(desc.objects.len());
+    let mut bumps = Vec::with_capacity(desc.objects.len());
     for (i, o) in desc.objects.iter().enumerate() {
         let what = if o.name.is_empty() {
             format!("objects[{i}]")
@@ -382,18 +415,56 @@ pub fn build_scene(desc: &SceneDesc, preset_path: &Path, cache: &mut AssetCache)
             Error::Invalid { message, .. } => bad(format!("{what}.material: {message}")),
             other => other,
         })?;
-        needs_differentials |=
-            material.texture().needs_differentials() || settings.view.needs_footprint();
+        needs_differentials |= material.needs_differentials() || settings.view.needs_footprint();
         let name = match (&o.shape, o.name.is_empty()) {
             (_, false) => o.name.clone(),
             (super::ShapeDesc::Mesh { path, .. }, true) => format!("{path} {i}"),
             (s, true) => format!("{s:?} {i}"),
         };
+        let clip = match &o.alpha {
+            None => None,
+            Some(a) => match scalar("alpha", a, base, cache).map_err(|e| match e {
+                Error::Invalid { message, .. } => bad(format!("{what}.{message}")),
+                other => other,
+            })? {
+                // Solid everywhere: no clip map at all.
+                Scalar::Const(v) if v >= 1.0 => None,
+                s => Some(s),
+            },
+        };
+        needs_differentials |= clip.as_ref().is_some_and(Scalar::needs_differentials);
+        clips.push(clip);
+        let bump = match &o.bump {
+            None => None,
+            Some(b) => {
+                if !b.scale.is_finite() {
+                    return Err(bad(format!("{what}.bump.scale: {} is not finite", b.scale)));
+                }
+                let height =
+                    param_texture("bump.height", &b.height, base, cache).map_err(|e| match e {
+                        Error::Invalid { message, .. } => bad(format!("{what}.{message}")),
+                        other => other,
+                    })?;
+                match height {
+                    // A constant height has no slope: no bump map at all.
+                    Texture::Constant(_) => None,
+                    height => Some(Bump {
+                        height,
+                        scale: b.scale,
+                    }),
+                }
+            }
+        };
+        needs_differentials |= bump
+            .as_ref()
+            .is_some_and(|b| b.height.needs_differentials());
+        bumps.push(bump);
         let mut obj = Object::new(shape, transform, materials.len(), name);
         obj.casts_shadows = o.casts_shadows.unwrap_or(material.is_lit());
         materials.push(material);
         objects.push(obj);
     }
+    let has_clips = clips.iter().any(Option::is_some);
     Ok(Scene {
         objects,
         materials,
@@ -402,6 +473,9 @@ pub fn build_scene(desc: &SceneDesc, preset_path: &Path, cache: &mut AssetCache)
         camera,
         settings,
         needs_differentials,
+        clips,
+        has_clips,
+        bumps,
     })
 }
 
@@ -439,6 +513,13 @@ fn render_settings(r: &RenderDesc) -> std::result::Result<RenderSettings, String
             ));
         }
     }
+    if r.reflection_depth > super::desc::MAX_REFLECTION_DEPTH {
+        return Err(format!(
+            "render.reflection_depth: {} is out of range (0 to {})",
+            r.reflection_depth,
+            super::desc::MAX_REFLECTION_DEPTH
+        ));
+    }
     Ok(RenderSettings {
         width: r.width,
         height: r.height,
@@ -450,6 +531,7 @@ fn render_settings(r: &RenderDesc) -> std::result::Result<RenderSettings, String
         pixel_filter: r.pixel_filter,
         adaptive: r.adaptive,
         view: r.view,
+        reflection_depth: r.reflection_depth,
     })
 }
 
@@ -499,6 +581,14 @@ fn camera(c: &CameraDesc, width: u32, height: u32) -> std::result::Result<Camera
             lambda_max: in_range("h_fov", h_fov, 360.0)? * 0.5,
             psi_max: in_range("v_fov", v_fov, 180.0)? * 0.5,
         },
+        ProjectionDesc::Orthographic { height } => {
+            if !(height > 0.0 && height <= 1e9) {
+                return Err(format!(
+                    "camera.height: {height} is out of range (0, 1e9] world units"
+                ));
+            }
+            Projection::Orthographic { height }
+        }
     };
     Ok(Camera::new(eye, look_at, up, projection, width, height))
 }
@@ -559,17 +649,12 @@ fn transform(t: &TransformDesc) -> std::result::Result<Affine3A, String> {
 }
 
 fn material(m: &MaterialDesc, base: &Path, cache: &mut AssetCache) -> Result<Material> {
-    let check =
-        |what: &str, v: &[f32]| finite_non_negative(what, v).map_err(|m| Error::invalid(base, m));
     Ok(match m {
-        MaterialDesc::Matte { ka, kd, cd } => {
-            check("ka/kd", &[*ka, *kd])?;
-            Material::Matte {
-                ka: *ka,
-                kd: *kd,
-                cd: texture(cd, base, cache)?,
-            }
-        }
+        MaterialDesc::Matte { ka, kd, cd } => Material::Matte {
+            ka: scalar("ka", ka, base, cache)?,
+            kd: scalar("kd", kd, base, cache)?,
+            cd: texture(cd, base, cache)?,
+        },
         MaterialDesc::Phong {
             ka,
             kd,
@@ -577,25 +662,136 @@ fn material(m: &MaterialDesc, base: &Path, cache: &mut AssetCache) -> Result<Mat
             ks,
             cs,
             exp,
-        } => {
-            check("ka/kd/ks/exp", &[*ka, *kd, *ks, *exp])?;
-            check("cs", &cs.to_array())?;
-            Material::Phong {
-                ka: *ka,
-                kd: *kd,
-                cd: texture(cd, base, cache)?,
-                ks: *ks,
-                cs: *cs,
-                exp: *exp,
-            }
+            ce,
+        } => Material::Phong {
+            ka: scalar("ka", ka, base, cache)?,
+            kd: scalar("kd", kd, base, cache)?,
+            cd: texture(cd, base, cache)?,
+            ks: scalar("ks", ks, base, cache)?,
+            cs: colour("cs", cs, base, cache)?,
+            exp: scalar("exp", exp, base, cache)?,
+            ce: colour("ce", ce, base, cache)?,
+        },
+        MaterialDesc::Reflective {
+            ka,
+            kd,
+            cd,
+            ks,
+            cs,
+            exp,
+            kr,
+            cr,
+        } => Material::Reflective {
+            ka: scalar("ka", ka, base, cache)?,
+            kd: scalar("kd", kd, base, cache)?,
+            cd: texture(cd, base, cache)?,
+            ks: scalar("ks", ks, base, cache)?,
+            cs: colour("cs", cs, base, cache)?,
+            exp: scalar("exp", exp, base, cache)?,
+            kr: scalar("kr", kr, base, cache)?,
+            cr: colour("cr", cr, base, cache)?,
+        },
+        MaterialDesc::Emissive { ls, ce } => Material::Emissive {
+            ls: scalar("ls", ls, base, cache)?,
+            ce: texture(ce, base, cache)?,
+        },
+    })
+}
+
+/// A texture of parameter `what`, its messages prefixed with the parameter's name
+/// (`ks.Image.scale: ...`).
+fn param_texture(
+    what: &str,
+    t: &TextureDesc,
+    base: &Path,
+    cache: &mut AssetCache,
+) -> Result<Texture> {
+    texture(t, base, cache).map_err(|e| match e {
+        Error::Invalid { path, message } => Error::Invalid {
+            path,
+            message: format!("{what}.{message}"),
+        },
+        other => other,
+    })
+}
+
+/// A coefficient: a constant stays a plain number (a constant texture becomes one), so it
+/// costs nothing when shading.
+fn scalar(what: &str, s: &ScalarDesc, base: &Path, cache: &mut AssetCache) -> Result<Scalar> {
+    let (t, channel) = match s {
+        ScalarDesc::Value(v) => {
+            finite_non_negative(what, &[*v]).map_err(|m| Error::invalid(base, m))?;
+            return Ok(Scalar::Const(*v));
         }
-        MaterialDesc::Emissive { ls, ce } => {
-            check("ls", &[*ls])?;
-            Material::Emissive {
-                ls: *ls,
-                ce: texture(ce, base, cache)?,
-            }
+        ScalarDesc::Texture(t) => (t, Channel::Luminance),
+        ScalarDesc::Channel(c) => (&c.texture, c.channel),
+    };
+    if channel == Channel::Alpha {
+        let texture = alpha_texture(t, base, cache).map_err(|e| match e {
+            Error::Invalid { path, message } => Error::Invalid {
+                path,
+                message: format!("{what}.{message}"),
+            },
+            other => other,
+        })?;
+        return Ok(Scalar::Texture(Box::new(ScalarTexture {
+            texture,
+            channel,
+        })));
+    }
+    Ok(match param_texture(what, t, base, cache)? {
+        Texture::Constant(c) => Scalar::Const(channel.of(c)),
+        texture => Scalar::Texture(Box::new(ScalarTexture { texture, channel })),
+    })
+}
+
+/// The alpha channel of an `Image` texture, read through its mapping, filter, wrap and
+/// (u, v) transform like its colour would be.
+fn alpha_texture(t: &TextureDesc, base: &Path, cache: &mut AssetCache) -> Result<Texture> {
+    let TextureDesc::Image {
+        path,
+        mapping,
+        filter,
+        lookup,
+        wrap,
+        max_anisotropy,
+        uv,
+        ..
+    } = t
+    else {
+        return Err(Error::invalid(
+            base,
+            format!("channel Alpha needs an Image texture, not {}", t.kind()),
+        ));
+    };
+    check_anisotropy("Image", *max_anisotropy).map_err(|m| Error::invalid(base, m))?;
+    let transform = uv_transform("Image", uv).map_err(|m| Error::invalid(base, m))?;
+    let image = cache.alpha(&base.join(path))?;
+    let mip = filter.needs_mip().then(|| cache.mip(&image));
+    Ok(Texture::Image(ImageTexture {
+        image,
+        mapping: *mapping,
+        filter: *filter,
+        lookup: *lookup,
+        wrap: *wrap,
+        scale: 1.0,
+        mip,
+        max_anisotropy: *max_anisotropy,
+        transform,
+    }))
+}
+
+/// A colour parameter: a constant stays a plain colour (a constant texture becomes one).
+fn colour(what: &str, c: &ColorDesc, base: &Path, cache: &mut AssetCache) -> Result<Colour> {
+    Ok(match c {
+        ColorDesc::Value(c) => {
+            finite_non_negative(what, &c.to_array()).map_err(|m| Error::invalid(base, m))?;
+            Colour::Const(*c)
         }
+        ColorDesc::Texture(t) => match param_texture(what, t, base, cache)? {
+            Texture::Constant(c) => Colour::Const(c),
+            texture => Colour::Texture(Box::new(texture)),
+        },
     })
 }
 
@@ -615,8 +811,10 @@ fn texture(t: &TextureDesc, base: &Path, cache: &mut AssetCache) -> Result<Textu
             scale,
             srgb,
             max_anisotropy,
+            uv,
         } => {
             finite_non_negative("Image.scale", &[*scale]).map_err(invalid)?;
+            let transform = uv_transform("Image", uv).map_err(invalid)?;
             check_anisotropy("Image", *max_anisotropy).map_err(invalid)?;
             let image = cache.image(&base.join(path), *srgb)?;
             let mip = filter.needs_mip().then(|| cache.mip(&image));
@@ -629,6 +827,7 @@ fn texture(t: &TextureDesc, base: &Path, cache: &mut AssetCache) -> Result<Textu
                 scale: *scale,
                 mip,
                 max_anisotropy: *max_anisotropy,
+                transform,
             })
         }
         TextureDesc::Checker {
@@ -636,7 +835,9 @@ fn texture(t: &TextureDesc, base: &Path, cache: &mut AssetCache) -> Result<Textu
             squares,
             colors,
             filter,
+            uv,
         } => {
+            let transform = uv_transform("Checker", uv).map_err(invalid)?;
             let ok = |s: f32| s.is_finite() && s > 0.0 && s <= 1e6;
             if !ok(squares.0) || !ok(squares.1) {
                 return Err(invalid(format!(
@@ -653,6 +854,7 @@ fn texture(t: &TextureDesc, base: &Path, cache: &mut AssetCache) -> Result<Textu
                 squares: *squares,
                 colors: *colors,
                 filter: *filter,
+                transform,
             })
         }
         TextureDesc::MeshMaterial { .. } => {
@@ -665,8 +867,10 @@ fn texture(t: &TextureDesc, base: &Path, cache: &mut AssetCache) -> Result<Textu
             filter,
             wrap,
             max_anisotropy,
+            uv,
         } => {
             check_anisotropy("UvGrid", *max_anisotropy).map_err(invalid)?;
+            let transform = uv_transform("UvGrid", uv).map_err(invalid)?;
             let image = cache.uv_grid();
             let mip = filter.needs_mip().then(|| cache.mip(&image));
             Texture::Image(ImageTexture {
@@ -678,9 +882,26 @@ fn texture(t: &TextureDesc, base: &Path, cache: &mut AssetCache) -> Result<Textu
                 scale: 1.0,
                 mip,
                 max_anisotropy: *max_anisotropy,
+                transform,
             })
         }
     })
+}
+
+/// The runtime (u, v) transform (`None` for the identity); the scale must be finite and at
+/// least 1e-6 in size on both axes, the rest finite.
+fn uv_transform(what: &str, t: &UvTransform) -> std::result::Result<Option<UvAffine>, String> {
+    let ok = |s: f32| s.is_finite() && s.abs() >= 1e-6 && s.abs() <= 1e6;
+    if !ok(t.scale.x) || !ok(t.scale.y) {
+        return Err(format!(
+            "{what}.uv.scale: {} must be non-zero, between 1e-6 and 1e6 in size",
+            t.scale
+        ));
+    }
+    if !t.rotate.is_finite() || !t.offset.is_finite() {
+        return Err(format!("{what}.uv: rotate and offset must be finite"));
+    }
+    Ok(t.affine())
 }
 
 fn check_anisotropy(what: &str, a: f32) -> std::result::Result<(), String> {
@@ -710,27 +931,37 @@ pub fn apply_overrides(desc: &mut SceneDesc, o: Overrides) {
         r.adaptive = Some(a);
     }
     for obj in &mut desc.objects {
-        match obj.material.texture_mut() {
-            TextureDesc::Image {
-                filter,
-                max_anisotropy,
-                ..
+        let alpha = obj.alpha.as_mut().and_then(ScalarDesc::texture_mut);
+        let bump = obj.bump.as_mut().map(|b| &mut b.height);
+        for t in obj
+            .material
+            .textures_mut()
+            .into_iter()
+            .chain(alpha)
+            .chain(bump)
+        {
+            match t {
+                TextureDesc::Image {
+                    filter,
+                    max_anisotropy,
+                    ..
+                }
+                | TextureDesc::UvGrid {
+                    filter,
+                    max_anisotropy,
+                    ..
+                }
+                | TextureDesc::MeshMaterial {
+                    filter,
+                    max_anisotropy,
+                    ..
+                } => {
+                    *filter = o.filter.unwrap_or(*filter);
+                    *max_anisotropy = o.max_anisotropy.unwrap_or(*max_anisotropy);
+                }
+                TextureDesc::Checker { filter, .. } => *filter = o.filter.unwrap_or(*filter),
+                TextureDesc::Constant(_) => {}
             }
-            | TextureDesc::UvGrid {
-                filter,
-                max_anisotropy,
-                ..
-            }
-            | TextureDesc::MeshMaterial {
-                filter,
-                max_anisotropy,
-                ..
-            } => {
-                *filter = o.filter.unwrap_or(*filter);
-                *max_anisotropy = o.max_anisotropy.unwrap_or(*max_anisotropy);
-            }
-            TextureDesc::Checker { filter, .. } => *filter = o.filter.unwrap_or(*filter),
-            TextureDesc::Constant(_) => {}
         }
     }
 }

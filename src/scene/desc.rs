@@ -4,10 +4,10 @@
 //! are errors (a typo must not silently fall back to a default). Colours are linear RGB.
 
 use crate::geometry::{Shading, Shape};
-use crate::mapping::Mapping;
+use crate::mapping::{Mapping, UvTransform};
 use crate::math::{Rgb, Vec3};
 use crate::sampler::{PixelFilter, PixelSampler};
-use crate::texture::{DEFAULT_MAX_ANISOTROPY, Filter, Lookup, View, Wrap};
+use crate::texture::{Channel, DEFAULT_MAX_ANISOTROPY, Filter, Lookup, View, Wrap};
 use serde::{Deserialize, Serialize};
 
 /// The preset format version this build reads and writes.
@@ -86,6 +86,12 @@ pub enum ProjectionDesc {
         /// Vertical field of view, degrees (180 for pole to pole).
         v_fov: f32,
     },
+    /// Parallel rays along the view direction, from the plane through the eye.
+    Orthographic {
+        /// Height of the view in world units (positive); the width follows the image's
+        /// aspect ratio.
+        height: f32,
+    },
 }
 
 impl Default for ProjectionDesc {
@@ -120,6 +126,20 @@ pub struct RenderDesc {
     pub adaptive: Option<AdaptiveDesc>,
     /// What the render shows: the shaded image or a debug view; default `Shaded`.
     pub view: View,
+    /// How many mirror bounces a ray may take (`Reflective` materials), 0 to
+    /// [`MAX_REFLECTION_DEPTH`]; 0 shades a mirror as plain Phong; default 4.
+    #[serde(skip_serializing_if = "is_default_depth")]
+    pub reflection_depth: u32,
+}
+
+/// The default [`RenderDesc::reflection_depth`].
+pub const DEFAULT_REFLECTION_DEPTH: u32 = 4;
+/// The largest [`RenderDesc::reflection_depth`].
+pub const MAX_REFLECTION_DEPTH: u32 = 64;
+
+#[allow(clippy::trivially_copy_pass_by_ref)] // serde's skip_serializing_if passes a reference
+fn is_default_depth(d: &u32) -> bool {
+    *d == DEFAULT_REFLECTION_DEPTH
 }
 
 impl Default for RenderDesc {
@@ -135,6 +155,7 @@ impl Default for RenderDesc {
             pixel_filter: PixelFilter::Box,
             adaptive: None,
             view: View::Shaded,
+            reflection_depth: DEFAULT_REFLECTION_DEPTH,
         }
     }
 }
@@ -267,6 +288,60 @@ pub struct ObjectDesc {
     /// Whether it blocks shadow rays (default: yes, except emissive objects).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub casts_shadows: Option<bool>,
+    /// A clip map: where the surface exists (1) or not (0), in between partly (a filtered
+    /// edge); primary, mirrored and shadow rays all pass where it is below 1. Usually an
+    /// image's alpha: `alpha: (texture: Image(path: "leaf.png", mapping: Rectangular),
+    /// channel: Alpha)`; default none (solid everywhere).
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        serialize_with = "bare_alpha",
+        deserialize_with = "some_alpha"
+    )]
+    pub alpha: Option<ScalarDesc>,
+    /// A bump map: a height texture that tilts the shading normal (the surface itself stays
+    /// where it is): `bump: (height: Image(path: "bricks.png", mapping: Rectangular),
+    /// scale: 0.02)`; default none.
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        serialize_with = "bare_alpha",
+        deserialize_with = "some_alpha"
+    )]
+    pub bump: Option<BumpDesc>,
+}
+
+/// A bump map ([`ObjectDesc::bump`]).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BumpDesc {
+    /// The height field: its luminance, times `scale`, is the height.
+    pub height: TextureDesc,
+    /// The height of a texture value of 1, in the object's own units (finite; negative
+    /// engraves instead of embossing); default 0.02.
+    #[serde(default = "default_bump_scale")]
+    pub scale: f32,
+}
+
+fn default_bump_scale() -> f32 {
+    0.02
+}
+
+/// Writes an optional field (`alpha`, `bump`) as its value itself, without RON's `Some(...)`,
+/// as it is read.
+#[allow(clippy::ref_option)] // serde's serialize_with passes a reference to the field
+fn bare_alpha<S: serde::Serializer, T: Serialize>(a: &Option<T>, s: S) -> Result<S::Ok, S::Error> {
+    match a {
+        Some(a) => a.serialize(s),
+        None => s.serialize_none(),
+    }
+}
+
+/// Reads an optional field (`alpha`, `bump`) written as its value itself.
+fn some_alpha<'de, D: serde::Deserializer<'de>, T: Deserialize<'de>>(
+    d: D,
+) -> Result<Option<T>, D::Error> {
+    T::deserialize(d).map(Some)
 }
 
 /// Shapes: the lecture's generic objects, or a triangle mesh from a file.
@@ -339,6 +414,10 @@ impl Default for TransformDesc {
 /// How a surface shades, given its textured colour `cd`. Coefficients are finite and not
 /// negative. A lit material's radiance is the ambient term `ka cd L_ambient` plus, per light
 /// of radiance `L` arriving along `wi`, `(kd cd / pi + ks cs (r . wo)^exp) L (n . wi)`.
+///
+/// Every coefficient (`ka`, `kd`, `ks`, `exp`, `ls`) is a [`ScalarDesc`] and every colour
+/// besides `cd` and `ce` (`cs`) a [`ColorDesc`]: a plain number or colour, as before, or a
+/// texture with its own mapping, filter and wrap (`ks: Image(path: "mask.png")`).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub enum MaterialDesc {
@@ -346,10 +425,10 @@ pub enum MaterialDesc {
     Matte {
         /// Share of the ambient light reflected; default 0.25.
         #[serde(default = "default_ka")]
-        ka: f32,
+        ka: ScalarDesc,
         /// Share of direct light reflected diffusely; default 0.75.
         #[serde(default = "default_kd")]
-        kd: f32,
+        kd: ScalarDesc,
         /// The surface colour (linear reflectance, usually in [0, 1]); required.
         cd: TextureDesc,
     },
@@ -357,43 +436,342 @@ pub enum MaterialDesc {
     Phong {
         /// Share of the ambient light reflected; default 0.25.
         #[serde(default = "default_ka")]
-        ka: f32,
+        ka: ScalarDesc,
         /// Share of direct light reflected diffusely; default 0.75.
         #[serde(default = "default_kd")]
-        kd: f32,
+        kd: ScalarDesc,
         /// The surface colour (linear reflectance, usually in [0, 1]); required.
         cd: TextureDesc,
         /// Strength of the highlight; default 0.25.
         #[serde(default = "default_ks")]
-        ks: f32,
+        ks: ScalarDesc,
         /// Colour of the highlight, linear RGB; default white (the light's own colour).
-        #[serde(default = "white")]
-        cs: Rgb,
+        #[serde(default = "white_param")]
+        cs: ColorDesc,
         /// Phong exponent: larger is a smaller, sharper highlight; default 20.
         #[serde(default = "default_exp")]
-        exp: f32,
+        exp: ScalarDesc,
+        /// Glow on the dark side (city lights at night): linear radiance added where direct
+        /// light does not reach, fading in over the first 0.2 of the lights' summed `n . wi`
+        /// past the terminator (and fully where every light is shadowed); default black (none).
+        #[serde(default = "black_param", skip_serializing_if = "ColorDesc::is_black")]
+        ce: ColorDesc,
+    },
+    /// The book's `Reflective`: Phong plus a perfect mirror, which adds `kr cr` times the
+    /// radiance seen along the mirrored ray (traced up to `render.reflection_depth` bounces).
+    Reflective {
+        /// Share of the ambient light reflected; default 0.25.
+        #[serde(default = "default_ka")]
+        ka: ScalarDesc,
+        /// Share of direct light reflected diffusely; default 0.75.
+        #[serde(default = "default_kd")]
+        kd: ScalarDesc,
+        /// The surface colour (linear reflectance, usually in [0, 1]); required.
+        cd: TextureDesc,
+        /// Strength of the highlight; default 0.25.
+        #[serde(default = "default_ks")]
+        ks: ScalarDesc,
+        /// Colour of the highlight, linear RGB; default white (the light's own colour).
+        #[serde(default = "white_param")]
+        cs: ColorDesc,
+        /// Phong exponent: larger is a smaller, sharper highlight; default 20.
+        #[serde(default = "default_exp")]
+        exp: ScalarDesc,
+        /// Share of the mirrored radiance reflected; default 0.75.
+        #[serde(default = "default_kr")]
+        kr: ScalarDesc,
+        /// Colour of the mirror, linear RGB; default white.
+        #[serde(default = "white_param")]
+        cr: ColorDesc,
     },
     /// The lecture's `SV_Emissive`: glows with a textured colour, ignores lights.
     Emissive {
         /// Multiplier on the emitted colour (finite, not negative); default 1.
-        #[serde(default = "one")]
-        ls: f32,
+        #[serde(default = "one_param")]
+        ls: ScalarDesc,
         /// The emitted colour as linear radiance (may exceed 1); required.
         ce: TextureDesc,
     },
 }
 
-fn default_ka() -> f32 {
-    0.25
+/// A coefficient of a material: a plain number (`ks: 0.25`, a constant, costing nothing), or
+/// a texture read as one number, by default its luminance (`ks: Image(path: "mask.png")`),
+/// or one channel of it (`ks: (texture: Image(path: "mask.png"), channel: Red)`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(
+    untagged,
+    expecting = "a number, a texture (Constant((r, g, b)), Image(path: \"...\"), Checker(), UvGrid()) or (texture: ..., channel: Red)"
+)]
+pub enum ScalarDesc {
+    /// The same number everywhere.
+    Value(f32),
+    /// A texture's Rec. 709 luminance.
+    Texture(#[serde(deserialize_with = "texture_in_param")] TextureDesc),
+    /// One channel (or the luminance) of a texture.
+    Channel(ChannelDesc),
 }
-fn default_kd() -> f32 {
-    0.75
+
+/// A texture read as one number: [`ScalarDesc::Channel`].
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ChannelDesc {
+    /// The texture read.
+    #[serde(deserialize_with = "texture_in_param")]
+    pub texture: TextureDesc,
+    /// Which channel of it; default `Luminance`.
+    #[serde(default)]
+    pub channel: Channel,
 }
-fn default_ks() -> f32 {
-    0.25
+
+/// A colour of a material other than `cd` and `ce`: a plain linear colour (`cs: (1, 1, 1)`, a
+/// constant costing nothing) or a texture (`cs: Image(path: "tint.png")`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(
+    untagged,
+    expecting = "a colour (r, g, b) or a texture (Constant((r, g, b)), Image(path: \"...\"), Checker(), UvGrid())"
+)]
+pub enum ColorDesc {
+    /// The same linear colour everywhere.
+    Value(Rgb),
+    /// A texture.
+    Texture(#[serde(deserialize_with = "texture_in_param")] TextureDesc),
 }
-fn default_exp() -> f32 {
-    20.0
+
+/// Reads a [`TextureDesc`] inside an untagged parameter. There serde buffers the value first
+/// and RON hands it over as `{variant: body}` ("JSON enum semantics"); a texture written with
+/// no fields (`UvGrid()`, `Checker`) then has a unit body, which a struct variant refuses. This
+/// reads the variant's name and gives such a body the empty field list it stands for.
+fn texture_in_param<'de, D: serde::Deserializer<'de>>(d: D) -> Result<TextureDesc, D::Error> {
+    use serde::de::{self, IntoDeserializer, MapAccess, SeqAccess, Visitor};
+    use std::fmt;
+
+    /// `name()`: the texture with every field at its default.
+    fn defaults<E: de::Error>(name: &str) -> Result<TextureDesc, E> {
+        ron::from_str(&format!("{name}()")).map_err(|e| E::custom(format!("{name}: {}", e.code)))
+    }
+
+    /// The body of variant `name`.
+    struct Body(String);
+
+    impl<'de> de::DeserializeSeed<'de> for Body {
+        type Value = TextureDesc;
+        fn deserialize<D2: serde::Deserializer<'de>>(
+            self,
+            d: D2,
+        ) -> Result<TextureDesc, D2::Error> {
+            d.deserialize_any(self)
+        }
+    }
+
+    /// Variant `name` with its body still to read, as serde's enum access.
+    struct Variant<A>(String, A);
+
+    impl<'de, A: MapAccess<'de>> de::EnumAccess<'de> for Variant<A> {
+        type Error = A::Error;
+        type Variant = Self;
+        fn variant_seed<V: de::DeserializeSeed<'de>>(
+            self,
+            seed: V,
+        ) -> Result<(V::Value, Self), A::Error> {
+            let v = seed.deserialize(self.0.as_str().into_deserializer())?;
+            Ok((v, self))
+        }
+    }
+
+    impl<'de, A: MapAccess<'de>> de::VariantAccess<'de> for Variant<A> {
+        type Error = A::Error;
+        fn unit_variant(self) -> Result<(), A::Error> {
+            Err(de::Error::custom(format!("{}: fields expected", self.0)))
+        }
+        fn newtype_variant_seed<T: de::DeserializeSeed<'de>>(
+            self,
+            seed: T,
+        ) -> Result<T::Value, A::Error> {
+            seed.deserialize(de::value::MapAccessDeserializer::new(self.1))
+        }
+        fn tuple_variant<V: Visitor<'de>>(self, _len: usize, v: V) -> Result<V::Value, A::Error> {
+            v.visit_map(self.1)
+        }
+        fn struct_variant<V: Visitor<'de>>(
+            self,
+            _fields: &'static [&'static str],
+            v: V,
+        ) -> Result<V::Value, A::Error> {
+            v.visit_map(self.1)
+        }
+    }
+
+    /// Variant `name` whose body is a sequence (`Constant((r, g, b))`).
+    struct SeqVariant<A>(String, A);
+
+    impl<'de, A: SeqAccess<'de>> de::EnumAccess<'de> for SeqVariant<A> {
+        type Error = A::Error;
+        type Variant = Self;
+        fn variant_seed<V: de::DeserializeSeed<'de>>(
+            self,
+            seed: V,
+        ) -> Result<(V::Value, Self), A::Error> {
+            let v = seed.deserialize(self.0.as_str().into_deserializer())?;
+            Ok((v, self))
+        }
+    }
+
+    impl<'de, A: SeqAccess<'de>> de::VariantAccess<'de> for SeqVariant<A> {
+        type Error = A::Error;
+        fn unit_variant(self) -> Result<(), A::Error> {
+            Err(de::Error::custom(format!("{}: a value expected", self.0)))
+        }
+        fn newtype_variant_seed<T: de::DeserializeSeed<'de>>(
+            self,
+            seed: T,
+        ) -> Result<T::Value, A::Error> {
+            seed.deserialize(de::value::SeqAccessDeserializer::new(self.1))
+        }
+        fn tuple_variant<V: Visitor<'de>>(self, _len: usize, v: V) -> Result<V::Value, A::Error> {
+            v.visit_seq(self.1)
+        }
+        fn struct_variant<V: Visitor<'de>>(
+            self,
+            _fields: &'static [&'static str],
+            v: V,
+        ) -> Result<V::Value, A::Error> {
+            v.visit_seq(self.1)
+        }
+    }
+
+    impl<'de> Visitor<'de> for Body {
+        type Value = TextureDesc;
+        fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+            write!(f, "the fields of {}", self.0)
+        }
+        fn visit_unit<E: de::Error>(self) -> Result<TextureDesc, E> {
+            defaults(&self.0)
+        }
+        fn visit_map<A: MapAccess<'de>>(self, m: A) -> Result<TextureDesc, A::Error> {
+            TextureDesc::deserialize(de::value::EnumAccessDeserializer::new(Variant(self.0, m)))
+        }
+        fn visit_seq<A: SeqAccess<'de>>(self, s: A) -> Result<TextureDesc, A::Error> {
+            TextureDesc::deserialize(de::value::EnumAccessDeserializer::new(SeqVariant(
+                self.0, s,
+            )))
+        }
+    }
+
+    /// The outer `{variant: body}`, or a bare variant name.
+    struct Outer;
+
+    impl<'de> Visitor<'de> for Outer {
+        type Value = TextureDesc;
+        fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+            f.write_str("a texture")
+        }
+        fn visit_str<E: de::Error>(self, name: &str) -> Result<TextureDesc, E> {
+            defaults(name)
+        }
+        fn visit_map<A: MapAccess<'de>>(self, mut m: A) -> Result<TextureDesc, A::Error> {
+            let name: String = m
+                .next_key()?
+                .ok_or_else(|| de::Error::custom("a texture needs a kind"))?;
+            let t = m.next_value_seed(Body(name))?;
+            if m.next_key::<de::IgnoredAny>()?.is_some() {
+                return Err(de::Error::custom("one texture expected"));
+            }
+            Ok(t)
+        }
+    }
+
+    d.deserialize_any(Outer)
+}
+
+impl ScalarDesc {
+    /// The texture this coefficient reads, if it is not a plain number.
+    #[must_use]
+    pub const fn texture(&self) -> Option<&TextureDesc> {
+        match self {
+            Self::Value(_) => None,
+            Self::Texture(t) | Self::Channel(ChannelDesc { texture: t, .. }) => Some(t),
+        }
+    }
+
+    /// The texture this coefficient reads, mutably.
+    pub const fn texture_mut(&mut self) -> Option<&mut TextureDesc> {
+        match self {
+            Self::Value(_) => None,
+            Self::Texture(t) | Self::Channel(ChannelDesc { texture: t, .. }) => Some(t),
+        }
+    }
+
+    /// The channel read from the texture (luminance for a bare texture); `None` for a number.
+    #[must_use]
+    pub const fn channel(&self) -> Option<Channel> {
+        match self {
+            Self::Value(_) => None,
+            Self::Texture(_) => Some(Channel::Luminance),
+            Self::Channel(c) => Some(c.channel),
+        }
+    }
+}
+
+impl ColorDesc {
+    /// Whether this is the plain colour black (a glow that is off).
+    #[must_use]
+    pub fn is_black(&self) -> bool {
+        *self == Self::Value(Rgb::BLACK)
+    }
+
+    /// The texture this colour reads, if it is not a plain colour.
+    #[must_use]
+    pub const fn texture(&self) -> Option<&TextureDesc> {
+        match self {
+            Self::Value(_) => None,
+            Self::Texture(t) => Some(t),
+        }
+    }
+
+    /// The texture this colour reads, mutably.
+    pub const fn texture_mut(&mut self) -> Option<&mut TextureDesc> {
+        match self {
+            Self::Value(_) => None,
+            Self::Texture(t) => Some(t),
+        }
+    }
+}
+
+impl From<f32> for ScalarDesc {
+    fn from(v: f32) -> Self {
+        Self::Value(v)
+    }
+}
+
+impl From<Rgb> for ColorDesc {
+    fn from(c: Rgb) -> Self {
+        Self::Value(c)
+    }
+}
+
+fn black_param() -> ColorDesc {
+    ColorDesc::Value(Rgb::BLACK)
+}
+fn white_param() -> ColorDesc {
+    ColorDesc::Value(Rgb::WHITE)
+}
+fn one_param() -> ScalarDesc {
+    ScalarDesc::Value(1.0)
+}
+fn default_ka() -> ScalarDesc {
+    ScalarDesc::Value(0.25)
+}
+fn default_kd() -> ScalarDesc {
+    ScalarDesc::Value(0.75)
+}
+fn default_ks() -> ScalarDesc {
+    ScalarDesc::Value(0.25)
+}
+fn default_exp() -> ScalarDesc {
+    ScalarDesc::Value(20.0)
+}
+fn default_kr() -> ScalarDesc {
+    ScalarDesc::Value(0.75)
 }
 
 /// Where a material's colour comes from. Colours and texel values are linear RGB.
@@ -427,6 +805,9 @@ pub enum TextureDesc {
         /// The longest footprint the EWA filter follows (major / minor axis, 1 to 64).
         #[serde(default = "default_max_anisotropy")]
         max_anisotropy: f32,
+        /// (u, v) scale, rotation and offset after the mapping; default none.
+        #[serde(default, skip_serializing_if = "UvTransform::is_identity")]
+        uv: UvTransform,
     },
     /// A checkerboard in (u, v).
     Checker {
@@ -444,6 +825,9 @@ pub enum TextureDesc {
         /// otherwise point-sampled.
         #[serde(default)]
         filter: Filter,
+        /// (u, v) scale, rotation and offset after the mapping; default none.
+        #[serde(default, skip_serializing_if = "UvTransform::is_identity")]
+        uv: UvTransform,
     },
     /// The image (`map_Kd`) or colour (`Kd`) of the material a mesh file names (an OBJ's .mtl),
     /// read through the mesh's (u, v) by default. Only on `Mesh` shapes.
@@ -463,6 +847,9 @@ pub enum TextureDesc {
         /// Longest-to-shortest axis ratio the EWA filter honours (see the `Image` texture).
         #[serde(default = "default_max_anisotropy")]
         max_anisotropy: f32,
+        /// (u, v) scale, rotation and offset after the mapping; default none.
+        #[serde(default, skip_serializing_if = "UvTransform::is_identity")]
+        uv: UvTransform,
     },
     /// The labelled UV test grid (cells A1 to H8).
     UvGrid {
@@ -478,6 +865,9 @@ pub enum TextureDesc {
         /// The longest footprint the EWA filter follows (major / minor axis, 1 to 64).
         #[serde(default = "default_max_anisotropy")]
         max_anisotropy: f32,
+        /// (u, v) scale, rotation and offset after the mapping; default none.
+        #[serde(default, skip_serializing_if = "UvTransform::is_identity")]
+        uv: UvTransform,
     },
 }
 
@@ -521,6 +911,29 @@ impl TextureDesc {
         }
     }
 
+    /// The (u, v) transform, for textures that have one.
+    #[must_use]
+    pub fn uv_transform(&self) -> Option<UvTransform> {
+        match self {
+            Self::Constant(_) => None,
+            Self::Image { uv, .. }
+            | Self::Checker { uv, .. }
+            | Self::MeshMaterial { uv, .. }
+            | Self::UvGrid { uv, .. } => Some(*uv),
+        }
+    }
+
+    /// The (u, v) transform, mutably.
+    pub fn uv_transform_mut(&mut self) -> Option<&mut UvTransform> {
+        match self {
+            Self::Constant(_) => None,
+            Self::Image { uv, .. }
+            | Self::Checker { uv, .. }
+            | Self::MeshMaterial { uv, .. }
+            | Self::UvGrid { uv, .. } => Some(uv),
+        }
+    }
+
     /// Sets the mapping of a texture that has one.
     pub fn set_mapping(&mut self, m: Mapping) {
         match self {
@@ -538,7 +951,7 @@ impl MaterialDesc {
     #[must_use]
     pub fn texture(&self) -> &TextureDesc {
         match self {
-            Self::Matte { cd, .. } | Self::Phong { cd, .. } => cd,
+            Self::Matte { cd, .. } | Self::Phong { cd, .. } | Self::Reflective { cd, .. } => cd,
             Self::Emissive { ce, .. } => ce,
         }
     }
@@ -546,8 +959,204 @@ impl MaterialDesc {
     /// The colour texture, mutably.
     pub fn texture_mut(&mut self) -> &mut TextureDesc {
         match self {
-            Self::Matte { cd, .. } | Self::Phong { cd, .. } => cd,
+            Self::Matte { cd, .. } | Self::Phong { cd, .. } | Self::Reflective { cd, .. } => cd,
             Self::Emissive { ce, .. } => ce,
+        }
+    }
+
+    /// Every coefficient and colour besides `cd` and `ce`, by its preset name, in preset
+    /// order.
+    #[must_use]
+    pub fn params(&self) -> Vec<(&'static str, ParamRef<'_>)> {
+        use ParamRef::{Color, Scalar};
+        match self {
+            Self::Matte { ka, kd, .. } => vec![("ka", Scalar(ka)), ("kd", Scalar(kd))],
+            Self::Phong {
+                ka,
+                kd,
+                ks,
+                cs,
+                exp,
+                ce,
+                ..
+            } => vec![
+                ("ka", Scalar(ka)),
+                ("kd", Scalar(kd)),
+                ("ks", Scalar(ks)),
+                ("cs", Color(cs)),
+                ("exp", Scalar(exp)),
+                ("ce", Color(ce)),
+            ],
+            Self::Reflective {
+                ka,
+                kd,
+                ks,
+                cs,
+                exp,
+                kr,
+                cr,
+                ..
+            } => vec![
+                ("ka", Scalar(ka)),
+                ("kd", Scalar(kd)),
+                ("ks", Scalar(ks)),
+                ("cs", Color(cs)),
+                ("exp", Scalar(exp)),
+                ("kr", Scalar(kr)),
+                ("cr", Color(cr)),
+            ],
+            Self::Emissive { ls, .. } => vec![("ls", Scalar(ls))],
+        }
+    }
+
+    /// Every coefficient and colour besides `cd` and `ce`, mutably (see [`MaterialDesc::params`]).
+    pub fn params_mut(&mut self) -> Vec<(&'static str, ParamMut<'_>)> {
+        use ParamMut::{Color, Scalar};
+        match self {
+            Self::Matte { ka, kd, .. } => vec![("ka", Scalar(ka)), ("kd", Scalar(kd))],
+            Self::Phong {
+                ka,
+                kd,
+                ks,
+                cs,
+                exp,
+                ce,
+                ..
+            } => vec![
+                ("ka", Scalar(ka)),
+                ("kd", Scalar(kd)),
+                ("ks", Scalar(ks)),
+                ("cs", Color(cs)),
+                ("exp", Scalar(exp)),
+                ("ce", Color(ce)),
+            ],
+            Self::Reflective {
+                ka,
+                kd,
+                ks,
+                cs,
+                exp,
+                kr,
+                cr,
+                ..
+            } => vec![
+                ("ka", Scalar(ka)),
+                ("kd", Scalar(kd)),
+                ("ks", Scalar(ks)),
+                ("cs", Color(cs)),
+                ("exp", Scalar(exp)),
+                ("kr", Scalar(kr)),
+                ("cr", Color(cr)),
+            ],
+            Self::Emissive { ls, .. } => vec![("ls", Scalar(ls))],
+        }
+    }
+
+    /// Every texture the material reads, by parameter name: the colour (`cd` or `ce`) first,
+    /// then each textured coefficient and colour.
+    #[must_use]
+    pub fn textures(&self) -> Vec<(&'static str, &TextureDesc)> {
+        let colour = match self {
+            Self::Emissive { .. } => "ce",
+            _ => "cd",
+        };
+        let mut v = vec![(colour, self.texture())];
+        v.extend(
+            self.params()
+                .into_iter()
+                .filter_map(|(name, p)| p.texture().map(|t| (name, t))),
+        );
+        v
+    }
+
+    /// Every texture the material reads, mutably, in the order of [`MaterialDesc::textures`].
+    pub fn textures_mut(&mut self) -> Vec<&mut TextureDesc> {
+        let (colour, params): (&mut TextureDesc, Vec<ParamMut<'_>>) = match self {
+            Self::Matte { ka, kd, cd } => (cd, vec![ParamMut::Scalar(ka), ParamMut::Scalar(kd)]),
+            Self::Phong {
+                ka,
+                kd,
+                cd,
+                ks,
+                cs,
+                exp,
+                ce,
+            } => (
+                cd,
+                vec![
+                    ParamMut::Scalar(ka),
+                    ParamMut::Scalar(kd),
+                    ParamMut::Scalar(ks),
+                    ParamMut::Color(cs),
+                    ParamMut::Scalar(exp),
+                    ParamMut::Color(ce),
+                ],
+            ),
+            Self::Reflective {
+                ka,
+                kd,
+                cd,
+                ks,
+                cs,
+                exp,
+                kr,
+                cr,
+            } => (
+                cd,
+                vec![
+                    ParamMut::Scalar(ka),
+                    ParamMut::Scalar(kd),
+                    ParamMut::Scalar(ks),
+                    ParamMut::Color(cs),
+                    ParamMut::Scalar(exp),
+                    ParamMut::Scalar(kr),
+                    ParamMut::Color(cr),
+                ],
+            ),
+            Self::Emissive { ls, ce } => (ce, vec![ParamMut::Scalar(ls)]),
+        };
+        let mut v = vec![colour];
+        v.extend(params.into_iter().filter_map(ParamMut::into_texture));
+        v
+    }
+}
+
+/// A material's coefficient or colour, read ([`MaterialDesc::params`]).
+#[derive(Clone, Copy, Debug)]
+pub enum ParamRef<'a> {
+    /// A coefficient.
+    Scalar(&'a ScalarDesc),
+    /// A colour.
+    Color(&'a ColorDesc),
+}
+
+impl<'a> ParamRef<'a> {
+    /// The texture it reads, if it is not a plain value.
+    #[must_use]
+    pub const fn texture(self) -> Option<&'a TextureDesc> {
+        match self {
+            Self::Scalar(s) => s.texture(),
+            Self::Color(c) => c.texture(),
+        }
+    }
+}
+
+/// A material's coefficient or colour, to edit ([`MaterialDesc::params_mut`]).
+#[derive(Debug)]
+pub enum ParamMut<'a> {
+    /// A coefficient.
+    Scalar(&'a mut ScalarDesc),
+    /// A colour.
+    Color(&'a mut ColorDesc),
+}
+
+impl<'a> ParamMut<'a> {
+    /// The texture it reads, if it is not a plain value.
+    #[must_use]
+    pub fn into_texture(self) -> Option<&'a mut TextureDesc> {
+        match self {
+            Self::Scalar(s) => s.texture_mut(),
+            Self::Color(c) => c.texture_mut(),
         }
     }
 }
@@ -628,6 +1237,9 @@ pub enum MaterialKind {
     /// [`MaterialDesc::Phong`].
     #[strum(message = "Matte with a Phong highlight.")]
     Phong,
+    /// [`MaterialDesc::Reflective`].
+    #[strum(message = "Phong plus a perfect mirror kr cr: shows what the mirrored ray sees.")]
+    Reflective,
     /// [`MaterialDesc::Emissive`].
     #[strum(message = "The lecture's SV_Emissive: glows with its texture and ignores the lights.")]
     Emissive,
@@ -674,6 +1286,11 @@ pub enum ProjectionKind {
     /// [`ProjectionDesc::Spherical`].
     #[strum(message = "Equirectangular panorama: longitude across, latitude up.")]
     Spherical,
+    /// [`ProjectionDesc::Orthographic`].
+    #[strum(
+        message = "Parallel projection: no perspective; the view is a fixed height in world units."
+    )]
+    Orthographic,
 }
 
 impl crate::names::Named for ProjectionKind {
@@ -730,18 +1347,21 @@ impl TextureKind {
                 scale: one(),
                 srgb: yes(),
                 max_anisotropy: default_max_anisotropy(),
+                uv: UvTransform::IDENTITY,
             },
             Self::Checker => TextureDesc::Checker {
                 mapping: Mapping::default(),
                 squares: default_squares(),
                 colors: default_checker_colors(),
                 filter: Filter::default(),
+                uv: UvTransform::IDENTITY,
             },
             Self::UvGrid => TextureDesc::UvGrid {
                 mapping: Mapping::default(),
                 filter: Filter::default(),
                 wrap: Wrap::default(),
                 max_anisotropy: default_max_anisotropy(),
+                uv: UvTransform::IDENTITY,
             },
             Self::MeshMaterial => TextureDesc::MeshMaterial {
                 mapping: uv_mapping(),
@@ -749,6 +1369,7 @@ impl TextureKind {
                 lookup: Lookup::default(),
                 wrap: Wrap::default(),
                 max_anisotropy: default_max_anisotropy(),
+                uv: UvTransform::IDENTITY,
             },
         }
     }
@@ -775,6 +1396,9 @@ impl TextureDesc {
         if let (Some(mapping), false) = (self.mapping(), kind == TextureKind::MeshMaterial) {
             t.set_mapping(mapping);
         }
+        if let (Some(uv), Some(to)) = (self.uv_transform(), t.uv_transform_mut()) {
+            *to = uv;
+        }
         t
     }
 }
@@ -795,11 +1419,22 @@ impl MaterialKind {
                 kd: default_kd(),
                 cd: colour,
                 ks: default_ks(),
-                cs: white(),
+                cs: white_param(),
                 exp: default_exp(),
+                ce: black_param(),
+            },
+            Self::Reflective => MaterialDesc::Reflective {
+                ka: default_ka(),
+                kd: default_kd(),
+                cd: colour.clone(),
+                ks: default_ks(),
+                cs: white_param(),
+                exp: default_exp(),
+                kr: default_kr(),
+                cr: white_param(),
             },
             Self::Emissive => MaterialDesc::Emissive {
-                ls: one(),
+                ls: one_param(),
                 ce: colour,
             },
         }
@@ -813,31 +1448,25 @@ impl MaterialDesc {
         match self {
             Self::Matte { .. } => MaterialKind::Matte,
             Self::Phong { .. } => MaterialKind::Phong,
+            Self::Reflective { .. } => MaterialKind::Reflective,
             Self::Emissive { .. } => MaterialKind::Emissive,
         }
     }
 
-    /// A material of another kind with its defaults, keeping this one's texture and its
-    /// ambient and diffuse coefficients where both kinds have them.
+    /// A material of another kind with its defaults, keeping this one's texture and every
+    /// coefficient and colour both kinds have (ambient and diffuse; Phong's highlight).
     #[must_use]
     pub fn converted(&self, kind: MaterialKind) -> Self {
         let mut m = kind.default_desc();
         *m.texture_mut() = self.texture().clone();
-        if let (
-            Self::Matte { ka, kd, .. } | Self::Phong { ka, kd, .. },
-            Self::Matte {
-                ka: to_ka,
-                kd: to_kd,
-                ..
+        // Parameters both kinds have keep their values.
+        let from: Vec<(&str, ParamRef<'_>)> = self.params();
+        for (name, to) in m.params_mut() {
+            match (from.iter().find(|(n, _)| *n == name).map(|(_, p)| *p), to) {
+                (Some(ParamRef::Scalar(f)), ParamMut::Scalar(t)) => *t = f.clone(),
+                (Some(ParamRef::Color(f)), ParamMut::Color(t)) => *t = f.clone(),
+                _ => {}
             }
-            | Self::Phong {
-                ka: to_ka,
-                kd: to_kd,
-                ..
-            },
-        ) = (self, &mut m)
-        {
-            (*to_ka, *to_kd) = (*ka, *kd);
         }
         m
     }
@@ -877,7 +1506,8 @@ impl LightDesc {
 
 impl ProjectionKind {
     /// The projection with its usual angles: 45 degrees for the pinhole, the half sphere for the
-    /// fisheye, everything for the panorama.
+    /// fisheye, everything for the panorama; 2 world units high (a unit sphere fills it) for
+    /// the orthographic camera.
     #[must_use]
     pub const fn default_desc(self) -> ProjectionDesc {
         match self {
@@ -887,6 +1517,7 @@ impl ProjectionKind {
                 h_fov: 360.0,
                 v_fov: 180.0,
             },
+            Self::Orthographic => ProjectionDesc::Orthographic { height: 2.0 },
         }
     }
 }
@@ -899,6 +1530,7 @@ impl ProjectionDesc {
             Self::Pinhole { .. } => ProjectionKind::Pinhole,
             Self::Fisheye { .. } => ProjectionKind::Fisheye,
             Self::Spherical { .. } => ProjectionKind::Spherical,
+            Self::Orthographic { .. } => ProjectionKind::Orthographic,
         }
     }
 }
@@ -955,6 +1587,7 @@ mod tests {
             scale: 2.0,
             srgb: true,
             max_anisotropy: 4.0,
+            uv: UvTransform::IDENTITY,
         };
         assert_eq!(
             earth.converted(TextureKind::Checker).mapping(),
@@ -966,24 +1599,139 @@ mod tests {
             Some(Mapping::Uv)
         );
         let phong = MaterialDesc::Phong {
-            ka: 0.1,
-            kd: 0.9,
+            ka: 0.1.into(),
+            kd: 0.9.into(),
             cd: earth.clone(),
-            ks: 0.5,
-            cs: Rgb::WHITE,
-            exp: 50.0,
+            ks: 0.5.into(),
+            cs: Rgb::WHITE.into(),
+            exp: 50.0.into(),
+            ce: Rgb::BLACK.into(),
         };
         assert_eq!(
             phong.converted(MaterialKind::Matte),
             MaterialDesc::Matte {
-                ka: 0.1,
-                kd: 0.9,
+                ka: 0.1.into(),
+                kd: 0.9.into(),
                 cd: earth.clone()
             }
         );
         assert_eq!(
             phong.converted(MaterialKind::Emissive),
-            MaterialDesc::Emissive { ls: 1.0, ce: earth }
+            MaterialDesc::Emissive {
+                ls: 1.0.into(),
+                ce: earth
+            }
+        );
+    }
+
+    /// Plain numbers and colours keep their meaning; textures, a channel of one, NaN and
+    /// integers read as the format says, and each writes back as it was read.
+    #[test]
+    fn coefficients_read_as_numbers_or_textures() {
+        let m: MaterialDesc = ron::from_str(
+            r#"Phong(cd: Constant((0.5, 0.5, 0.5)), ka: 1, kd: 0.5,
+                ks: Image(path: "mask.png", mapping: Spherical, filter: Ewa),
+                cs: Checker(squares: (2, 2)),
+                exp: (texture: UvGrid(wrap: Clamp), channel: Green))"#,
+        )
+        .expect("phong");
+        let MaterialDesc::Phong {
+            ka,
+            kd,
+            ks,
+            cs,
+            exp,
+            ..
+        } = &m
+        else {
+            panic!("not Phong: {m:?}")
+        };
+        assert_eq!(*ka, ScalarDesc::Value(1.0));
+        assert_eq!(*kd, ScalarDesc::Value(0.5));
+        let Some(TextureDesc::Image {
+            path,
+            mapping,
+            filter,
+            ..
+        }) = ks.texture()
+        else {
+            panic!("ks: {ks:?}")
+        };
+        assert_eq!(
+            (path.as_str(), *mapping, *filter),
+            ("mask.png", Mapping::Spherical, Filter::Ewa)
+        );
+        assert_eq!(ks.channel(), Some(Channel::Luminance));
+        assert!(matches!(
+            cs,
+            ColorDesc::Texture(TextureDesc::Checker {
+                squares: (2.0, 2.0),
+                ..
+            })
+        ));
+        assert_eq!(exp.channel(), Some(Channel::Green));
+        assert_eq!(
+            exp.texture().map(TextureDesc::kind),
+            Some(TextureKind::UvGrid)
+        );
+        let text = ron::to_string(&m).expect("write");
+        assert_eq!(ron::from_str::<MaterialDesc>(&text).expect("read back"), m);
+        let nan: MaterialDesc = ron::from_str("Matte(ka: NaN, cd: Constant((1, 1, 1)))").unwrap();
+        assert!(matches!(nan, MaterialDesc::Matte { ka: ScalarDesc::Value(v), .. } if v.is_nan()));
+        let plain: MaterialDesc =
+            ron::from_str("Phong(cs: (1, 0.5, 0), cd: Constant((1, 1, 1)))").unwrap();
+        assert!(matches!(
+            plain,
+            MaterialDesc::Phong {
+                cs: ColorDesc::Value(Rgb(1.0, 0.5, 0.0)),
+                ..
+            }
+        ));
+    }
+
+    /// A texture inside a coefficient reads exactly as the same text does as `cd`, also with
+    /// every field left out (`UvGrid()`) and for a constant.
+    #[test]
+    fn a_texture_in_a_coefficient_reads_as_it_does_as_cd() {
+        for t in [
+            "UvGrid(wrap: Clamp)",
+            "UvGrid()",
+            "Checker()",
+            "Checker(squares: (2, 4), colors: ((1, 0, 0), (0, 0, 1)))",
+            "Constant((0.2, 0.4, 0.6))",
+            r#"Image(path: "x.png", mapping: Cylindrical, filter: Trilinear, scale: 2)"#,
+        ] {
+            let as_cd: TextureDesc = ron::from_str(t).expect(t);
+            let s: ScalarDesc = ron::from_str(t).expect(t);
+            assert_eq!(s, ScalarDesc::Texture(as_cd.clone()), "{t}");
+            let c: ColorDesc = ron::from_str(t).expect(t);
+            assert_eq!(c, ColorDesc::Texture(as_cd.clone()), "{t}");
+            let ch: ScalarDesc = ron::from_str(&format!("(texture: {t}, channel: Blue)")).expect(t);
+            assert_eq!(
+                ch,
+                ScalarDesc::Channel(ChannelDesc {
+                    texture: as_cd,
+                    channel: Channel::Blue
+                }),
+                "{t}"
+            );
+        }
+    }
+
+    /// A value that is neither a number nor a texture says what it may be.
+    #[test]
+    fn a_bad_coefficient_says_what_is_expected() {
+        let e = ron::from_str::<MaterialDesc>(r#"Phong(ks: "shiny", cd: Constant((1, 1, 1)))"#)
+            .expect_err("a string is no coefficient");
+        let msg = e.to_string();
+        assert!(msg.contains("a number, a texture"), "{msg}");
+        let e = ron::from_str::<MaterialDesc>(
+            r#"Phong(cs: Imag(path: "x.png"), cd: Constant((1, 1, 1)))"#,
+        )
+        .expect_err("no such texture");
+        assert!(
+            e.to_string().contains("a colour (r, g, b) or a texture"),
+            "{e}"
         );
     }
 }

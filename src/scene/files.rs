@@ -183,8 +183,19 @@ pub fn asset_paths(desc: &SceneDesc, preset_dir: &Path) -> Vec<PathBuf> {
         }
     };
     for o in &desc.objects {
-        if let TextureDesc::Image { path, .. } = o.material.texture() {
-            add(preset_dir.join(path));
+        let alpha = o.alpha.as_ref().and_then(|a| a.texture());
+        let bump = o.bump.as_ref().map(|b| &b.height);
+        for t in o
+            .material
+            .textures()
+            .into_iter()
+            .map(|(_, t)| t)
+            .chain(alpha)
+            .chain(bump)
+        {
+            if let TextureDesc::Image { path, .. } = t {
+                add(preset_dir.join(path));
+            }
         }
         if let ShapeDesc::Mesh { path, .. } = &o.shape {
             let mesh = preset_dir.join(path);
@@ -213,8 +224,18 @@ pub fn rebase_assets(desc: &mut SceneDesc, from: &Path, to: &Path) {
             .into_owned();
     };
     for o in &mut desc.objects {
-        if let TextureDesc::Image { path, .. } = o.material.texture_mut() {
-            rebase(path);
+        let alpha = o.alpha.as_mut().and_then(super::ScalarDesc::texture_mut);
+        let bump = o.bump.as_mut().map(|b| &mut b.height);
+        for t in o
+            .material
+            .textures_mut()
+            .into_iter()
+            .chain(alpha)
+            .chain(bump)
+        {
+            if let TextureDesc::Image { path, .. } = t {
+                rebase(path);
+            }
         }
         if let ShapeDesc::Mesh { path, .. } = &mut o.shape {
             rebase(path);

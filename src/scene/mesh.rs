@@ -21,6 +21,7 @@ pub(super) fn resolve_mesh_material<'a>(
         lookup,
         wrap,
         max_anisotropy,
+        uv,
     } = m.texture()
     else {
         return Ok(Cow::Borrowed(m));
@@ -49,6 +50,7 @@ pub(super) fn resolve_mesh_material<'a>(
             scale: 1.0,
             srgb: true,
             max_anisotropy: *max_anisotropy,
+            uv: *uv,
         },
         (None, Some(kd)) => TextureDesc::Constant(crate::math::Rgb::from_array(kd)),
         (None, None) => {
@@ -65,11 +67,18 @@ pub(super) fn resolve_mesh_material<'a>(
 
 /// Refuses the `Uv` mapping on a mesh without texture coordinates, saying what to do instead.
 pub(super) fn check_uv_mapping(m: &MaterialDesc, mesh: &Mesh) -> Result<(), String> {
-    if m.texture().mapping() == Some(Mapping::Uv) && !mesh.has_uv() {
-        return Err(format!(
-            "{} has no texture coordinates; choose a generated mapping (spherical, cylindrical, rectangular)",
-            mesh.path().display()
-        ));
+    if mesh.has_uv() {
+        return Ok(());
     }
-    Ok(())
+    match m
+        .textures()
+        .into_iter()
+        .find(|(_, t)| t.mapping() == Some(Mapping::Uv))
+    {
+        Some((name, _)) => Err(format!(
+            "{name}: {} has no texture coordinates; choose a generated mapping (spherical, cylindrical, rectangular)",
+            mesh.path().display()
+        )),
+        None => Ok(()),
+    }
 }

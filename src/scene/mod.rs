@@ -21,7 +21,7 @@ use crate::camera::Camera;
 use crate::error::{Error, Result};
 use crate::geometry::{LocalHit, Object, Shape};
 use crate::mapping::Mapping;
-use crate::material::{Light, Material};
+use crate::material::{Bump, Light, Material, Scalar, ShadePoint};
 use crate::math::{Ray, RayDifferential, Rgb, Vec3A, max_abs};
 use crate::sampler::{PixelFilter, PixelSampler};
 use crate::texture::{TextureContext, View};
@@ -72,6 +72,8 @@ pub struct RenderSettings {
     pub adaptive: Option<AdaptiveDesc>,
     /// The shaded image or a debug view.
     pub view: View,
+    /// How many mirror bounces a ray may take.
+    pub reflection_depth: u32,
 }
 
 impl RenderSettings {
@@ -100,7 +102,18 @@ pub struct Scene {
     pub settings: RenderSettings,
     /// Whether any texture needs ray differentials (computed only then).
     pub needs_differentials: bool,
+    /// Per object (as `objects`), its clip map: where the surface exists (alpha), if it has one.
+    pub clips: Vec<Option<Scalar>>,
+    /// Whether any object has a clip map; without one every ray takes the solid-surface path.
+    pub has_clips: bool,
+    /// Per object (as `objects`), its bump map, if it has one.
+    pub bumps: Vec<Option<Bump>>,
 }
+
+/// The most clip-mapped surfaces one ray (or shadow ray) passes through before it stops: what
+/// lies behind more than this many partly transparent layers is taken as black (or, for a
+/// shadow ray, as blocked).
+pub const MAX_CLIP_LAYERS: u32 = 16;
 
 /// A hit resolved in world space, with what the shading step needs.
 #[derive(Clone, Copy, Debug)]
@@ -163,6 +176,13 @@ impl Scene {
     #[inline]
     pub fn hit(&self, ray: &Ray) -> Option<SurfaceHit> {
         let (object, local) = self.intersect(ray, f32::INFINITY)?;
+        Some(self.resolve(object, local, ray))
+    }
+
+    /// An object-space hit of `object` by `ray` resolved in world space.
+    #[must_use]
+    #[inline]
+    pub fn resolve(&self, object: usize, local: LocalHit, ray: &Ray) -> SurfaceHit {
         let obj = &self.objects[object];
         let p = obj.point_to_world(local.p);
         let mut ng = obj.normal_to_world(local.n);
@@ -178,7 +198,7 @@ impl Scene {
             ng = -ng;
             ns = -ns;
         }
-        Some(SurfaceHit {
+        SurfaceHit {
             object,
             local,
             p,
@@ -186,7 +206,7 @@ impl Scene {
             ns,
             wo,
             front_face: !back_face,
-        })
+        }
     }
 
     /// The texture context of a hit: object-space point and, when a filter needs them, the
@@ -264,7 +284,7 @@ impl Scene {
         let Some(hit) = self.hit(ray) else {
             return (self.settings.background, 0);
         };
-        let (l, key) = self.shade_keyed(&hit, diff);
+        let (l, key) = self.shade_or_clip(ray, &hit, diff, 0, 0);
         (if l.is_finite() { l } else { Rgb::BLACK }, key)
     }
 
@@ -279,9 +299,179 @@ impl Scene {
     #[must_use]
     #[inline]
     pub fn shade_keyed(&self, hit: &SurfaceHit, diff: Option<&RayDifferential>) -> (Rgb, u32) {
+        self.shade_at_depth(hit, diff, 0)
+    }
+
+    /// Radiance along a ray that has already been mirrored `depth` times (0 for a camera ray).
+    fn trace_at_depth(&self, ray: &Ray, diff: Option<&RayDifferential>, depth: u32) -> Rgb {
+        self.radiance_keyed(ray, diff, depth, 0).0
+    }
+
+    /// Radiance and edge key along a ray mirrored `depth` times that has passed `layer`
+    /// clip-mapped surfaces. A clip-mapped hit with alpha `a` below 1 blends its shading with
+    /// what lies behind it: `a L_surface + (1 - a) L_behind` (with a filtered alpha, a soft
+    /// edge at one sample per pixel).
+    #[inline(never)]
+    fn radiance_keyed(
+        &self,
+        ray: &Ray,
+        diff: Option<&RayDifferential>,
+        depth: u32,
+        layer: u32,
+    ) -> (Rgb, u32) {
+        let Some(hit) = self.hit(ray) else {
+            return (self.settings.background, 0);
+        };
+        self.shade_or_clip(ray, &hit, diff, depth, layer)
+    }
+
+    /// Shades `hit`, blending in what lies behind it where it has a clip map below 1.
+    #[inline]
+    fn shade_or_clip(
+        &self,
+        ray: &Ray,
+        hit: &SurfaceHit,
+        diff: Option<&RayDifferential>,
+        depth: u32,
+        layer: u32,
+    ) -> (Rgb, u32) {
+        if self.has_clips
+            && let Some(clip) = &self.clips[hit.object]
+        {
+            return self.clipped(ray, hit, clip, diff, depth, layer);
+        }
+        self.shade_at_depth(hit, diff, depth)
+    }
+
+    /// [`Scene::shade_or_clip`] for a clip-mapped hit (kept out of line: the solid path, which
+    /// every scene without clip maps takes, stays small).
+    #[cold]
+    #[inline(never)]
+    fn clipped(
+        &self,
+        ray: &Ray,
+        hit: &SurfaceHit,
+        clip: &Scalar,
+        diff: Option<&RayDifferential>,
+        depth: u32,
+        layer: u32,
+    ) -> (Rgb, u32) {
+        let a = clip.eval(&self.texture_context(hit, diff)).clamp(0.0, 1.0);
+        if a >= 1.0 {
+            return self.shade_at_depth(hit, diff, depth);
+        }
+        let behind = if layer + 1 < MAX_CLIP_LAYERS {
+            let origin = hit.p + ray.dir.normalize_or_zero() * self.offset_at(hit);
+            self.radiance_keyed(&Ray::new(origin, ray.dir), diff, depth, layer + 1)
+        } else {
+            (Rgb::BLACK, 0)
+        };
+        if a <= 0.0 {
+            return behind;
+        }
+        let (l, key) = self.shade_at_depth(hit, diff, depth);
+        (l * a + behind.0 * (1.0 - a), key)
+    }
+
+    /// The world shading normal of `hit` tilted by bump map `b`: on the viewer's side of the
+    /// surface, and, if the tilt would turn it away from the viewer (which would shade black),
+    /// bent back until it faces the viewer just enough (pbrt's fix for shading normals).
+    #[must_use]
+    #[inline(never)]
+    pub fn bumped_normal(&self, hit: &SurfaceHit, b: &Bump, ctx: &TextureContext) -> Vec3A {
+        let obj = &self.objects[hit.object];
+        let n_local = if hit.local.ns == hit.local.n {
+            hit.local.n
+        } else {
+            hit.local.ns
+        };
+        let tilted = b.perturb(ctx, n_local);
+        if tilted == n_local {
+            return hit.ns;
+        }
+        let side = if hit.front_face { 1.0 } else { -1.0 };
+        let mut ns = (obj.normal_to_world(tilted) * side).normalize_or(hit.ns);
+        let facing = ns.dot(hit.wo);
+        if facing < 1e-3 {
+            ns = (ns + (1e-3 - facing) * hit.wo).normalize_or(hit.ns);
+        }
+        if ns.is_finite() { ns } else { hit.ns }
+    }
+
+    /// How far rays leave a hit point: [`SHADOW_OFFSET_RELATIVE`] of the coordinates' size.
+    #[inline]
+    fn offset_at(&self, hit: &SurfaceHit) -> f32 {
+        let obj = &self.objects[hit.object];
+        SHADOW_OFFSET_RELATIVE
+            * (max_abs(hit.p) + max_abs(obj.world_from_object.translation)).max(f32::MIN_POSITIVE)
+    }
+
+    /// The share of light that passes along a shadow ray within (0, `t_max`), ignoring object
+    /// `skip`: 0 behind a solid occluder, `1 - alpha` through each clip-mapped surface met
+    /// (its alpha point-sampled where the ray crosses it), so a cut-out casts a cut-out shadow.
+    #[must_use]
+    pub fn transmittance(&self, ray: &Ray, t_max: f32, skip: usize) -> f32 {
+        let mut tr = 1.0;
+        for (i, o) in self.objects.iter().enumerate() {
+            if i == skip || !o.casts_shadows {
+                continue;
+            }
+            let Some(clip) = &self.clips[i] else {
+                if o.intersect(ray, t_max).is_some() {
+                    return 0.0;
+                }
+                continue;
+            };
+            let mut r = *ray;
+            let mut t_left = t_max;
+            for _ in 0..MAX_CLIP_LAYERS {
+                let Some(h) = o.intersect(&r, t_left) else {
+                    break;
+                };
+                let hit = self.resolve(i, h, &r);
+                let ctx = self.texture_context_at(&hit, Vec3A::ZERO, Vec3A::ZERO);
+                tr *= 1.0 - clip.eval(&ctx).clamp(0.0, 1.0);
+                if tr <= 0.0 {
+                    return 0.0;
+                }
+                let origin = hit.p + r.dir.normalize_or_zero() * self.offset_at(&hit);
+                let len = r.dir.length();
+                if len <= 0.0 {
+                    break;
+                }
+                t_left -= (origin - r.origin).length() / len;
+                if t_left <= 0.0 {
+                    break;
+                }
+                r = Ray::new(origin, r.dir);
+            }
+        }
+        tr
+    }
+
+    /// Shades a hit reached after `depth` mirror bounces; a mirror adds the radiance along its
+    /// reflected ray while `depth` is below `settings.reflection_depth`.
+    #[inline]
+    fn shade_at_depth(
+        &self,
+        hit: &SurfaceHit,
+        diff: Option<&RayDifferential>,
+        depth: u32,
+    ) -> (Rgb, u32) {
         let obj = &self.objects[hit.object];
         let material = &self.materials[obj.material];
         let ctx = self.texture_context(hit, diff);
+        let bumped;
+        let hit = match &self.bumps[hit.object] {
+            Some(b) => {
+                bumped = SurfaceHit {
+                    ns: self.bumped_normal(hit, b, &ctx),
+                    ..*hit
+                };
+                &bumped
+            }
+            None => hit,
+        };
         let view = self.settings.view;
         let filtered = diff.is_some() && material.texture().needs_differentials();
         let mut key = (hit.object as u32 + 1) & 0xffff | u32::from(filtered) << 31;
@@ -307,6 +497,9 @@ impl Scene {
             Shape::Cylinder { capped: false } | Shape::Mesh(_) => true,
         };
         let skip = if self_shadows { usize::MAX } else { hit.object };
+        // Summed n . wi of the lights that reach the point, for a glow (only then).
+        let glows = sp.glow != Rgb::BLACK;
+        let mut lit = 0.0;
         for (i, light) in self.lights.iter().enumerate() {
             let (wi, dist, li, shadows) = light.incident(hit.p);
             if hit.ns.dot(wi) <= 0.0 || hit.ng.dot(wi) <= 0.0 {
@@ -319,18 +512,99 @@ impl Scene {
                 } else {
                     f32::INFINITY
                 };
+                if self.has_clips {
+                    let tr = self.transmittance(&Ray::new(origin, wi), t_max, skip);
+                    if tr <= 0.0 {
+                        key |= (1 << (16 + i.min(14))) as u32;
+                        continue;
+                    }
+                    l += sp.direct(hit.ns, hit.wo, wi, li) * tr;
+                    if glows {
+                        lit += hit.ns.dot(wi) * tr;
+                    }
+                    continue;
+                }
                 if self.occluded_except(&Ray::new(origin, wi), t_max, skip) {
                     key |= (1 << (16 + i.min(14))) as u32;
                     continue;
                 }
             }
             l += sp.direct(hit.ns, hit.wo, wi, li);
+            if glows {
+                lit += hit.ns.dot(wi);
+            }
+        }
+        if glows {
+            l += sp.glow * ShadePoint::glow_weight(lit);
+        }
+        if sp.mirror != Rgb::BLACK && depth < self.settings.reflection_depth {
+            l += sp.mirror * self.reflected(hit, diff, offset, depth);
         }
         let l = match view {
             View::Shaded => l,
             _ => material.texture().debug_color(&ctx, view, l),
         };
         (l, key)
+    }
+}
+
+impl Scene {
+    /// Radiance along the mirror direction at `hit` (the book's `Reflective`, a perfect
+    /// specular BRDF `kr cr / (n . wi)`, so the cosine cancels). When the hit carries ray
+    /// differentials they are mirrored too (pbrt's specular reflection differentials: the
+    /// offset rays leave from the neighbouring pixels' hits, mirrored about the normal there),
+    /// so a texture seen in a mirror is filtered over its true footprint.
+    #[cold]
+    #[inline(never)]
+    fn reflected(
+        &self,
+        hit: &SurfaceHit,
+        diff: Option<&RayDifferential>,
+        offset: f32,
+        depth: u32,
+    ) -> Rgb {
+        let (n, wo) = (hit.ns, hit.wo);
+        let cos = n.dot(wo);
+        let wi = (2.0 * cos * n - wo).normalize_or(hit.ng);
+        // Leave on the side the reflected ray goes to.
+        let side = if wi.dot(hit.ng) >= 0.0 { 1.0 } else { -1.0 };
+        let ray = Ray::new(hit.p + hit.ng * (offset * side), wi);
+        let mirrored = diff.map(|d| {
+            let (dpdx, dpdy) = d.footprint_on_plane(hit.p, hit.ng);
+            let mirror = |dp: Vec3A, dir: Vec3A| {
+                let dn = self.normal_change(hit, dp);
+                let dwo = -dir.normalize_or(-wo) - wo;
+                let ddn = dwo.dot(n) + wo.dot(dn);
+                let dir = wi - dwo + 2.0 * (cos * dn + ddn * n);
+                (hit.p + dp, if dir.is_finite() { dir } else { wi })
+            };
+            let (rx_origin, rx_dir) = mirror(dpdx, d.rx_dir);
+            let (ry_origin, ry_dir) = mirror(dpdy, d.ry_dir);
+            RayDifferential {
+                rx_origin,
+                rx_dir,
+                ry_origin,
+                ry_dir,
+            }
+        });
+        self.trace_at_depth(&ray, mirrored.as_ref(), depth + 1)
+    }
+
+    /// The change of the world shading normal from `hit` to the point `dp` away on its tangent
+    /// plane: exact for spheres and cylinder walls (whose normals follow the point), zero for
+    /// flat shapes and meshes (flat per triangle; smooth meshes are treated as flat here).
+    fn normal_change(&self, hit: &SurfaceHit, dp: Vec3A) -> Vec3A {
+        let obj = &self.objects[hit.object];
+        let q = hit.local.p + obj.object_from_world.transform_vector3a(dp);
+        let local = match obj.shape {
+            Shape::Sphere => q,
+            Shape::Cylinder { .. } if hit.local.n.y.abs() < 0.5 => Vec3A::new(q.x, 0.0, q.z),
+            _ => return Vec3A::ZERO,
+        };
+        let side = if hit.front_face { 1.0 } else { -1.0 };
+        let n = (obj.normal_to_world(local.normalize_or(hit.local.n)) * side).normalize_or(hit.ns);
+        let dn = n - hit.ns;
+        if dn.is_finite() { dn } else { Vec3A::ZERO }
     }
 }
 

@@ -206,6 +206,7 @@ mod tests {
             squares: (16.0, 8.0),
             colors: (Rgb::WHITE, Rgb::BLACK),
             filter: Filter::Nearest,
+            transform: None,
         })
     }
 

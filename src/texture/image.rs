@@ -595,6 +595,40 @@ pub fn load_image(path: &Path, srgb: bool) -> Result<ImageData> {
     Ok(storage.finish(name))
 }
 
+/// Reads the alpha channel of an image file (a PNG with transparency, say) as a grey image:
+/// each texel's R, G and B are its alpha in [0, 1] (linear: alpha is a coverage, not a
+/// colour). Read under the same limits and through the same bounded reader as colour images.
+///
+/// # Errors
+/// The file cannot be read or decoded, or it has no alpha channel.
+pub fn load_alpha(path: &Path) -> Result<ImageData> {
+    let bytes = crate::input::read_input(path, MAX_IMAGE_BYTES)?;
+    let err = |message: String| Error::Image {
+        path: path.to_path_buf(),
+        message,
+    };
+    let mut reader = image::ImageReader::new(std::io::Cursor::new(bytes))
+        .with_guessed_format()
+        .map_err(|e| Error::io(path, e))?;
+    reader.limits(limits());
+    let img = reader.decode().map_err(|e| err(e.to_string()))?;
+    if !img.color().has_alpha() {
+        return Err(err(
+            "has no alpha channel (a clip map's Alpha channel needs one, e.g. an RGBA PNG)".into(),
+        ));
+    }
+    let alpha = img.to_rgba32f();
+    let name = path
+        .file_name()
+        .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+    Ok(ImageData::from_fn(
+        alpha.width(),
+        alpha.height(),
+        &format!("{name} (alpha)"),
+        |x, y| Rgb::grey(alpha.get_pixel(x, y).0[3].clamp(0.0, 1.0)),
+    ))
+}
+
 /// The decode limits every image is read under.
 fn limits() -> image::Limits {
     let mut limits = image::Limits::default();

@@ -14,13 +14,13 @@ mod procedural;
 pub use debug::{View, mip_level_color};
 pub use explain::{explain_lookup, explain_wrap};
 pub use image::{
-    ImageData, MAX_IMAGE_BYTES, MAX_IMAGE_DIMENSION, TILE, Texels, load_image, save_png,
-    save_png_checked,
+    ImageData, MAX_IMAGE_BYTES, MAX_IMAGE_DIMENSION, TILE, Texels, load_alpha, load_image,
+    save_png, save_png_checked,
 };
 pub use mip::{DEFAULT_MAX_ANISOTROPY, EWA_FOOTPRINT_SCALE, MAX_ANISOTROPY_LIMIT, MipPyramid};
 pub use procedural::{Checker, uv_grid_image};
 
-use crate::mapping::{Mapping, TexCoord};
+use crate::mapping::{Mapping, TexCoord, UvAffine};
 use crate::math::{Rgb, Vec2, Vec3A};
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;
@@ -82,6 +82,44 @@ impl Texture {
         }
     }
 
+    /// Texture coordinates of a hit under the texture's mapping and (u, v) transform; `None`
+    /// for a constant.
+    #[must_use]
+    pub fn tex_coord(&self, ctx: &TextureContext) -> Option<TexCoord> {
+        match self {
+            Self::Constant(_) => None,
+            Self::Image(t) => Some(t.tex_coord(ctx)),
+            Self::Checker(c) => Some(c.tex_coord(ctx)),
+        }
+    }
+
+    /// The colour at texture coordinates already mapped and transformed (as
+    /// [`Texture::tex_coord`] gives them), through the texture's filter and wrap.
+    #[must_use]
+    pub fn eval_tex_coord(&self, tc: TexCoord) -> Rgb {
+        match self {
+            Self::Constant(c) => *c,
+            Self::Image(t) => t.sample(tc) * t.scale,
+            Self::Checker(c) => {
+                if c.filter.needs_footprint() {
+                    c.box_filtered(&tc)
+                } else {
+                    c.point(tc.uv)
+                }
+            }
+        }
+    }
+
+    /// The (u, v) transform, if the texture has one that is not the identity.
+    #[must_use]
+    pub const fn uv_affine(&self) -> Option<UvAffine> {
+        match self {
+            Self::Constant(_) => None,
+            Self::Image(t) => t.transform,
+            Self::Checker(c) => c.transform,
+        }
+    }
+
     /// The mapping, for textures that have one.
     #[must_use]
     pub const fn mapping(&self) -> Option<Mapping> {
@@ -89,6 +127,51 @@ impl Texture {
             Self::Constant(_) => None,
             Self::Image(t) => Some(t.mapping),
             Self::Checker(c) => Some(c.mapping),
+        }
+    }
+}
+
+/// Which number a texture gives where a material wants one (a coefficient such as `ks`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[derive(Serialize, Deserialize)]
+#[derive(strum::VariantArray, strum::IntoStaticStr, strum::Display)]
+#[derive(strum::EnumString, strum::EnumMessage)]
+pub enum Channel {
+    /// Rec. 709 luminance of the linear colour.
+    #[default]
+    #[strum(message = "Rec. 709 luminance of the linear colour.")]
+    Luminance,
+    /// The red channel.
+    #[strum(message = "The red channel.")]
+    Red,
+    /// The green channel.
+    #[strum(message = "The green channel.")]
+    Green,
+    /// The blue channel.
+    #[strum(message = "The blue channel.")]
+    Blue,
+    /// The image file's alpha channel (an `Image` texture only; for clip maps).
+    #[strum(message = "The image file's alpha (transparency) channel, for clip maps.")]
+    Alpha,
+}
+
+impl crate::names::Named for Channel {
+    const WHAT: &'static str = "channel";
+}
+
+impl Channel {
+    /// The number this channel reads from a linear colour. A grey's luminance is its grey
+    /// exactly (the weighted sum could round it), so `Constant((v, v, v))` means `v`.
+    #[must_use]
+    #[inline]
+    pub fn of(self, c: Rgb) -> f32 {
+        match self {
+            Self::Luminance if c.0 == c.1 && c.1 == c.2 => c.0,
+            Self::Luminance => c.luminance(),
+            // An alpha texture holds alpha in every channel.
+            Self::Red | Self::Alpha => c.0,
+            Self::Green => c.1,
+            Self::Blue => c.2,
         }
     }
 }
@@ -285,6 +368,8 @@ pub struct ImageTexture {
     pub mip: Option<Arc<MipPyramid>>,
     /// The longest footprint EWA follows, as a ratio of major to minor axis.
     pub max_anisotropy: f32,
+    /// The (u, v) transform after the mapping; `None` for none (costs nothing).
+    pub transform: Option<UvAffine>,
 }
 
 impl ImageTexture {
@@ -292,16 +377,33 @@ impl ImageTexture {
     /// map clamps v at its poles, whatever the texture's own mode.
     #[must_use]
     #[inline]
+    ///
+    /// A texture with a (u, v) transform uses its own wrap mode on both axes: tiled or rotated,
+    /// its coordinates no longer follow the mapping's seam and poles.
     pub fn wraps(&self) -> (Wrap, Wrap) {
-        Wrap::for_mapping(self.mapping, self.wrap)
+        if self.transform.is_some() {
+            (self.wrap, self.wrap)
+        } else {
+            Wrap::for_mapping(self.mapping, self.wrap)
+        }
+    }
+
+    /// Texture coordinates of a hit: the mapping's, then the (u, v) transform if any.
+    #[must_use]
+    #[inline]
+    pub fn tex_coord(&self, ctx: &TextureContext) -> TexCoord {
+        let tc = ctx.tex_coord(self.mapping);
+        match &self.transform {
+            None => tc,
+            Some(a) => a.apply(tc),
+        }
     }
 
     /// The colour at a hit.
     #[must_use]
     #[inline]
     pub fn eval(&self, ctx: &TextureContext) -> Rgb {
-        let tc = ctx.tex_coord(self.mapping);
-        self.sample(tc) * self.scale
+        self.sample(self.tex_coord(ctx)) * self.scale
     }
 
     /// The filtered colour at texture coordinates (before `scale`).

@@ -1,7 +1,7 @@
 //! Procedural textures: a checkerboard in (u, v) and the labelled UV test grid.
 
 use super::{Filter, ImageData, TextureContext};
-use crate::mapping::{Mapping, TexCoord};
+use crate::mapping::{Mapping, TexCoord, UvAffine};
 use crate::math::{Rgb, srgb_to_linear};
 
 /// A checkerboard of `squares.0 x squares.1` squares over the unit (u, v) square, repeating
@@ -17,6 +17,8 @@ pub struct Checker {
     /// Footprint filters ([`Filter::needs_footprint`]) use the closed-form box filter; the others
     /// point-sample.
     pub filter: Filter,
+    /// The (u, v) transform after the mapping; `None` for none.
+    pub transform: Option<UvAffine>,
 }
 
 impl Checker {
@@ -24,11 +26,22 @@ impl Checker {
     #[must_use]
     #[inline]
     pub fn eval(&self, ctx: &TextureContext) -> Rgb {
-        let tc = ctx.tex_coord(self.mapping);
+        let tc = self.tex_coord(ctx);
         if self.filter.needs_footprint() {
             self.box_filtered(&tc)
         } else {
             self.point(tc.uv)
+        }
+    }
+
+    /// Texture coordinates of a hit: the mapping's, then the (u, v) transform if any.
+    #[must_use]
+    #[inline]
+    pub fn tex_coord(&self, ctx: &TextureContext) -> TexCoord {
+        let tc = ctx.tex_coord(self.mapping);
+        match &self.transform {
+            None => tc,
+            Some(a) => a.apply(tc),
         }
     }
 
@@ -208,6 +221,7 @@ mod tests {
 
     fn checker(filter: Filter) -> Checker {
         Checker {
+            transform: None,
             mapping: Mapping::Rectangular,
             squares: (4.0, 4.0),
             colors: (Rgb::grey(1.0), Rgb::grey(0.0)),

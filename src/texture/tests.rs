@@ -135,6 +135,7 @@ fn periodic_mappings_override_the_wrap_on_u() {
         scale: 1.0,
         mip: None,
         max_anisotropy: DEFAULT_MAX_ANISOTROPY,
+        transform: None,
     };
     assert_eq!(tex.wraps(), (Wrap::Repeat, Wrap::Clamp));
 }

@@ -36,6 +36,9 @@ pub(super) fn camera_ui(
             changed |= number(ui, "horizontal fov (deg)", h_fov, 1.0..=360.0, 0.5);
             changed |= number(ui, "vertical fov (deg)", v_fov, 1.0..=180.0, 0.5);
         }
+        ProjectionDesc::Orthographic { height } => {
+            changed |= number(ui, "view height (world units)", height, 1e-3..=1e6, 0.02);
+        }
     }
     let mut eye = c.eye;
     if vec3(ui, "eye", &mut eye, 0.02) && eye != c.look_at {

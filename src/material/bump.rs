@@ -1,0 +1,95 @@
+//! Bump mapping: a height texture tilts the shading normal (Blinn's bump map, in the "surface
+//! gradient" form): the height's gradient on the surface, from its filtered (u, v) derivatives
+//! chained through the mapping's gradients of u and v, is subtracted from the normal.
+
+use crate::mapping::Mapping;
+use crate::math::Vec3A;
+use crate::texture::{Texture, TextureContext};
+
+/// A height texture (its luminance, in world units times `scale`) that tilts the normal.
+#[derive(Clone, Debug)]
+pub struct Bump {
+    /// The height field, with its own mapping, filter, wrap and (u, v) transform.
+    pub height: Texture,
+    /// Height of a texture value of 1, in the object's units.
+    pub scale: f32,
+}
+
+/// The smallest (u, v) step of the height's finite differences: a footprint smaller than this
+/// (or none, without differentials) reads the height over this step.
+pub const MIN_BUMP_STEP: f32 = 5e-4;
+
+impl Bump {
+    /// The object-space unit normal `n` at the hit of `ctx`, tilted by the height's slope.
+    /// A constant (or flat) height returns `n` itself, bit for bit; the result is always
+    /// finite and unit (where the slope is undefined, at a pole or a degenerate triangle, `n`).
+    #[must_use]
+    pub fn perturb(&self, ctx: &TextureContext, n: Vec3A) -> Vec3A {
+        let (Some(mapping), Some(tc)) = (self.height.mapping(), self.height.tex_coord(ctx)) else {
+            return n;
+        };
+        // Gradients of the mapping's u and v with respect to the object-space point.
+        let (gu, gv) = match (mapping, ctx.shape_uv) {
+            (Mapping::Uv, Some((_, Some((dpdu, dpdv))))) => dual_basis(dpdu, dpdv),
+            (Mapping::Uv, Some((_, None))) => return n,
+            (Mapping::Uv, None) => {
+                let m = ctx.natural.map_point(ctx.p);
+                (m.grad_u, m.grad_v)
+            }
+            (m, _) => {
+                let m = m.map_point(ctx.p);
+                (m.grad_u, m.grad_v)
+            }
+        };
+        // Through the texture's (u, v) transform: u' = a u + b v, v' = c u + d v.
+        let (gu, gv) = match self.height.uv_affine() {
+            Some(t) => {
+                let (x, y) = (t.matrix.x_axis, t.matrix.y_axis);
+                (x.x * gu + y.x * gv, x.y * gu + y.y * gv)
+            }
+            None => (gu, gv),
+        };
+        // Filtered finite differences over the pixel's footprint (at least MIN_BUMP_STEP).
+        let du = (0.5 * (tc.duvdx.x.abs() + tc.duvdy.x.abs())).max(MIN_BUMP_STEP);
+        let dv = (0.5 * (tc.duvdx.y.abs() + tc.duvdy.y.abs())).max(MIN_BUMP_STEP);
+        let h = |du: f32, dv: f32| {
+            let mut t = tc;
+            t.uv.x += du;
+            t.uv.y += dv;
+            self.height.eval_tex_coord(t).luminance()
+        };
+        let h0 = h(0.0, 0.0);
+        // Differences at the level of f32 rounding (a filter averaging a flat texture) are no
+        // slope: a flat height leaves the normal exactly as it was.
+        let flat = 4.0 * f32::EPSILON * h0.abs().max(1.0);
+        let step = |d: f32| if d.abs() <= flat { 0.0 } else { d };
+        let dhdu = step(h(du, 0.0) - h0) / du;
+        let dhdv = step(h(0.0, dv) - h0) / dv;
+        if dhdu == 0.0 && dhdv == 0.0 {
+            return n;
+        }
+        let grad = (dhdu * gu + dhdv * gv) * self.scale;
+        let tangential = grad - grad.dot(n) * n;
+        let bumped = (n - tangential).normalize_or(n);
+        if bumped.is_finite() { bumped } else { n }
+    }
+}
+
+/// The gradients of u and v on a surface whose tangents are `dpdu` and `dpdv`: the vectors in
+/// their plane with `gu . dpdu = 1`, `gu . dpdv = 0`, `gv . dpdu = 0`, `gv . dpdv = 1`; zero
+/// for a degenerate (u, v) layout.
+#[must_use]
+pub fn dual_basis(dpdu: Vec3A, dpdv: Vec3A) -> (Vec3A, Vec3A) {
+    let (a, b, c) = (dpdu.dot(dpdu), dpdu.dot(dpdv), dpdv.dot(dpdv));
+    let det = a * c - b * b;
+    if !det.is_finite() || det.abs() <= 1e-30 {
+        return (Vec3A::ZERO, Vec3A::ZERO);
+    }
+    let gu = (c * dpdu - b * dpdv) / det;
+    let gv = (a * dpdv - b * dpdu) / det;
+    if gu.is_finite() && gv.is_finite() {
+        (gu, gv)
+    } else {
+        (Vec3A::ZERO, Vec3A::ZERO)
+    }
+}

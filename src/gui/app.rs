@@ -578,6 +578,35 @@ impl eframe::App for ExplorerApp {
 }
 
 impl ExplorerApp {
+    /// The Lessons panel (when open) and what its buttons ask: open a lesson's preset (through
+    /// the unsaved-changes prompt unless forced), apply an experiment's scene, or show an error.
+    fn lessons_panel(&mut self, ui: &mut egui::Ui, ctx: &egui::Context) {
+        if self.lessons.open {
+            let dirty = self.is_dirty();
+            let action = egui::Panel::right("lessons")
+                .default_size(380.0)
+                .resizable(true)
+                .show(ui, |ui| self.lessons.ui(ui, self.desc.as_ref(), dirty))
+                .inner;
+            match action {
+                Some(LessonAction::Open {
+                    preset,
+                    force: true,
+                }) => self.open_file(&preset),
+                Some(LessonAction::Open { preset, .. }) => {
+                    self.files.request_open(preset);
+                    ctx.request_repaint();
+                }
+                Some(LessonAction::Apply(d)) => {
+                    self.desc = Some(d);
+                    self.restart();
+                }
+                Some(LessonAction::Error(e)) => self.error = Some(e),
+                None => {}
+            }
+        }
+    }
+
     fn frame(&mut self, ui: &mut egui::Ui) {
         let ctx = ui.ctx().clone();
         if self.ctx.is_none() {
@@ -664,30 +693,7 @@ impl ExplorerApp {
             self.restart();
         }
 
-        if self.lessons.open {
-            let dirty = self.is_dirty();
-            let action = egui::Panel::right("lessons")
-                .default_size(380.0)
-                .resizable(true)
-                .show(ui, |ui| self.lessons.ui(ui, self.desc.as_ref(), dirty))
-                .inner;
-            match action {
-                Some(LessonAction::Open {
-                    preset,
-                    force: true,
-                }) => self.open_file(&preset),
-                Some(LessonAction::Open { preset, .. }) => {
-                    self.files.request_open(preset);
-                    ctx.request_repaint();
-                }
-                Some(LessonAction::Apply(d)) => {
-                    self.desc = Some(d);
-                    self.restart();
-                }
-                Some(LessonAction::Error(e)) => self.error = Some(e),
-                None => {}
-            }
-        }
+        self.lessons_panel(ui, &ctx);
 
         self.texture_panel.update(&ctx, self.scene.as_ref());
         if self.inspector.open {

@@ -276,21 +276,29 @@ fn relative_to(target: &Path, base: &Path) -> PathBuf {
 }
 
 /// The built-in presets in the order the lecture meets them: the Earth (its running example,
-/// and the window's first scene), then the rectangular, cylindrical and spherical maps side by
-/// side on the UV grid, the light probe and the panorama camera, the triangle meshes with their
-/// own (u, v), and last the checkers that show aliasing (beyond the lecture). Menus list the
-/// presets in this order; a preset not named here comes after them, by name.
-pub const LECTURE_ORDER: [&str; 10] = [
+/// and the window's first scene), texel coordinates, spatially varying materials (the Earth by
+/// day and night), the rectangular, cylindrical and spherical maps side by side on the UV grid,
+/// the light probe, the panorama camera and the mirror ball, the triangle meshes with their own
+/// (u, v), then beyond the lecture the checkers that show aliasing, bump and clip maps, and the
+/// scene shared with Mitsuba. Menus list the presets in this order; a preset not named here
+/// comes after them, by name.
+pub const LECTURE_ORDER: [&str; 16] = [
     "earth",
+    "texels",
+    "earth-day-night",
     "rectangle",
     "cylinder",
     "uv-grid",
     "light-probe",
     "panorama",
+    "mirror-ball-probe",
     "two-triangles",
     "mesh",
     "checker",
     "checker-plane",
+    "bumps",
+    "cutout",
+    "peer-sphere",
 ];
 
 /// The presets (`*.ron`) in `dir` in [`LECTURE_ORDER`], each with its description (empty for a

@@ -53,7 +53,7 @@ fn the_lessons_follow_the_lecture() {
     );
     for l in &lessons {
         assert!(
-            (2..=4).contains(&l.experiments.len()),
+            (2..=5).contains(&l.experiments.len()),
             "{}: {} experiments",
             l.name,
             l.experiments.len()

@@ -851,6 +851,7 @@ fn bumped_normals_are_finite_and_unit_at_poles_seams_and_degenerate_triangles() 
 /// byte for byte; `TEXPLORE_WRITE_NORMAL_MAP=1` writes it.
 #[test]
 fn the_brick_normal_map_is_derived_from_the_height_field() {
+    const S: f32 = 0.01;
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let height = image::open(root.join("assets/brick_gray_512.png"))
         .unwrap()
@@ -860,7 +861,6 @@ fn the_brick_normal_map_is_derived_from_the_height_field() {
         let (x, y) = (x.rem_euclid(i64::from(w)), y.rem_euclid(i64::from(h)));
         f32::from(height.get_pixel(x as u32, y as u32).0[0]) / 255.0
     };
-    const S: f32 = 0.01;
     let map = image::RgbImage::from_fn(w, h, |x, y| {
         let (x, y) = (i64::from(x), i64::from(y));
         let dhdu = (at(x + 1, y) - at(x - 1, y)) * 0.5 * w as f32;
@@ -932,14 +932,18 @@ fn a_flat_normal_map_changes_nothing() {
         let worst = plain
             .iter()
             .zip(&mapped)
-            .map(|(a, b)| (a.0 - b.0).abs().max((a.1 - b.1).abs()).max((a.2 - b.2).abs()))
+            .map(|(a, b)| {
+                (a.0 - b.0)
+                    .abs()
+                    .max((a.1 - b.1).abs())
+                    .max((a.2 - b.2).abs())
+            })
             .fold(0.0f32, f32::max);
         assert!(worst <= 1e-3, "{filter}: {worst}");
     }
     // The brick map does change the image.
-    let bricks = top(
-        r#"normal: (map: Image(path: "assets/brick_normal_512.png", mapping: Rectangular)),"#,
-    );
+    let bricks =
+        top(r#"normal: (map: Image(path: "assets/brick_normal_512.png", mapping: Rectangular)),"#);
     assert!(rmse(&bricks, &plain) > 0.02);
     std::fs::remove_dir_all(&dir).unwrap();
 }
@@ -970,7 +974,10 @@ fn a_normal_map_shades_like_the_bump_map_of_its_height_field() {
     let unmapped = rmse(&plain, &bump);
     eprintln!("RMSE normal vs bump {same}, inverted {inverted}, unmapped {unmapped}");
     assert!(same < 0.03, "{same}");
-    assert!(inverted > 3.0 * same && unmapped > 1.8 * same, "{inverted} {unmapped} {same}");
+    assert!(
+        inverted > 3.0 * same && unmapped > 1.8 * same,
+        "{inverted} {unmapped} {same}"
+    );
 }
 
 #[test]
@@ -1039,7 +1046,11 @@ fn normal_mapped_normals_are_finite_and_unit_at_poles_seams_and_degenerate_trian
             shape_uv: Some((Vec2::new(0.3, 0.3), Some((dpdu, dpdv)))),
             natural: Mapping::Spherical,
         };
-        assert_eq!(uv_map.perturb(&ctx, Vec3A::Z), Vec3A::Z, "{dpdu:?} {dpdv:?}");
+        assert_eq!(
+            uv_map.perturb(&ctx, Vec3A::Z),
+            Vec3A::Z,
+            "{dpdu:?} {dpdv:?}"
+        );
     }
     // A proper layout tilts it, and stays unit.
     let ctx = TextureContext {
@@ -1067,11 +1078,14 @@ fn a_bad_normal_map_is_refused_with_its_reason() {
             .map(|e| e.to_string())
             .unwrap_or_default()
     };
-    let e = scene(r#"normal: (map: Constant((0.5, 0.5, 1))),"#);
-    assert!(e.contains("normal.map") && e.contains("no tangent frame"), "{e}");
+    let e = scene(r"normal: (map: Constant((0.5, 0.5, 1))),");
+    assert!(
+        e.contains("normal.map") && e.contains("no tangent frame"),
+        "{e}"
+    );
     let e = scene(
-        r#"bump: (height: UvGrid(mapping: Rectangular)),
-           normal: (map: UvGrid(mapping: Rectangular)),"#,
+        r"bump: (height: UvGrid(mapping: Rectangular)),
+           normal: (map: UvGrid(mapping: Rectangular)),",
     );
     assert!(e.contains("both a bump map and a normal map"), "{e}");
     let e = scene(r#"normal: (map: Image(path: "missing_normals.png", mapping: Rectangular)),"#);

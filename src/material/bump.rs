@@ -3,8 +3,8 @@
 //! chained through the mapping's gradients of u and v, is subtracted from the normal.
 
 use crate::mapping::Mapping;
-use crate::math::Vec3A;
 use crate::mapping::TexCoord;
+use crate::math::Vec3A;
 use crate::texture::{Texture, TextureContext};
 
 /// A height texture (its luminance, in world units times `scale`) that tilts the normal.

@@ -3,6 +3,7 @@
 //! chained through the mapping's gradients of u and v, is subtracted from the normal.
 
 use crate::mapping::Mapping;
+use crate::mapping::TexCoord;
 use crate::math::Vec3A;
 use crate::texture::{Texture, TextureContext};
 
@@ -25,29 +26,8 @@ impl Bump {
     /// finite and unit (where the slope is undefined, at a pole or a degenerate triangle, `n`).
     #[must_use]
     pub fn perturb(&self, ctx: &TextureContext, n: Vec3A) -> Vec3A {
-        let (Some(mapping), Some(tc)) = (self.height.mapping(), self.height.tex_coord(ctx)) else {
+        let Some((tc, gu, gv)) = uv_gradients(&self.height, ctx) else {
             return n;
-        };
-        // Gradients of the mapping's u and v with respect to the object-space point.
-        let (gu, gv) = match (mapping, ctx.shape_uv) {
-            (Mapping::Uv, Some((_, Some((dpdu, dpdv))))) => dual_basis(dpdu, dpdv),
-            (Mapping::Uv, Some((_, None))) => return n,
-            (Mapping::Uv, None) => {
-                let m = ctx.natural.map_point(ctx.p);
-                (m.grad_u, m.grad_v)
-            }
-            (m, _) => {
-                let m = m.map_point(ctx.p);
-                (m.grad_u, m.grad_v)
-            }
-        };
-        // Through the texture's (u, v) transform: u' = a u + b v, v' = c u + d v.
-        let (gu, gv) = match self.height.uv_affine() {
-            Some(t) => {
-                let (x, y) = (t.matrix.x_axis, t.matrix.y_axis);
-                (x.x * gu + y.x * gv, x.y * gu + y.y * gv)
-            }
-            None => (gu, gv),
         };
         // Filtered finite differences over the pixel's footprint (at least MIN_BUMP_STEP).
         let du = (0.5 * (tc.duvdx.x.abs() + tc.duvdy.x.abs())).max(MIN_BUMP_STEP);
@@ -73,6 +53,39 @@ impl Bump {
         let bumped = (n - tangential).normalize_or(n);
         if bumped.is_finite() { bumped } else { n }
     }
+}
+
+/// The texture coordinates of `texture` at the hit of `ctx` and the object-space gradients of
+/// its (transformed) u and v: the mapping's analytic gradients, or on a mesh the dual basis of
+/// the triangle's dp/du and dp/dv; `None` for a texture without a mapping (a constant) or a
+/// mesh triangle without a (u, v) layout.
+#[must_use]
+pub fn uv_gradients(texture: &Texture, ctx: &TextureContext) -> Option<(TexCoord, Vec3A, Vec3A)> {
+    let (Some(mapping), Some(tc)) = (texture.mapping(), texture.tex_coord(ctx)) else {
+        return None;
+    };
+    // Gradients of the mapping's u and v with respect to the object-space point.
+    let (gu, gv) = match (mapping, ctx.shape_uv) {
+        (Mapping::Uv, Some((_, Some((dpdu, dpdv))))) => dual_basis(dpdu, dpdv),
+        (Mapping::Uv, Some((_, None))) => return None,
+        (Mapping::Uv, None) => {
+            let m = ctx.natural.map_point(ctx.p);
+            (m.grad_u, m.grad_v)
+        }
+        (m, _) => {
+            let m = m.map_point(ctx.p);
+            (m.grad_u, m.grad_v)
+        }
+    };
+    // Through the texture's (u, v) transform: u' = a u + b v, v' = c u + d v.
+    let (gu, gv) = match texture.uv_affine() {
+        Some(t) => {
+            let (x, y) = (t.matrix.x_axis, t.matrix.y_axis);
+            (x.x * gu + y.x * gv, x.y * gu + y.y * gv)
+        }
+        None => (gu, gv),
+    };
+    Some((tc, gu, gv))
 }
 
 /// The gradients of u and v on a surface whose tangents are `dpdu` and `dpdv`: the vectors in

@@ -4,9 +4,11 @@
 //! texture"): see [`Scalar`] and [`Colour`], which cost nothing when constant.
 
 mod bump;
+mod normal;
 mod param;
 
-pub use bump::{Bump, MIN_BUMP_STEP, dual_basis};
+pub use bump::{Bump, MIN_BUMP_STEP, dual_basis, uv_gradients};
+pub use normal::{NormalMap, decode_normal, encode_normal};
 pub use param::{Colour, ParamValue, Scalar, ScalarTexture};
 
 use crate::math::{INV_PI, Rgb, Vec3A};

@@ -9,7 +9,7 @@ use crate::camera::{Camera, Projection};
 use crate::error::{Error, Result};
 use crate::geometry::{Mesh, MeshShape, Object, Shape};
 use crate::mapping::{UvAffine, UvTransform};
-use crate::material::{Bump, Colour, Light, Material, Scalar, ScalarTexture};
+use crate::material::{Bump, Colour, Light, Material, NormalMap, Scalar, ScalarTexture};
 use crate::math::{Affine3A, Quat, Vec3, Vec3A};
 use crate::sampler::{PixelFilter, PixelSampler};
 use crate::texture::{
@@ -199,6 +199,10 @@ impl Numbers {
             self.check(|| format!("{at}.bump.scale"), &[b.scale]);
             self.texture(&format!("{at}.bump.height"), &b.height);
         }
+        if let Some(n) = &o.normal {
+            self.check(|| format!("{at}.normal.strength"), &[n.strength]);
+            self.texture(&format!("{at}.normal.map"), &n.map);
+        }
     }
 
     /// Every number of one texture; `tex` names it.
@@ -384,6 +388,7 @@ pub fn build_scene(desc: &SceneDesc, preset_path: &Path, cache: &mut AssetCache)
     let mut needs_differentials = false;
     let mut clips = Vec::with_capacity(desc.objects.len());
     let mut bumps = Vec::with_capacity(desc.objects.len());
+    let mut normal_maps = Vec::with_capacity(desc.objects.len());
     for (i, o) in desc.objects.iter().enumerate() {
         let what = if o.name.is_empty() {
             format!("objects[{i}]")
@@ -459,6 +464,22 @@ pub fn build_scene(desc: &SceneDesc, preset_path: &Path, cache: &mut AssetCache)
             .as_ref()
             .is_some_and(|b| b.height.needs_differentials());
         bumps.push(bump);
+        let normal_map = match &o.normal {
+            None => None,
+            Some(_) if o.bump.is_some() => {
+                return Err(bad(format!(
+                    "{what}: has both a bump map and a normal map; an object has one or the other"
+                )));
+            }
+            Some(n) => Some(normal_map(n, base, cache).map_err(|e| match e {
+                Error::Invalid { message, .. } => bad(format!("{what}.{message}")),
+                other => other,
+            })?),
+        };
+        needs_differentials |= normal_map
+            .as_ref()
+            .is_some_and(|n| n.map.needs_differentials());
+        normal_maps.push(normal_map);
         let mut obj = Object::new(shape, transform, materials.len(), name);
         obj.casts_shadows = o.casts_shadows.unwrap_or(material.is_lit());
         materials.push(material);
@@ -476,7 +497,33 @@ pub fn build_scene(desc: &SceneDesc, preset_path: &Path, cache: &mut AssetCache)
         clips,
         has_clips,
         bumps,
+        normal_maps,
     })
+}
+
+/// A normal map: its texture read raw (normals are not colours), never a constant (which has
+/// no mapping, so no tangent frame).
+fn normal_map(n: &super::NormalMapDesc, base: &Path, cache: &mut AssetCache) -> Result<NormalMap> {
+    if !n.strength.is_finite() {
+        return Err(Error::invalid(
+            base,
+            format!("normal.strength: {} is not finite", n.strength),
+        ));
+    }
+    let mut raw = n.map.clone();
+    if let TextureDesc::Image { srgb, .. } = &mut raw {
+        *srgb = false;
+    }
+    match param_texture("normal.map", &raw, base, cache)? {
+        Texture::Constant(_) => Err(Error::invalid(
+            base,
+            "normal.map: a constant has no (u, v) mapping, so no tangent frame; use an image",
+        )),
+        map => Ok(NormalMap {
+            map,
+            strength: n.strength,
+        }),
+    }
 }
 
 fn render_settings(r: &RenderDesc) -> std::result::Result<RenderSettings, String> {
@@ -933,12 +980,14 @@ pub fn apply_overrides(desc: &mut SceneDesc, o: Overrides) {
     for obj in &mut desc.objects {
         let alpha = obj.alpha.as_mut().and_then(ScalarDesc::texture_mut);
         let bump = obj.bump.as_mut().map(|b| &mut b.height);
+        let normal = obj.normal.as_mut().map(|n| &mut n.map);
         for t in obj
             .material
             .textures_mut()
             .into_iter()
             .chain(alpha)
             .chain(bump)
+            .chain(normal)
         {
             match t {
                 TextureDesc::Image {

@@ -309,6 +309,30 @@ pub struct ObjectDesc {
         deserialize_with = "some_alpha"
     )]
     pub bump: Option<BumpDesc>,
+    /// A normal map: an RGB texture of tangent-space normals that replaces the shading normal
+    /// (read raw, whatever its `srgb` says): `normal: (map: Image(path: "bricks_normal.png",
+    /// mapping: Rectangular), strength: 1)`; default none. An object has a bump map or a
+    /// normal map, not both.
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        serialize_with = "bare_alpha",
+        deserialize_with = "some_alpha"
+    )]
+    pub normal: Option<NormalMapDesc>,
+}
+
+/// A normal map ([`ObjectDesc::normal`]).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct NormalMapDesc {
+    /// The normals: red along +u, green along +v, blue out of the surface, 128 meaning 0 and
+    /// 255 meaning 1 (so (128, 128, 255) is the unperturbed normal). Not a constant.
+    pub map: TextureDesc,
+    /// Multiplier on the tangential components (finite; 0 flattens, negative inverts);
+    /// default 1.
+    #[serde(default = "one")]
+    pub strength: f32,
 }
 
 /// A bump map ([`ObjectDesc::bump`]).

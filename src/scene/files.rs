@@ -185,6 +185,7 @@ pub fn asset_paths(desc: &SceneDesc, preset_dir: &Path) -> Vec<PathBuf> {
     for o in &desc.objects {
         let alpha = o.alpha.as_ref().and_then(|a| a.texture());
         let bump = o.bump.as_ref().map(|b| &b.height);
+        let normal = o.normal.as_ref().map(|n| &n.map);
         for t in o
             .material
             .textures()
@@ -192,6 +193,7 @@ pub fn asset_paths(desc: &SceneDesc, preset_dir: &Path) -> Vec<PathBuf> {
             .map(|(_, t)| t)
             .chain(alpha)
             .chain(bump)
+            .chain(normal)
         {
             if let TextureDesc::Image { path, .. } = t {
                 add(preset_dir.join(path));
@@ -226,12 +228,14 @@ pub fn rebase_assets(desc: &mut SceneDesc, from: &Path, to: &Path) {
     for o in &mut desc.objects {
         let alpha = o.alpha.as_mut().and_then(super::ScalarDesc::texture_mut);
         let bump = o.bump.as_mut().map(|b| &mut b.height);
+        let normal = o.normal.as_mut().map(|n| &mut n.map);
         for t in o
             .material
             .textures_mut()
             .into_iter()
             .chain(alpha)
             .chain(bump)
+            .chain(normal)
         {
             if let TextureDesc::Image { path, .. } = t {
                 rebase(path);

@@ -21,7 +21,7 @@ use crate::camera::Camera;
 use crate::error::{Error, Result};
 use crate::geometry::{LocalHit, Object, Shape};
 use crate::mapping::Mapping;
-use crate::material::{Bump, Light, Material, Scalar, ShadePoint};
+use crate::material::{Bump, Light, Material, NormalMap, Scalar, ShadePoint};
 use crate::math::{Ray, RayDifferential, Rgb, Vec3A, max_abs};
 use crate::sampler::{PixelFilter, PixelSampler};
 use crate::texture::{TextureContext, View};
@@ -108,6 +108,8 @@ pub struct Scene {
     pub has_clips: bool,
     /// Per object (as `objects`), its bump map, if it has one.
     pub bumps: Vec<Option<Bump>>,
+    /// Per object (as `objects`), its normal map, if it has one (never beside a bump map).
+    pub normal_maps: Vec<Option<NormalMap>>,
 }
 
 /// The most clip-mapped surfaces one ray (or shadow ray) passes through before it stops: what
@@ -379,13 +381,27 @@ impl Scene {
     #[must_use]
     #[inline(never)]
     pub fn bumped_normal(&self, hit: &SurfaceHit, b: &Bump, ctx: &TextureContext) -> Vec3A {
+        self.perturbed_normal(hit, |n| b.perturb(ctx, n))
+    }
+
+    /// The world shading normal of `hit` read from normal map `m`, on the viewer's side as
+    /// [`Scene::bumped_normal`]'s.
+    #[must_use]
+    #[inline(never)]
+    pub fn normal_mapped(&self, hit: &SurfaceHit, m: &NormalMap, ctx: &TextureContext) -> Vec3A {
+        self.perturbed_normal(hit, |n| m.perturb(ctx, n))
+    }
+
+    /// The world shading normal of `hit` after `perturb` turns its object-space normal: on the
+    /// viewer's side, bent back towards the viewer if it would face away.
+    fn perturbed_normal(&self, hit: &SurfaceHit, perturb: impl Fn(Vec3A) -> Vec3A) -> Vec3A {
         let obj = &self.objects[hit.object];
         let n_local = if hit.local.ns == hit.local.n {
             hit.local.n
         } else {
             hit.local.ns
         };
-        let tilted = b.perturb(ctx, n_local);
+        let tilted = perturb(n_local);
         if tilted == n_local {
             return hit.ns;
         }
@@ -462,15 +478,22 @@ impl Scene {
         let material = &self.materials[obj.material];
         let ctx = self.texture_context(hit, diff);
         let bumped;
-        let hit = match &self.bumps[hit.object] {
-            Some(b) => {
+        let hit = match (&self.bumps[hit.object], &self.normal_maps[hit.object]) {
+            (Some(b), _) => {
                 bumped = SurfaceHit {
                     ns: self.bumped_normal(hit, b, &ctx),
                     ..*hit
                 };
                 &bumped
             }
-            None => hit,
+            (None, Some(m)) => {
+                bumped = SurfaceHit {
+                    ns: self.normal_mapped(hit, m, &ctx),
+                    ..*hit
+                };
+                &bumped
+            }
+            (None, None) => hit,
         };
         let view = self.settings.view;
         let filtered = diff.is_some() && material.texture().needs_differentials();

@@ -988,8 +988,8 @@ impl MaterialDesc {
         }
     }
 
-    /// Every coefficient and colour besides `cd` and `ce`, by its preset name, in preset
-    /// order.
+    /// Every coefficient and colour besides the texture colour (`cd`, or an emissive material's
+    /// `ce`; Phong's glow `ce` is listed), by its preset name, in preset order.
     #[must_use]
     pub fn params(&self) -> Vec<(&'static str, ParamRef<'_>)> {
         use ParamRef::{Color, Scalar};
@@ -1033,7 +1033,8 @@ impl MaterialDesc {
         }
     }
 
-    /// Every coefficient and colour besides `cd` and `ce`, mutably (see [`MaterialDesc::params`]).
+    /// The same parameters as [`MaterialDesc::params`], mutably. (Two matches, because Rust
+    /// cannot derive a mutable borrow list from a shared one.)
     pub fn params_mut(&mut self) -> Vec<(&'static str, ParamMut<'_>)> {
         use ParamMut::{Color, Scalar};
         match self {

@@ -158,6 +158,9 @@ impl ExplorerApp {
             let dir = lesson.file.parent().unwrap_or(Path::new("."));
             app.lessons = LessonsPanel::new(dir.to_path_buf());
             app.lessons.start(&lesson.name);
+            // A lesson opens on its text and the image: with the inspector beside them the
+            // viewport was left a third of the window. View > Inspector brings it back.
+            app.inspector.open = false;
         }
         let path = app.path.clone();
         app.open_file(&path);

@@ -192,16 +192,22 @@ impl LessonsPanel {
             })
             .unwrap_or_default();
         let mut pick = self.selected.min(count - 1);
-        // Leaves room for the label on its right (a width from `available_width` alone would
-        // widen the panel every frame).
-        egui::ComboBox::from_label("Lesson")
-            .width((ui.available_width() - 64.0).max(160.0))
-            .selected_text(titles[pick].clone())
-            .show_ui(ui, |ui| {
-                for (i, t) in titles.iter().enumerate() {
-                    ui.selectable_value(&mut pick, i, t);
-                }
-            });
+        // The label on the left, the picker filling the rest (a label on the right, squeezed by
+        // the picker, wrapped one letter per line). A little under the available width: the
+        // full width would widen the panel every frame.
+        ui.horizontal(|ui| {
+            let label = ui.label("Lesson");
+            egui::ComboBox::from_id_salt("lesson-picker")
+                .width((ui.available_width() - 24.0).max(160.0))
+                .selected_text(titles[pick].clone())
+                .show_ui(ui, |ui| {
+                    for (i, t) in titles.iter().enumerate() {
+                        ui.selectable_value(&mut pick, i, t);
+                    }
+                })
+                .response
+                .labelled_by(label.id);
+        });
         if pick != self.selected {
             action = self.go_to(pick, desc, dirty);
         }

@@ -15,7 +15,12 @@ use crate::math::{INV_PI, Rgb, Vec3A};
 use crate::texture::{Texture, TextureContext};
 
 /// How a surface responds to light. Colours that vary over the surface are [`Texture`]s.
+///
+/// `repr(u8)` gives the enum an explicit tag: with the textured parameters' boxes inside,
+/// Rust otherwise hides the variant in a niche of a field, and every `match` on a material
+/// (twice per hit) decodes it in several instructions.
 #[derive(Clone, Debug)]
+#[repr(u8)]
 pub enum Material {
     /// `SV_Matte`: ambient + Lambertian diffuse, both with the textured colour `cd`.
     Matte {
@@ -246,11 +251,13 @@ pub struct ShadePoint {
     pub diffuse: Rgb,
     /// Specular `ks cs` and exponent, if Phong.
     pub specular: Option<(Rgb, f32)>,
-    /// The mirror's `kr cr` (black unless reflective): what multiplies the radiance along the
-    /// mirrored ray.
-    pub mirror: Rgb,
-    /// Phong's glow `ce`, added where direct light does not reach (black unless set).
-    pub glow: Rgb,
+    /// The mirror's `kr cr`, what multiplies the radiance along the mirrored ray: `None` unless
+    /// the material is reflective and `kr cr` is not black here (a matte or Phong hit then pays
+    /// no colour comparison).
+    pub mirror: Option<Rgb>,
+    /// Phong's glow `ce`, added where direct light does not reach: `None` unless the material is
+    /// Phong and its glow is not black here.
+    pub glow: Option<Rgb>,
 }
 
 /// The summed `n . wi` of the unshadowed lights over which a glow fades out past the
@@ -279,8 +286,8 @@ impl Material {
                     base: c * ambient * ka.eval(ctx),
                     diffuse: c * (kd.eval(ctx) * INV_PI),
                     specular: None,
-                    mirror: Rgb::BLACK,
-                    glow: Rgb::BLACK,
+                    mirror: None,
+                    glow: None,
                 }
             }
             Self::Phong {
@@ -297,8 +304,8 @@ impl Material {
                     base: c * ambient * ka.eval(ctx),
                     diffuse: c * (kd.eval(ctx) * INV_PI),
                     specular: Some((cs.eval(ctx) * ks.eval(ctx), exp.eval(ctx))),
-                    mirror: Rgb::BLACK,
-                    glow: ce.eval(ctx),
+                    mirror: None,
+                    glow: non_black(ce.eval(ctx)),
                 }
             }
             Self::Reflective {
@@ -316,19 +323,25 @@ impl Material {
                     base: c * ambient * ka.eval(ctx),
                     diffuse: c * (kd.eval(ctx) * INV_PI),
                     specular: Some((cs.eval(ctx) * ks.eval(ctx), exp.eval(ctx))),
-                    mirror: cr.eval(ctx) * kr.eval(ctx),
-                    glow: Rgb::BLACK,
+                    mirror: non_black(cr.eval(ctx) * kr.eval(ctx)),
+                    glow: None,
                 }
             }
             Self::Emissive { ls, ce } => ShadePoint {
                 base: ce.eval(ctx) * ls.eval(ctx),
                 diffuse: Rgb::BLACK,
                 specular: None,
-                mirror: Rgb::BLACK,
-                glow: Rgb::BLACK,
+                mirror: None,
+                glow: None,
             },
         }
     }
+}
+
+/// `Some(c)` unless `c` is black.
+#[inline]
+fn non_black(c: Rgb) -> Option<Rgb> {
+    (c != Rgb::BLACK).then_some(c)
 }
 
 impl ShadePoint {

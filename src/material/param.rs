@@ -26,14 +26,24 @@ pub struct ScalarTexture {
     pub channel: Channel,
 }
 
-impl Scalar {
-    /// The value at a hit.
+impl ScalarTexture {
+    /// The channel's value at a hit.
     #[must_use]
-    #[inline]
+    #[inline(never)]
+    pub fn eval(&self, ctx: &TextureContext) -> f32 {
+        self.channel.of(self.texture.eval(ctx))
+    }
+}
+
+impl Scalar {
+    /// The value at a hit. Always inlined: a constant is then a load, and the texture read
+    /// stays out of line ([`ScalarTexture::eval`]).
+    #[must_use]
+    #[inline(always)]
     pub fn eval(&self, ctx: &TextureContext) -> f32 {
         match self {
             Self::Const(v) => *v,
-            Self::Texture(t) => t.channel.of(t.texture.eval(ctx)),
+            Self::Texture(t) => t.eval(ctx),
         }
     }
 
@@ -66,13 +76,14 @@ pub enum Colour {
 }
 
 impl Colour {
-    /// The linear colour at a hit.
+    /// The linear colour at a hit (always inlined: a constant is a load; the texture read
+    /// stays out of line).
     #[must_use]
-    #[inline]
+    #[inline(always)]
     pub fn eval(&self, ctx: &TextureContext) -> Rgb {
         match self {
             Self::Const(c) => *c,
-            Self::Texture(t) => t.eval(ctx),
+            Self::Texture(t) => eval_colour_texture(t, ctx),
         }
     }
 
@@ -93,6 +104,12 @@ impl Colour {
             Self::Texture(t) => Some(t),
         }
     }
+}
+
+/// A textured colour's value at a hit, kept out of line.
+#[inline(never)]
+fn eval_colour_texture(t: &Texture, ctx: &TextureContext) -> Rgb {
+    t.eval(ctx)
 }
 
 /// A parameter's value at one hit, as the inspector shows it.

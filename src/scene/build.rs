@@ -486,6 +486,8 @@ pub fn build_scene(desc: &SceneDesc, preset_path: &Path, cache: &mut AssetCache)
         objects.push(obj);
     }
     let has_clips = clips.iter().any(Option::is_some);
+    let has_perturbations =
+        bumps.iter().any(Option::is_some) || normal_maps.iter().any(Option::is_some);
     Ok(Scene {
         objects,
         materials,
@@ -498,6 +500,7 @@ pub fn build_scene(desc: &SceneDesc, preset_path: &Path, cache: &mut AssetCache)
         has_clips,
         bumps,
         normal_maps,
+        has_perturbations,
     })
 }
 

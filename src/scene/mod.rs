@@ -110,6 +110,8 @@ pub struct Scene {
     pub bumps: Vec<Option<Bump>>,
     /// Per object (as `objects`), its normal map, if it has one (never beside a bump map).
     pub normal_maps: Vec<Option<NormalMap>>,
+    /// Whether any object has a bump or normal map; without one no hit looks them up.
+    pub has_perturbations: bool,
 }
 
 /// The most clip-mapped surfaces one ray (or shadow ray) passes through before it stops: what
@@ -214,7 +216,7 @@ impl Scene {
     /// The texture context of a hit: object-space point and, when a filter needs them, the
     /// object-space offsets to the neighbouring pixels' hits.
     #[must_use]
-    #[inline]
+    #[inline(always)]
     pub fn texture_context(
         &self,
         hit: &SurfaceHit,
@@ -375,6 +377,20 @@ impl Scene {
         (l * a + behind.0 * (1.0 - a), key)
     }
 
+    /// The shading normal of `hit` after its object's bump or normal map, or `None` if it has
+    /// neither (the common case: one flag tested, no per-object lookup).
+    #[inline]
+    fn perturbed_normal_at(&self, hit: &SurfaceHit, ctx: &TextureContext) -> Option<Vec3A> {
+        if !self.has_perturbations {
+            return None;
+        }
+        match (&self.bumps[hit.object], &self.normal_maps[hit.object]) {
+            (Some(b), _) => Some(self.bumped_normal(hit, b, ctx)),
+            (None, Some(m)) => Some(self.normal_mapped(hit, m, ctx)),
+            (None, None) => None,
+        }
+    }
+
     /// The world shading normal of `hit` tilted by bump map `b`: on the viewer's side of the
     /// surface, and, if the tilt would turn it away from the viewer (which would shade black),
     /// bent back until it faces the viewer just enough (pbrt's fix for shading normals).
@@ -478,22 +494,12 @@ impl Scene {
         let material = &self.materials[obj.material];
         let ctx = self.texture_context(hit, diff);
         let bumped;
-        let hit = match (&self.bumps[hit.object], &self.normal_maps[hit.object]) {
-            (Some(b), _) => {
-                bumped = SurfaceHit {
-                    ns: self.bumped_normal(hit, b, &ctx),
-                    ..*hit
-                };
+        let hit = match self.perturbed_normal_at(hit, &ctx) {
+            Some(ns) => {
+                bumped = SurfaceHit { ns, ..*hit };
                 &bumped
             }
-            (None, Some(m)) => {
-                bumped = SurfaceHit {
-                    ns: self.normal_mapped(hit, m, &ctx),
-                    ..*hit
-                };
-                &bumped
-            }
-            (None, None) => hit,
+            None => hit,
         };
         let view = self.settings.view;
         let filtered = diff.is_some() && material.texture().needs_differentials();
@@ -521,7 +527,7 @@ impl Scene {
         };
         let skip = if self_shadows { usize::MAX } else { hit.object };
         // Summed n . wi of the lights that reach the point, for a glow (only then).
-        let glows = sp.glow != Rgb::BLACK;
+        let glows = sp.glow.is_some();
         let mut lit = 0.0;
         for (i, light) in self.lights.iter().enumerate() {
             let (wi, dist, li, shadows) = light.incident(hit.p);
@@ -557,11 +563,13 @@ impl Scene {
                 lit += hit.ns.dot(wi);
             }
         }
-        if glows {
-            l += sp.glow * ShadePoint::glow_weight(lit);
+        if let Some(glow) = sp.glow {
+            l += glow * ShadePoint::glow_weight(lit);
         }
-        if sp.mirror != Rgb::BLACK && depth < self.settings.reflection_depth {
-            l += sp.mirror * self.reflected(hit, diff, offset, depth);
+        if let Some(mirror) = sp.mirror
+            && depth < self.settings.reflection_depth
+        {
+            l += mirror * self.reflected(hit, diff, offset, depth);
         }
         let l = match view {
             View::Shaded => l,

@@ -408,7 +408,7 @@ impl ImageTexture {
 
     /// The filtered colour at texture coordinates (before `scale`).
     #[must_use]
-    #[inline]
+    #[inline(always)]
     pub fn sample(&self, tc: TexCoord) -> Rgb {
         let (wu, wv) = self.wraps();
         match (self.filter, &self.mip) {

@@ -116,6 +116,22 @@ impl RayDifferential {
     }
 }
 
+/// `x.floor()` without a libm call. On the x86-64 baseline (no SSE4.1 `roundss`) `f32::floor`
+/// is a function call: 13 % of a footprint-filtered render went to it. Through an integer for
+/// |x| < 2^31 (every float that large is already an integer below 2^23, so the conversion is
+/// exact), `floor` itself otherwise. Equal to `x.floor()` for every input but the sign of a
+/// zero result (-0.0 gives 0.0).
+#[must_use]
+#[inline(always)]
+pub fn floor_fast(x: f32) -> f32 {
+    if x.abs() < 2_147_483_648.0 {
+        let t = x as i32 as f32;
+        if t > x { t - 1.0 } else { t }
+    } else {
+        x.floor()
+    }
+}
+
 /// The largest absolute component of `p`, used to scale offsets and tolerances with the size of
 /// the numbers involved.
 #[must_use]
@@ -134,4 +150,55 @@ pub fn frame_from_normal(n: Vec3A) -> (Vec3A, Vec3A) {
         Vec3A::new(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x),
         Vec3A::new(b, sign + n.y * n.y * a, -n.y),
     )
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn floor_fast_is_floor() {
+        let mut xs = vec![
+            0.0_f32,
+            0.5,
+            -0.5,
+            1.0,
+            -1.0,
+            0.999_999_9,
+            -0.999_999_9,
+            1e-30,
+            -1e-30,
+            8_388_607.5,
+            -8_388_607.5,
+            8_388_608.0,
+            16_777_217.0,
+            2_147_483_520.0,
+            -2_147_483_648.0,
+            2_147_483_648.0,
+            3e9,
+            -3e9,
+            1e30,
+            -1e30,
+            f32::MAX,
+            f32::MIN,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::NAN,
+        ];
+        // Every bit pattern class: a xorshift walk through the floats.
+        let mut s = 0x1234_5678_u32;
+        for _ in 0..200_000 {
+            s ^= s << 13;
+            s ^= s >> 17;
+            s ^= s << 5;
+            xs.push(f32::from_bits(s));
+        }
+        for x in xs {
+            let (a, b) = (super::floor_fast(x), x.floor());
+            assert!(
+                a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan()),
+                "{x}: {a} vs {b}"
+            );
+        }
+        // The one difference: a negative zero comes back positive.
+        assert_eq!(super::floor_fast(-0.0).to_bits(), 0.0_f32.to_bits());
+    }
 }

@@ -3,7 +3,7 @@
 
 use super::{Lookup, Wrap};
 use crate::error::{Error, Result};
-use crate::math::{Rgb, Vec2, linear_to_srgb8, srgb_to_linear, srgb8_table};
+use crate::math::{Rgb, Vec2, floor_fast, linear_to_srgb8, srgb_to_linear, srgb8_table};
 use std::path::Path;
 
 mod float_tiff;
@@ -495,7 +495,7 @@ impl ImageData {
         if !(x.is_finite() && y.is_finite()) {
             return self.nearest(uv, Lookup::Centred, wu, wv);
         }
-        let (x0, y0) = (x.floor(), y.floor());
+        let (x0, y0) = (floor_fast(x), floor_fast(y));
         let (fx, fy) = (x - x0, y - y0);
         let (x0, y0) = (x0 as i64, y0 as i64);
         let (w, h) = (i64::from(self.width), i64::from(self.height));
@@ -526,7 +526,7 @@ impl ImageData {
         if !(x.is_finite() && y.is_finite()) {
             return self.nearest(uv, Lookup::Centred, wu, wv);
         }
-        let (x0, y0) = (x.floor(), y.floor());
+        let (x0, y0) = (floor_fast(x), floor_fast(y));
         let (wx, wy) = (catmull_rom(x - x0), catmull_rom(y - y0));
         let (x0, y0) = (x0 as i64 - 1, y0 as i64 - 1);
         let mut sum = Rgb::BLACK;

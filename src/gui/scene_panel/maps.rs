@@ -15,7 +15,7 @@ use crate::scene::{
     BumpDesc, ChannelDesc, NormalMapDesc, ObjectDesc, ScalarDesc, TextureDesc, TextureKind,
     relative_asset_path,
 };
-use crate::texture::Channel;
+use crate::texture::{Channel, Filter};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
@@ -168,6 +168,17 @@ fn folder(preset: &Path) -> &Path {
         .parent()
         .filter(|p| !p.as_os_str().is_empty())
         .unwrap_or(Path::new("."))
+}
+
+/// The filter of a texture that has one.
+const fn filter_of(t: &TextureDesc) -> Option<Filter> {
+    match t {
+        TextureDesc::Constant(_) => None,
+        TextureDesc::Image { filter, .. }
+        | TextureDesc::Checker { filter, .. }
+        | TextureDesc::MeshMaterial { filter, .. }
+        | TextureDesc::UvGrid { filter, .. } => Some(*filter),
+    }
 }
 
 /// Whether the image file at `path` has an alpha channel (read from its header only).
@@ -393,8 +404,8 @@ impl ScenePanel {
         Some(kept)
     }
 
-    /// A first texture of `kind` for `map`, on the colour texture's mapping and (u, v)
-    /// transform. An image starts on the colour's image (a normal map: on an image in
+    /// A first texture of `kind` for `map`, on the colour texture's mapping, (u, v)
+    /// transform and filter (trilinear if it has none). An image starts on the colour's image (a normal map: on an image in
     /// `assets/` named as a normal map, if there is one), else on the first image in
     /// `assets/`; a clip map's checker is white and black (solid and absent squares).
     fn new_texture(
@@ -406,6 +417,9 @@ impl ScenePanel {
     ) -> TextureDesc {
         let colour = obj.material.texture();
         let mut t = colour.converted(kind);
+        // The colour's filter, else (a constant colour has none) one that averages over the
+        // pixel's footprint: a height's slope or a normal read at one texel aliases.
+        t.set_filter(filter_of(colour).unwrap_or(Filter::Trilinear));
         match &mut t {
             TextureDesc::Image { path, .. } => {
                 let dir = folder(preset).to_path_buf();

@@ -273,7 +273,7 @@ fn image_field(ui: &mut egui::Ui, label: &str, path: &mut String, picker: &Image
             let r = ui
                 .add(
                     egui::TextEdit::singleline(&mut text)
-                        .desired_width(ui.available_width().max(80.0)),
+                        .desired_width((ui.available_width() - 12.0).max(80.0)),
                 )
                 .labelled_by(l.id)
                 .on_hover_text("Path relative to the preset's folder; Enter loads it");

@@ -85,7 +85,10 @@ const BOARD_IMAGE: &str = "cutout_holes_256.png";
 /// The `cutout` preset with its board solid (no clip map).
 fn solid_board(dir: &Path) -> PathBuf {
     small_preset(dir, "cutout", &[BOARD_IMAGE], |d| {
-        assert!(d.objects[1].alpha.is_some(), "the preset's board is clip-mapped");
+        assert!(
+            d.objects[1].alpha.is_some(),
+            "the preset's board is clip-mapped"
+        );
         d.objects[1].alpha = None;
     })
 }
@@ -177,13 +180,22 @@ fn switching_a_clip_map_on_cuts_the_board_where_its_alpha_is_zero() {
             .unwrap_or(0);
         if values.iter().all(|&a| a == 0) {
             holes += 1;
-            assert!(diff > 20, "pixel {i} is in a hole but did not change ({diff})");
+            assert!(
+                diff > 20,
+                "pixel {i} is in a hole but did not change ({diff})"
+            );
         } else if values.iter().all(|&a| a == 255) {
             solid += 1;
-            assert!(diff <= 2, "pixel {i} is on solid board but changed by {diff}");
+            assert!(
+                diff <= 2,
+                "pixel {i} is on solid board but changed by {diff}"
+            );
         }
     }
-    assert!(holes >= 30 && solid >= 100, "{holes} hole pixels, {solid} solid");
+    assert!(
+        holes >= 30 && solid >= 100,
+        "{holes} hole pixels, {solid} solid"
+    );
 
     // One undo step brings the solid board back.
     assert_eq!(h.state().undo_label(), Some("clip map of Board"));
@@ -227,7 +239,10 @@ fn a_bump_map_switches_the_normal_map_off_and_undo_brings_it_back() {
     assert_eq!(h.get_by_label("Rendered image").rect(), viewport);
 
     // One step: undo gives back the object as it was, normal map and all.
-    assert_eq!(h.state().undo_label(), Some("bump map of Normal-mapped ball"));
+    assert_eq!(
+        h.state().undo_label(),
+        Some("bump map of Normal-mapped ball")
+    );
     undo(&mut h);
     assert_eq!(desc(&h).objects[2], before.objects[2]);
     assert_eq!(desc(&h), before);
@@ -267,7 +282,11 @@ fn a_uv_scale_of_two_on_the_colour_texture_tiles_it() {
         .texture()
         .uv_transform()
         .expect("an image has a (u, v) transform");
-    assert_eq!(uv.scale, Vec2::new(2.0, 1.0), "the preset's `uv: (scale: (2, 1))`");
+    assert_eq!(
+        uv.scale,
+        Vec2::new(2.0, 1.0),
+        "the preset's `uv: (scale: (2, 1))`"
+    );
     assert_eq!(h.state().undo_label(), Some("texture settings of Earth"));
 
     // The Earth is there twice around: at the centre pixel u is doubled (and wrapped).

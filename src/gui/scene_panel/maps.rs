@@ -20,7 +20,11 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
 /// The textures a map can switch to.
-const MAP_KINDS: [TextureKind; 3] = [TextureKind::Image, TextureKind::Checker, TextureKind::UvGrid];
+const MAP_KINDS: [TextureKind; 3] = [
+    TextureKind::Image,
+    TextureKind::Checker,
+    TextureKind::UvGrid,
+];
 
 /// A new bump map's scale: the preset's default for `bump: (scale)`.
 const BUMP_SCALE: f32 = 0.02;

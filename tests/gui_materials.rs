@@ -42,6 +42,8 @@ fn choose(h: &mut Harness<'_, ExplorerApp>, combo: &str, item: &str) {
 }
 
 fn select(h: &mut Harness<'_, ExplorerApp>, object: &str) {
+    h.get_by_label(object).scroll_to_me();
+    h.run_steps(3);
     h.get_by_label(object).click();
     settle(h);
 }
@@ -224,12 +226,15 @@ fn a_bump_map_switches_the_normal_map_off_and_undo_brings_it_back() {
     let ball = &after.objects[2];
     assert!(ball.normal.is_none(), "the normal map is off");
     let bump = ball.bump.as_ref().expect("a bump map");
-    // A first bump map starts on the first image in assets/, on the colour's mapping.
+    // A first bump map starts on the first image in assets/, placed as the normal map it
+    // replaces was (the colour is a constant, with no mapping).
     assert!(
         matches!(&bump.height, TextureDesc::Image { path, .. } if path.ends_with("brick_gray_512.png")),
         "{:?}",
         bump.height
     );
+    assert_eq!(bump.height.mapping(), normal.map.mapping());
+    assert_eq!(bump.height.uv_transform(), normal.map.uv_transform());
     assert!(bump.scale > 0.0);
     assert!(
         h.query_all_by_label_contains(note).next().is_some(),
@@ -253,6 +258,23 @@ fn a_bump_map_switches_the_normal_map_off_and_undo_brings_it_back() {
     // goes, with the note saying so.
     redo(&mut h);
     assert!(desc(&h).objects[2].normal.is_none());
+
+    // The bump scale: one edit, one step.
+    let switched = desc(&h);
+    h.get_by_label("bump scale").set_value_accesskit(0.05);
+    settle(&mut h);
+    let scale = |d: &SceneDesc| d.objects[2].bump.as_ref().expect("a bump map").scale;
+    assert!(
+        (scale(&desc(&h)) - 0.05).abs() < 1e-6,
+        "{}",
+        scale(&desc(&h))
+    );
+    assert_eq!(
+        h.state().undo_label(),
+        Some("bump map of Normal-mapped ball")
+    );
+    undo(&mut h);
+    assert_eq!(desc(&h), switched);
     choose(&mut h, "normal map", TextureKind::Image.name());
     let again = desc(&h);
     assert_eq!(again.objects[2].normal.as_ref(), Some(&normal));
@@ -316,41 +338,84 @@ fn a_uv_scale_of_two_on_the_colour_texture_tiles_it() {
     assert_eq!(desc(&h), before);
 }
 
-#[test]
-fn a_missing_height_image_shows_one_error_and_keeps_the_scene() {
-    let dir = tempfile::tempdir().expect("temp dir");
-    let preset = small_preset(dir.path(), "bumps", &BUMP_ASSETS, |_| {});
-    let mut h = harness(preset);
-    select(&mut h, "1: Brick ball");
-    let before = desc(&h);
-    let image_before = image_bytes(&h);
-    let field = "height image";
+/// Types `missing` into the image field `field` and loads it: one error naming the file, the
+/// scene, the render and the undo history as they were, and the field showing the scene's
+/// path again.
+fn a_missing_image_is_refused(h: &mut Harness<'_, ExplorerApp>, field: &str, missing: &str) {
+    let before = desc(h);
+    let image_before = image_bytes(h);
+    let undo_before = h.state().undo_label().map(str::to_owned);
     let shown = h
         .get_by_role_and_label(Role::TextInput, field)
         .value()
         .expect("a path");
-    assert_eq!(shown, "../assets/brick_gray_512.png");
+    assert!(shown.starts_with("../assets/"), "{field}: {shown}");
 
+    h.get_by_role_and_label(Role::TextInput, field)
+        .scroll_to_me();
+    h.run_steps(3);
     h.get_by_role_and_label(Role::TextInput, field).focus();
     h.step();
     h.get_by_role_and_label(Role::TextInput, field)
-        .set_text_value_accesskit("../assets/missing.png");
+        .set_text_value_accesskit(missing);
     h.step();
-    h.get_by_label("Load").click();
-    settle(&mut h);
+    // The field's own Load, on the row below it (other image fields have one too).
+    let below = h
+        .get_by_role_and_label(Role::TextInput, field)
+        .rect()
+        .bottom();
+    h.get_all_by_label("Load")
+        .filter(|b| b.rect().top() >= below)
+        .min_by(|a, b| a.rect().top().total_cmp(&b.rect().top()))
+        .expect("a Load button")
+        .click();
+    settle(h);
 
-    let err = h.state().error().expect("an error is shown").to_owned();
-    assert!(err.contains("missing.png"), "{err}");
+    let Some(err) = h.state().error().map(str::to_owned) else {
+        panic!("{field}: no error shown; the scene: {:?}", desc(h).objects);
+    };
+    assert!(err.contains(missing), "{err}");
     assert_eq!(
-        h.query_all_by_label_contains("missing.png").count(),
+        h.query_all_by_label_contains(missing).count(),
         1,
         "one message in the window (the field shows the scene's path again)"
     );
-    assert_eq!(desc(&h), before, "the scene stays");
-    assert_eq!(image_bytes(&h), image_before, "the render stays");
+    assert_eq!(desc(h), before, "{field}: the scene stays");
+    assert_eq!(image_bytes(h), image_before, "{field}: the render stays");
     assert_eq!(
         h.get_by_role_and_label(Role::TextInput, field).value(),
         Some(shown)
     );
-    assert_eq!(h.state().undo_label(), None, "nothing to undo");
+    assert_eq!(
+        h.state().undo_label().map(str::to_owned),
+        undo_before,
+        "no undo step"
+    );
+}
+
+#[test]
+fn a_missing_map_image_shows_one_error_and_keeps_the_scene() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let preset = small_preset(dir.path(), "bumps", &BUMP_ASSETS, |_| {});
+    let mut h = harness(preset);
+    select(&mut h, "1: Brick ball");
+    a_missing_image_is_refused(&mut h, "height image", "../assets/missing-height.png");
+    select(&mut h, "2: Normal-mapped ball");
+    a_missing_image_is_refused(&mut h, "normal image", "../assets/missing-normal.png");
+    // A clip map on the floor: its first image is the first in assets/ (no alpha channel, so
+    // its luminance), on the bump map's mapping (the floor's colour is a constant).
+    select(&mut h, "0: Floor");
+    choose(&mut h, "clip map", TextureKind::Image.name());
+    assert!(h.state().error().is_none(), "{:?}", h.state().error());
+    let floor = desc(&h).objects[0].clone();
+    let alpha = floor.alpha.as_ref().expect("a clip map");
+    assert!(
+        matches!(alpha, ScalarDesc::Texture(TextureDesc::Image { path, .. }) if path == "../assets/brick_gray_512.png"),
+        "{alpha:?}"
+    );
+    let height = &floor.bump.as_ref().expect("the floor's bump map").height;
+    let texture = alpha.texture().expect("a texture");
+    assert_eq!(texture.mapping(), height.mapping());
+    assert_eq!(texture.uv_transform(), height.uv_transform());
+    a_missing_image_is_refused(&mut h, "alpha image", "../assets/missing-alpha.png");
 }

@@ -326,15 +326,23 @@ impl ScenePanel {
     /// other off.
     fn switch(&mut self, obj: &mut ObjectDesc, map: Map, to: Choice, preset: &Path) {
         let key = self.selected;
+        // Made while the object still has its maps: a new one starts on their mapping.
+        let new = match to {
+            Choice::Off => None,
+            _ => Some(match self.restored(map, to, preset) {
+                Some(kept) => kept,
+                None => self.new_map(obj, map, to, preset),
+            }),
+        };
         if let Some(old) = take(obj, map) {
             self.maps
                 .kept
                 .insert((key, map), (preset.to_path_buf(), old));
         }
         self.maps.note = None;
-        if to == Choice::Off {
+        let Some(new) = new else {
             return;
-        }
+        };
         if let Some(rival) = map.rival()
             && let Some(old) = take(obj, rival)
         {
@@ -343,45 +351,39 @@ impl ScenePanel {
                 .insert((key, rival), (preset.to_path_buf(), old));
             self.maps.note = Some((key, map));
         }
-        let restored = self.restored(map, to, preset);
-        match (map, restored) {
-            (_, Some(Kept::Clip(s))) => obj.alpha = Some(s),
-            (_, Some(Kept::Bump(b))) => obj.bump = Some(b),
-            (_, Some(Kept::Normal(n))) => obj.normal = Some(n),
-            (Map::Clip, None) => {
-                obj.alpha = Some(match to {
-                    Choice::Texture(kind) => {
-                        let texture = self.new_texture(obj, map, kind, preset);
-                        let dir = folder(preset);
-                        match &texture {
-                            TextureDesc::Image { path, .. } if has_alpha(&dir.join(path)) => {
-                                ScalarDesc::Channel(ChannelDesc {
-                                    texture,
-                                    channel: Channel::Alpha,
-                                })
-                            }
-                            _ => ScalarDesc::Texture(texture),
-                        }
-                    }
-                    Choice::Value | Choice::Off => ScalarDesc::Value(0.5),
-                });
-            }
-            (Map::Bump, None) => {
-                if let Choice::Texture(kind) = to {
-                    obj.bump = Some(BumpDesc {
-                        height: self.new_texture(obj, map, kind, preset),
-                        scale: BUMP_SCALE,
-                    });
+        match new {
+            Kept::Clip(s) => obj.alpha = Some(s),
+            Kept::Bump(b) => obj.bump = Some(b),
+            Kept::Normal(n) => obj.normal = Some(n),
+        }
+    }
+
+    /// A first `map` of `to`: a clip map's value 0.5, or a texture ([`Self::new_texture`]).
+    /// A clip map's image is read through its alpha channel if the file has one, else its
+    /// luminance; a bump map starts at the preset's default scale, a normal map at strength 1.
+    fn new_map(&mut self, obj: &ObjectDesc, map: Map, to: Choice, preset: &Path) -> Kept {
+        let Choice::Texture(kind) = to else {
+            return Kept::Clip(ScalarDesc::Value(0.5));
+        };
+        let texture = self.new_texture(obj, map, kind, preset);
+        match map {
+            Map::Clip => Kept::Clip(match &texture {
+                TextureDesc::Image { path, .. } if has_alpha(&folder(preset).join(path)) => {
+                    ScalarDesc::Channel(ChannelDesc {
+                        texture,
+                        channel: Channel::Alpha,
+                    })
                 }
-            }
-            (Map::Normal, None) => {
-                if let Choice::Texture(kind) = to {
-                    obj.normal = Some(NormalMapDesc {
-                        map: self.new_texture(obj, map, kind, preset),
-                        strength: 1.0,
-                    });
-                }
-            }
+                _ => ScalarDesc::Texture(texture),
+            }),
+            Map::Bump => Kept::Bump(BumpDesc {
+                height: texture,
+                scale: BUMP_SCALE,
+            }),
+            Map::Normal => Kept::Normal(NormalMapDesc {
+                map: texture,
+                strength: 1.0,
+            }),
         }
     }
 
@@ -408,8 +410,10 @@ impl ScenePanel {
         Some(kept)
     }
 
-    /// A first texture of `kind` for `map`, on the colour texture's mapping, (u, v)
-    /// transform and filter (trilinear if it has none). An image starts on the colour's image (a normal map: on an image in
+    /// A first texture of `kind` for `map`, on the mapping, (u, v) transform and filter of
+    /// the map's own texture (switched to another kind), else of the colour texture, else (a
+    /// constant colour has none) of another map of the object; the filter trilinear if none
+    /// has one. An image starts on the colour's image (a normal map: on an image in
     /// `assets/` named as a normal map, if there is one), else on the first image in
     /// `assets/`; a clip map's checker is white and black (solid and absent squares).
     fn new_texture(
@@ -420,10 +424,30 @@ impl ScenePanel {
         preset: &Path,
     ) -> TextureDesc {
         let colour = obj.material.texture();
-        let mut t = colour.converted(kind);
-        // The colour's filter, else (a constant colour has none) one that averages over the
-        // pixel's footprint: a height's slope or a normal read at one texel aliases.
-        t.set_filter(filter_of(colour).unwrap_or(Filter::Trilinear));
+        let (clip, bump, normal) = (
+            obj.alpha.as_ref().and_then(ScalarDesc::texture),
+            obj.bump.as_ref().map(|b| &b.height),
+            obj.normal.as_ref().map(|n| &n.map),
+        );
+        let own = match map {
+            Map::Clip => clip,
+            Map::Bump => bump,
+            Map::Normal => normal,
+        };
+        // The map's own texture (switched to another kind), the colour, else the object's
+        // other maps (the one a bump or normal map replaces first): the first with a mapping.
+        let source = own
+            .into_iter()
+            .chain(std::iter::once(colour))
+            .chain(normal)
+            .chain(bump)
+            .chain(clip)
+            .find(|t| t.mapping().is_some())
+            .unwrap_or(colour);
+        let mut t = source.converted(kind);
+        // The source's filter, else (a constant has none) one that averages over the pixel's
+        // footprint: a height's slope or a normal read at one texel aliases.
+        t.set_filter(filter_of(source).unwrap_or(Filter::Trilinear));
         match &mut t {
             TextureDesc::Image { path, .. } => {
                 let dir = folder(preset).to_path_buf();

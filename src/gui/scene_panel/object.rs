@@ -46,7 +46,7 @@ impl ScenePanel {
         egui::CollapsingHeader::new("Material")
             .default_open(true)
             .show(ui, |ui| {
-                changed |= material_ui(ui, &mut obj.material, &picker)
+                changed |= material_ui(ui, &mut obj.material, &picker);
             });
         egui::CollapsingHeader::new("Texture")
             .default_open(true)

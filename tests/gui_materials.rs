@@ -10,9 +10,9 @@ use egui::accesskit::Role;
 use egui::{Key, Modifiers};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable as _;
-use gui_common::{harness, settle, small_earth};
+use gui_common::{harness, harness_with, settle, small_earth};
 use std::path::{Path, PathBuf};
-use texplore::gui::ExplorerApp;
+use texplore::gui::{AppOptions, BrowseFor, Browser, ExplorerApp};
 use texplore::inspect::Inspection;
 use texplore::math::Vec2;
 use texplore::names::Named;
@@ -418,4 +418,74 @@ fn a_missing_map_image_shows_one_error_and_keeps_the_scene() {
     assert_eq!(texture.mapping(), height.mapping());
     assert_eq!(texture.uv_transform(), height.uv_transform());
     a_missing_image_is_refused(&mut h, "alpha image", "../assets/missing-alpha.png");
+}
+
+#[test]
+fn browse_beside_a_height_image_loads_the_chosen_file() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let preset = small_preset(dir.path(), "bumps", &BUMP_ASSETS, |_| {});
+    let gravel = dir.path().join("assets/gravel_gray_512.png");
+    let asked = std::sync::Arc::new(std::sync::Mutex::new(Vec::new()));
+    let log = asked.clone();
+    let options = AppOptions {
+        browser: Browser::replaced_by(move |what, _, _| {
+            log.lock().expect("lock").push(what);
+            Some(gravel.clone())
+        }),
+        ..AppOptions::default()
+    };
+    let mut h = harness_with(preset, options);
+    select(&mut h, "1: Brick ball");
+    let before = desc(&h);
+    let image_before = image_bytes(&h);
+    let field = h
+        .get_by_role_and_label(Role::TextInput, "height image")
+        .rect();
+    h.get_all_by_label("Browse…")
+        .filter(|b| b.rect().top() >= field.bottom())
+        .min_by(|a, b| a.rect().top().total_cmp(&b.rect().top()))
+        .expect("a Browse… button")
+        .click();
+    settle(&mut h);
+
+    assert!(h.state().error().is_none(), "{:?}", h.state().error());
+    assert_eq!(*asked.lock().expect("lock"), vec![BrowseFor::Image]);
+    let bump = desc(&h).objects[1].bump.clone().expect("a bump map");
+    assert!(
+        matches!(&bump.height, TextureDesc::Image { path, .. } if path == "../assets/gravel_gray_512.png"),
+        "the path, relative to the preset: {:?}",
+        bump.height
+    );
+    assert_eq!(
+        h.get_by_role_and_label(Role::TextInput, "height image")
+            .value(),
+        Some("../assets/gravel_gray_512.png".to_owned())
+    );
+    assert_ne!(image_bytes(&h), image_before, "the ball shows gravel bumps");
+    assert_eq!(h.state().undo_label(), Some("bump map of Brick ball"));
+    undo(&mut h);
+    assert_eq!(desc(&h), before);
+}
+
+#[test]
+fn a_bump_scale_beyond_the_drag_range_is_shown_and_kept() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let preset = small_preset(dir.path(), "bumps", &BUMP_ASSETS, |d| {
+        d.objects[1].bump.as_mut().expect("a bump map").scale = 3.0;
+        d.objects[2].normal.as_mut().expect("a normal map").strength = -25.0;
+    });
+    let mut h = harness(preset);
+    let before = desc(&h);
+    select(&mut h, "1: Brick ball");
+    assert_eq!(
+        h.get_by_label("bump scale").value().as_deref(),
+        Some("3.000")
+    );
+    select(&mut h, "2: Normal-mapped ball");
+    assert_eq!(
+        h.get_by_label("normal strength").value().as_deref(),
+        Some("-25.00")
+    );
+    assert_eq!(desc(&h), before, "showing them changed nothing");
+    assert_eq!(h.state().undo_label(), None);
 }

@@ -63,6 +63,31 @@ pub fn number_tip(
     .inner
 }
 
+/// [`number_tip`] whose range only bounds dragging: a value beyond it (a preset may hold any
+/// finite number) is shown and kept as it is until the user changes it.
+pub fn number_drag_range(
+    ui: &mut egui::Ui,
+    label: &str,
+    tip: &str,
+    value: &mut f32,
+    range: std::ops::RangeInclusive<f32>,
+    speed: f64,
+) -> bool {
+    ui.horizontal(|ui| {
+        let l = ui.label(label).on_hover_text(tip);
+        ui.add(
+            egui::DragValue::new(value)
+                .range(range)
+                .clamp_existing_to_range(false)
+                .speed(speed),
+        )
+        .labelled_by(l.id)
+        .on_hover_text(tip)
+        .changed()
+    })
+    .inner
+}
+
 /// Three labelled drag values for a vector. Returns whether any changed.
 pub fn vec3(ui: &mut egui::Ui, label: &str, v: &mut Vec3, speed: f64) -> bool {
     ui.horizontal(|ui| {

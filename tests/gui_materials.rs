@@ -17,8 +17,8 @@ use texplore::inspect::Inspection;
 use texplore::math::Vec2;
 use texplore::names::Named;
 use texplore::scene::{
-    AssetCache, ChannelDesc, ObjectDesc, ScalarDesc, SceneDesc, TextureDesc, TextureKind,
-    build_scene, load_preset, save_preset,
+    AssetCache, ChannelDesc, MaterialDesc, ObjectDesc, ScalarDesc, SceneDesc, TextureDesc,
+    TextureKind, build_scene, load_preset, save_preset,
 };
 use texplore::texture::{Channel, Lookup};
 
@@ -468,11 +468,14 @@ fn browse_beside_a_height_image_loads_the_chosen_file() {
 }
 
 #[test]
-fn a_bump_scale_beyond_the_drag_range_is_shown_and_kept() {
+fn values_beyond_the_drag_ranges_are_shown_and_kept() {
     let dir = tempfile::tempdir().expect("temp dir");
     let preset = small_preset(dir.path(), "bumps", &BUMP_ASSETS, |d| {
         d.objects[1].bump.as_mut().expect("a bump map").scale = 3.0;
         d.objects[2].normal.as_mut().expect("a normal map").strength = -25.0;
+        if let MaterialDesc::Phong { exp, .. } = &mut d.objects[1].material {
+            *exp = ScalarDesc::Value(20_000.0);
+        }
     });
     let mut h = harness(preset);
     let before = desc(&h);
@@ -480,6 +483,11 @@ fn a_bump_scale_beyond_the_drag_range_is_shown_and_kept() {
     assert_eq!(
         h.get_by_label("bump scale").value().as_deref(),
         Some("3.000")
+    );
+    // So is a coefficient beyond its drag range.
+    assert_eq!(
+        h.get_by_label("exponent").value().as_deref(),
+        Some("20000.0")
     );
     select(&mut h, "2: Normal-mapped ball");
     assert_eq!(

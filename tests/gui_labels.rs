@@ -16,6 +16,10 @@ use texplore::scene::{LECTURE_ORDER, ProjectionDesc, ProjectionKind, ShapeDesc};
 use texplore::texture::{Filter, View};
 
 fn choose(h: &mut Harness<'_, ExplorerApp>, combo: &str, item: &str) {
+    // The lower menus of the scene panel (the camera's) are scrolled out of sight at first.
+    h.get_by_role_and_label(Role::ComboBox, combo)
+        .scroll_to_me();
+    h.run_steps(3);
     h.get_by_role_and_label(Role::ComboBox, combo).click();
     h.run_steps(3);
     h.get_by_label(item).click();

@@ -250,6 +250,12 @@ pub fn describe(old: &SceneDesc, new: &SceneDesc) -> String {
             "texture settings"
         } else if a.material != b.material {
             "material"
+        } else if a.alpha != b.alpha {
+            "clip map"
+        } else if a.bump != b.bump {
+            "bump map"
+        } else if a.normal != b.normal {
+            "normal map"
         } else {
             "object"
         };

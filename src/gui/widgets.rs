@@ -1,5 +1,7 @@
-//! Small shared widgets: a combo box over any named enum, labelled number rows, colours.
+//! Small shared widgets: a combo box over any named enum, labelled number rows, colours, a
+//! texture's (u, v) transform.
 
+use crate::mapping::UvTransform;
 use crate::math::{Rgb, Vec3};
 use crate::names::Named;
 
@@ -61,6 +63,31 @@ pub fn number_tip(
     .inner
 }
 
+/// [`number_tip`] whose range only bounds dragging: a value beyond it (a preset may hold any
+/// finite number) is shown and kept as it is until the user changes it.
+pub fn number_drag_range(
+    ui: &mut egui::Ui,
+    label: &str,
+    tip: &str,
+    value: &mut f32,
+    range: std::ops::RangeInclusive<f32>,
+    speed: f64,
+) -> bool {
+    ui.horizontal(|ui| {
+        let l = ui.label(label).on_hover_text(tip);
+        ui.add(
+            egui::DragValue::new(value)
+                .range(range)
+                .clamp_existing_to_range(false)
+                .speed(speed),
+        )
+        .labelled_by(l.id)
+        .on_hover_text(tip)
+        .changed()
+    })
+    .inner
+}
+
 /// Three labelled drag values for a vector. Returns whether any changed.
 pub fn vec3(ui: &mut egui::Ui, label: &str, v: &mut Vec3, speed: f64) -> bool {
     ui.horizontal(|ui| {
@@ -98,4 +125,84 @@ pub fn colour(ui: &mut egui::Ui, label: &str, c: &mut Rgb) -> bool {
         changed
     })
     .inner
+}
+
+/// Names a widget for screen readers (and the window tests) when its visible text is shorter
+/// than what it means: the "u" of a (u, v) pair becomes "uv scale u".
+fn name_widget(ui: &egui::Ui, r: &egui::Response, name: &str) {
+    ui.ctx()
+        .accesskit_node_builder(r.id, |node| node.set_label(name.to_owned()));
+}
+
+/// A (u, v) pair of drag values after `label`, each named "`label` u" and "`label` v" for
+/// screen readers; `fix` corrects a value as it is dragged. Returns whether either changed.
+fn uv_pair(
+    ui: &mut egui::Ui,
+    label: &str,
+    tip: &str,
+    values: [&mut f32; 2],
+    speed: f64,
+    fix: impl Fn(f32, f32) -> f32,
+) -> bool {
+    ui.horizontal(|ui| {
+        ui.label(label).on_hover_text(tip);
+        let mut changed = false;
+        for (axis, v) in ["u", "v"].into_iter().zip(values) {
+            let before = *v;
+            let r = ui
+                .add(
+                    egui::DragValue::new(v)
+                        .speed(speed)
+                        .range(-1e6..=1e6)
+                        .prefix(format!("{axis} ")),
+                )
+                .on_hover_text(tip);
+            name_widget(ui, &r, &format!("{label} {axis}"));
+            if r.changed() {
+                *v = fix(before, *v);
+                changed = true;
+            }
+        }
+        changed
+    })
+    .inner
+}
+
+/// The (u, v) transform of any texture (the main one and every textured parameter or map):
+/// scale (tiling), rotation and offset, applied in that order after the mapping. Returns
+/// whether it changed.
+pub fn uv_transform(ui: &mut egui::Ui, uv: &mut UvTransform) -> bool {
+    let mut changed = uv_pair(
+        ui,
+        "uv scale",
+        "Tiles the texture: 2 repeats it twice across the mapping (the wrap mode decides what \
+         lies beyond the first copy); negative mirrors it",
+        [&mut uv.scale.x, &mut uv.scale.y],
+        0.05,
+        // Zero is refused by the scene: step over it.
+        |before, v| {
+            if v == 0.0 {
+                if before < 0.0 { -1e-3 } else { 1e-3 }
+            } else {
+                v
+            }
+        },
+    );
+    changed |= number_tip(
+        ui,
+        "uv rotate (degrees)",
+        "Turns the scaled (u, v) counter-clockwise about the (u, v) origin",
+        &mut uv.rotate,
+        -360.0..=360.0,
+        1.0,
+    );
+    changed |= uv_pair(
+        ui,
+        "uv offset",
+        "Slides the texture, added last: 0.25 moves it a quarter of a copy along u",
+        [&mut uv.offset.x, &mut uv.offset.y],
+        0.01,
+        |_, v| v,
+    );
+    changed
 }

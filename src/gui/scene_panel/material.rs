@@ -1,7 +1,9 @@
 //! The material editor: the kind (matte, Phong, emissive) and its coefficients and colours,
 //! each either a plain value or a texture with its own mapping, filter and wrap.
 
-use crate::gui::widgets::{colour, enum_combo, number};
+use super::{ImagePicker, browse_button};
+use crate::gui::files::BrowseFor;
+use crate::gui::widgets::{colour, enum_combo, number, number_drag_range, uv_transform};
 use crate::names::Named;
 use crate::scene::{
     ChannelDesc, ColorDesc, MaterialDesc, ParamMut, ParamRef, ScalarDesc, TextureDesc, TextureKind,
@@ -16,8 +18,9 @@ const PARAM_KINDS: [TextureKind; 4] = [
     TextureKind::UvGrid,
 ];
 
-/// The material menu and the chosen material's coefficients. Returns whether it changed.
-pub(super) fn material_ui(ui: &mut egui::Ui, m: &mut MaterialDesc) -> bool {
+/// The material menu and the chosen material's coefficients (`picker` for their images).
+/// Returns whether it changed.
+pub(super) fn material_ui(ui: &mut egui::Ui, m: &mut MaterialDesc, picker: &ImagePicker) -> bool {
     let mut changed = false;
     let mut kind = m.kind();
     if enum_combo(ui, "Material", &mut kind) {
@@ -45,10 +48,10 @@ pub(super) fn material_ui(ui: &mut egui::Ui, m: &mut MaterialDesc) -> bool {
                     Some(ParamRef::Scalar(ScalarDesc::Value(v))) => *v,
                     _ => 1.0,
                 };
-                changed |= scalar_ui(ui, label, s, fallback, colour_image.as_ref());
+                changed |= scalar_ui(ui, label, s, fallback, colour_image.as_ref(), picker);
             }
             ParamMut::Color(c) => {
-                changed |= colour_param_ui(ui, label, c, colour_image.as_ref());
+                changed |= colour_param_ui(ui, label, c, colour_image.as_ref(), picker);
             }
         });
     }
@@ -122,13 +125,21 @@ fn scalar_ui(
     s: &mut ScalarDesc,
     fallback: f32,
     colour_image: Option<&TextureDesc>,
+    picker: &ImagePicker,
 ) -> bool {
     let mut changed = false;
     let mut kind = s.texture().map_or(TextureKind::Constant, TextureDesc::kind);
     ui.horizontal(|ui| {
         if let ScalarDesc::Value(v) = s {
             let (max, speed) = range_of(label);
-            changed |= number(ui, label, v, 0.0..=max, speed);
+            changed |= number_drag_range(
+                ui,
+                label,
+                &format!("Dragged from 0 to {max}; a larger value from the preset is kept"),
+                v,
+                0.0..=max,
+                speed,
+            );
         } else {
             ui.label(label);
         }
@@ -141,26 +152,32 @@ fn scalar_ui(
             changed = true;
         }
     });
-    if let Some(mut channel) = s.channel() {
+    if s.texture().is_some() {
         ui.indent(label, |ui| {
-            if enum_combo(ui, "channel", &mut channel) {
-                let texture = s
-                    .texture()
-                    .cloned()
-                    .unwrap_or(TextureDesc::Constant(crate::math::Rgb::grey(fallback)));
-                *s = if channel == Channel::Luminance {
-                    ScalarDesc::Texture(texture)
-                } else {
-                    ScalarDesc::Channel(ChannelDesc { texture, channel })
-                };
-                changed = true;
-            }
+            changed |= channel_ui(ui, s);
             if let Some(t) = s.texture_mut() {
-                changed |= texture_settings_ui(ui, t);
+                changed |= texture_settings_ui(ui, t, picker, "image");
             }
         });
     }
     changed
+}
+
+/// Which channel of its texture a textured number reads (luminance, red, green, blue or the
+/// file's alpha). Returns whether it changed; a plain number shows nothing.
+pub(super) fn channel_ui(ui: &mut egui::Ui, s: &mut ScalarDesc) -> bool {
+    let (Some(mut channel), Some(texture)) = (s.channel(), s.texture().cloned()) else {
+        return false;
+    };
+    if !enum_combo(ui, "channel", &mut channel) {
+        return false;
+    }
+    *s = if channel == Channel::Luminance {
+        ScalarDesc::Texture(texture)
+    } else {
+        ScalarDesc::Channel(ChannelDesc { texture, channel })
+    };
+    true
 }
 
 fn colour_param_ui(
@@ -168,6 +185,7 @@ fn colour_param_ui(
     label: &str,
     c: &mut ColorDesc,
     colour_image: Option<&TextureDesc>,
+    picker: &ImagePicker,
 ) -> bool {
     let mut changed = false;
     let mut kind = c.texture().map_or(TextureKind::Constant, TextureDesc::kind);
@@ -187,17 +205,25 @@ fn colour_param_ui(
         }
     });
     if let Some(t) = c.texture_mut() {
-        ui.indent(label, |ui| changed |= texture_settings_ui(ui, t));
+        ui.indent(label, |ui| {
+            changed |= texture_settings_ui(ui, t, picker, "image");
+        });
     }
     changed
 }
 
-/// A parameter texture's own settings: the image path (applied with Enter), mapping, filter
-/// and wrap; a checker's squares and colours; the (u, v) transform.
-fn texture_settings_ui(ui: &mut egui::Ui, t: &mut TextureDesc) -> bool {
+/// The texture editor of a textured parameter or map: the (u, v) transform, the mapping; an
+/// image's path (`image_label`; Enter or *Load*, or *Browse…*), filter and wrap; a checker's
+/// squares and colours; a UV grid's filter and wrap; a constant's colour.
+pub(super) fn texture_settings_ui(
+    ui: &mut egui::Ui,
+    t: &mut TextureDesc,
+    picker: &ImagePicker,
+    image_label: &str,
+) -> bool {
     let mut changed = false;
     if let Some(uv) = t.uv_transform_mut() {
-        changed |= uv_transform_ui(ui, uv);
+        changed |= uv_transform(ui, uv);
     }
     if let Some(current) = t.mapping() {
         let mut m = current;
@@ -210,23 +236,7 @@ fn texture_settings_ui(ui: &mut egui::Ui, t: &mut TextureDesc) -> bool {
         TextureDesc::Image {
             path, filter, wrap, ..
         } => {
-            let id = ui.make_persistent_id("path");
-            let mut text = ui
-                .data_mut(|d| d.get_temp::<String>(id))
-                .unwrap_or_else(|| path.clone());
-            ui.horizontal(|ui| {
-                let l = ui.label("image");
-                let r = ui
-                    .add(egui::TextEdit::singleline(&mut text).desired_width(150.0))
-                    .labelled_by(l.id)
-                    .on_hover_text("Path relative to the preset's folder; Enter loads it");
-                if r.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter)) && text != *path
-                {
-                    path.clone_from(&text);
-                    changed = true;
-                }
-            });
-            ui.data_mut(|d| d.insert_temp(id, text));
+            changed |= image_field(ui, image_label, path, picker);
             changed |= enum_combo(ui, "filter", filter);
             changed |= enum_combo(ui, "wrap", wrap);
         }
@@ -252,47 +262,48 @@ fn texture_settings_ui(ui: &mut egui::Ui, t: &mut TextureDesc) -> bool {
     changed
 }
 
-/// The (u, v) scale, rotation and offset of a texture. Returns whether they changed.
-pub(super) fn uv_transform_ui(ui: &mut egui::Ui, uv: &mut crate::mapping::UvTransform) -> bool {
+/// An image path field: typed (Enter or *Load*) or chosen with *Browse…*. The typing is kept
+/// while it is about the same object and path, so it never shows another object's path or a
+/// path the scene no longer has (after a bad file is rolled back, say).
+fn image_field(ui: &mut egui::Ui, label: &str, path: &mut String, picker: &ImagePicker) -> bool {
+    let id = ui.make_persistent_id("path");
+    let mut text = ui
+        .data_mut(|d| d.get_temp::<(usize, String, String)>(id))
+        .filter(|(object, seen, _)| *object == picker.object && seen == path)
+        .map_or_else(|| path.clone(), |(_, _, text)| text);
     let mut changed = false;
-    ui.horizontal(|ui| {
-        ui.label("uv scale");
-        for (axis, v) in [("u", &mut uv.scale.x), ("v", &mut uv.scale.y)] {
-            let before = *v;
-            changed |= ui
+    // The buttons on a row of their own: the field is indented under its parameter or map,
+    // and one row of all three would not fit in the panel.
+    let enter = ui
+        .horizontal(|ui| {
+            let l = ui.label(label);
+            let r = ui
                 .add(
-                    egui::DragValue::new(v)
-                        .speed(0.05)
-                        .range(-1e6..=1e6)
-                        .prefix(format!("{axis} ")),
+                    egui::TextEdit::singleline(&mut text)
+                        .desired_width((ui.available_width() - 12.0).max(80.0)),
                 )
-                .on_hover_text("Tiles the texture: 2 repeats it twice across the mapping")
-                .changed();
-            // Zero is refused by the scene: step over it.
-            if *v == 0.0 {
-                *v = if before < 0.0 { -1e-3 } else { 1e-3 };
-            }
+                .labelled_by(l.id)
+                .on_hover_text("Path relative to the preset's folder; Enter loads it");
+            r.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter))
+        })
+        .inner;
+    ui.horizontal(|ui| {
+        if (ui
+            .button("Load")
+            .on_hover_text("Load the image at this path")
+            .clicked()
+            || enter)
+            && text != *path
+        {
+            path.clone_from(&text);
+            changed = true;
+        }
+        if let Some(p) = browse_button(ui, picker.browser, BrowseFor::Image, picker.preset) {
+            text.clone_from(&p);
+            *path = p;
+            changed = true;
         }
     });
-    changed |= number(
-        ui,
-        "uv rotate (degrees)",
-        &mut uv.rotate,
-        -360.0..=360.0,
-        1.0,
-    );
-    ui.horizontal(|ui| {
-        ui.label("uv offset");
-        for (axis, v) in [("u", &mut uv.offset.x), ("v", &mut uv.offset.y)] {
-            changed |= ui
-                .add(
-                    egui::DragValue::new(v)
-                        .speed(0.01)
-                        .range(-1e6..=1e6)
-                        .prefix(format!("{axis} ")),
-                )
-                .changed();
-        }
-    });
+    ui.data_mut(|d| d.insert_temp(id, (picker.object, path.clone(), text)));
     changed
 }

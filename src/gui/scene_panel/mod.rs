@@ -3,11 +3,13 @@
 //! resolution scale. Returns whether anything changed, so the app re-renders.
 //!
 //! One file per editor: [`object`] (shape and transform), [`material`], [`texture`] (with the
-//! image path and the assets list), [`render`] settings, [`camera`] and [`lights`]. The kinds
-//! each menu offers, their names, tooltips and defaults come from [`crate::scene`].
+//! image path and the assets list), [`maps`] (clip, bump and normal maps), [`render`]
+//! settings, [`camera`] and [`lights`]. The kinds each menu offers, their names, tooltips and
+//! defaults come from [`crate::scene`].
 
 mod camera;
 mod lights;
+mod maps;
 mod material;
 mod object;
 mod render;
@@ -45,6 +47,16 @@ pub struct ScenePanel {
     browser: Browser,
     /// Each camera projection as it was when switched away from (restored when switched back).
     projections: HashMap<ProjectionKind, ProjectionDesc>,
+    /// The clip, bump and normal maps switched off, and the bump/normal note.
+    maps: maps::MapMemory,
+}
+
+/// What a texture editor needs to choose an image: the *Browse…* dialog, the preset its paths
+/// are relative to, and the object edited (a half-typed path belongs to one object).
+pub(super) struct ImagePicker<'a> {
+    browser: &'a Browser,
+    preset: &'a Path,
+    object: usize,
 }
 
 /// The text of a path field: a view of one object's path in one preset, read again from the
@@ -127,6 +139,7 @@ impl ScenePanel {
         self.last_image.clear();
         self.assets = None;
         self.projections.clear();
+        self.maps = maps::MapMemory::default();
     }
 
     /// Makes the selected object the mesh at `path` (relative to the preset).
@@ -195,6 +208,7 @@ impl ScenePanel {
                 .filter(|(k, _)| *k != i)
                 .map(|(k, t)| (if k > i { k - 1 } else { k }, t))
                 .collect();
+            self.maps.object_removed(i);
             self.selected = self.selected.min(desc.objects.len().saturating_sub(1));
             changed = true;
         }

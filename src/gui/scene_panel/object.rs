@@ -1,7 +1,7 @@
 //! The object editor: the shape (with a cylinder's caps or a mesh's file and shading), the
-//! transform, and the material and texture editors below them.
+//! transform, and the material, texture and map (clip, bump, normal) editors below them.
 
-use super::{ScenePanel, browse_button, material::material_ui, path_field};
+use super::{ImagePicker, ScenePanel, browse_button, material::material_ui, path_field};
 use crate::geometry::Shading;
 use crate::gui::files::{BrowseFor, Browser};
 use crate::gui::widgets::{enum_combo, vec3};
@@ -37,14 +37,25 @@ impl ScenePanel {
                     changed = true;
                 }
             });
+        let browser = self.browser.clone();
+        let picker = ImagePicker {
+            browser: &browser,
+            preset,
+            object: self.selected,
+        };
         egui::CollapsingHeader::new("Material")
             .default_open(true)
-            .show(ui, |ui| changed |= material_ui(ui, &mut obj.material));
+            .show(ui, |ui| {
+                changed |= material_ui(ui, &mut obj.material, &picker);
+            });
         egui::CollapsingHeader::new("Texture")
             .default_open(true)
             .show(ui, |ui| {
                 changed |= self.texture_ui(ui, obj.material.texture_mut(), preset);
             });
+        egui::CollapsingHeader::new("Clip, bump and normal maps")
+            .default_open(true)
+            .show(ui, |ui| changed |= self.maps_ui(ui, obj, &picker));
         changed
     }
 

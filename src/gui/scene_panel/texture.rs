@@ -1,10 +1,10 @@
-//! The texture editor: the kind, the mapping, and the chosen texture's settings (an image's
-//! path, filter, lookup, wrap and scale; a checker's squares and colours), with the list of
-//! images in `assets/`.
+//! The texture editor: the kind, the mapping, the (u, v) transform and the chosen texture's
+//! settings (an image's path, filter, lookup, wrap and scale; a checker's squares and
+//! colours), with the list of images in `assets/`.
 
 use super::{PathText, ScenePanel, browse_button};
 use crate::gui::files::{BrowseFor, IMAGE_EXTENSIONS};
-use crate::gui::widgets::{colour, enum_combo, number, number_tip};
+use crate::gui::widgets::{colour, enum_combo, number, number_tip, uv_transform};
 use crate::scene::{TextureDesc, TextureKind, relative_asset_path};
 use crate::texture::{Filter, MAX_ANISOTROPY_LIMIT};
 use std::path::{Path, PathBuf};
@@ -65,6 +65,9 @@ impl ScenePanel {
                 tex.set_mapping(m);
                 changed = true;
             }
+        }
+        if let Some(uv) = tex.uv_transform_mut() {
+            changed |= uv_transform(ui, uv);
         }
         match tex {
             TextureDesc::Constant(c) => changed |= colour(ui, "colour", c),
@@ -181,7 +184,7 @@ impl ScenePanel {
     }
 
     /// The images in the preset's assets folders, listed once per preset.
-    fn assets(&mut self, preset: &Path) -> &[PathBuf] {
+    pub(super) fn assets(&mut self, preset: &Path) -> &[PathBuf] {
         if self.assets.as_ref().is_some_and(|(p, _)| p != preset) {
             self.assets = None;
         }

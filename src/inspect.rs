@@ -85,7 +85,8 @@ pub struct Inspection {
     pub object: usize,
     /// Its name.
     pub object_name: String,
-    /// Its shape, in words ("Sphere", "mesh bunny.ply, triangle 812").
+    /// Its shape, in words ("Sphere", "mesh bunny.ply, triangle 812"; a displaced mesh adds
+    /// "displaced by gravel.png (scale 0.05, 3 subdivision levels: ...)").
     pub shape: String,
     /// World-space hit point.
     pub world_point: Vec3A,
@@ -496,7 +497,7 @@ pub fn barycentric(t: [Vec3; 3], p: Vec3) -> Vec3 {
     Vec3::new((1.0 - w1 - w2) as f32, w1 as f32, w2 as f32)
 }
 
-/// A shape in words, with the triangle hit for meshes.
+/// A shape in words, with the triangle hit for meshes (and how a displaced mesh was displaced).
 fn shape_label(shape: &Shape, part: u32) -> String {
     match shape {
         Shape::Sphere => "Sphere".into(),
@@ -504,14 +505,22 @@ fn shape_label(shape: &Shape, part: u32) -> String {
         Shape::Plane => "Plane".into(),
         Shape::Rectangle => "Rectangle".into(),
         Shape::Disk => "Disk".into(),
-        Shape::Mesh(m) => format!(
-            "mesh {}, triangle {part} of {}",
-            m.mesh
-                .path()
-                .file_name()
-                .map_or_else(String::new, |n| n.to_string_lossy().into_owned()),
-            m.mesh.triangle_count()
-        ),
+        Shape::Mesh(m) => {
+            let mut s = format!(
+                "mesh {}, triangle {part} of {}",
+                m.mesh
+                    .path()
+                    .file_name()
+                    .map_or_else(String::new, |n| n.to_string_lossy().into_owned()),
+                m.mesh.triangle_count()
+            );
+            // A displaced copy says so: the triangles are the subdivided ones.
+            if let Some(d) = m.mesh.displacement() {
+                s.push_str(", ");
+                s.push_str(d);
+            }
+            s
+        }
     }
 }
 

@@ -1,8 +1,8 @@
 //! Reading, validating and writing presets, and building the runtime [`Scene`] from one.
 
 use super::desc::{
-    AdaptiveDesc, CameraDesc, ColorDesc, DisplaceDesc, LightDesc, MaterialDesc, PRESET_VERSION, ParamRef,
-    ProjectionDesc, RenderDesc, ScalarDesc, SceneDesc, TextureDesc, TransformDesc,
+    AdaptiveDesc, CameraDesc, ColorDesc, DisplaceDesc, LightDesc, MaterialDesc, PRESET_VERSION,
+    ParamRef, ProjectionDesc, RenderDesc, ScalarDesc, SceneDesc, TextureDesc, TransformDesc,
 };
 use super::{RenderSettings, Scene};
 use crate::camera::{Camera, Projection};
@@ -601,9 +601,11 @@ fn displaced_mesh(
         )));
     }
     let height = param_texture("height", &d.height, dir, cache)?;
-    if let Texture::Constant(c) = height
-        && c.luminance() * d.scale == 0.0
-    {
+    let moves_nothing = match &height {
+        Texture::Constant(c) => c.luminance() * d.scale == 0.0,
+        _ => d.scale == 0.0,
+    };
+    if moves_nothing {
         // A displacement that moves nothing is none: the file's mesh as it is, shared.
         return Ok(base.clone());
     }

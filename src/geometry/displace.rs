@@ -18,8 +18,8 @@ use super::mesh::MeshData;
 use crate::math::{Quat, Vec3};
 use std::collections::HashMap;
 
-/// Most triangles a displaced mesh may have after subdivision: 2^22 (4 M), about 0.4 GB of
-/// mesh and BVH at the most (and as much again while building).
+/// Most triangles a displaced mesh may have after subdivision: 2^22 (4 M); building 3.8 M
+/// took 0.75 GB at its peak (measured), so a preset cannot ask for gigabytes.
 pub const MAX_DISPLACED_TRIANGLES: usize = 1 << 22;
 
 /// The triangles `triangles` make after `levels` subdivisions (4^levels each), saturating.

@@ -191,10 +191,13 @@ fn key(p: Vec3) -> [u32; 3] {
     (p + Vec3::ZERO).to_array().map(f32::to_bits)
 }
 
+/// An edge's ends and the normals of the faces that share it.
+type Edge = (Vec3, Vec3, Vec<Vec3>);
+
 /// Every edge, by its ends' positions, is shared by exactly two triangles (the surface is
 /// closed, without cracks or T-junctions); returns each edge's ends and its two faces' normals.
-fn closed_edges(triangles: &[[Vec3; 3]], name: &str) -> Vec<(Vec3, Vec3, Vec<Vec3>)> {
-    let mut edges: HashMap<([u32; 3], [u32; 3]), (Vec3, Vec3, Vec<Vec3>)> = HashMap::new();
+fn closed_edges(triangles: &[[Vec3; 3]], name: &str) -> Vec<Edge> {
+    let mut edges: HashMap<([u32; 3], [u32; 3]), Edge> = HashMap::new();
     for p in triangles {
         let n = (p[1] - p[0]).cross(p[2] - p[0]).normalize_or_zero();
         for k in 0..3 {
@@ -211,7 +214,7 @@ fn closed_edges(triangles: &[[Vec3; 3]], name: &str) -> Vec<(Vec3, Vec3, Vec<Vec
 
 /// Rays at points along every edge, from directions that see both faces of the edge from the
 /// front, all hit (a crack would let one through).
-fn rays_never_slip_through(m: &Mesh, edges: &[(Vec3, Vec3, Vec<Vec3>)], name: &str) {
+fn rays_never_slip_through(m: &Mesh, edges: &[Edge], name: &str) {
     let mut rays = 0;
     for (a, b, normals) in edges {
         let mean = (normals[0] + normals[1]).normalize_or_zero();

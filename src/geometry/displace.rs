@@ -193,7 +193,9 @@ fn welded_normals(
             }
         }
     }
-    acc.iter_mut().for_each(|n| *n = n.normalize_or_zero());
+    for n in &mut acc {
+        *n = n.normalize_or_zero();
+    }
     acc
 }
 

@@ -14,7 +14,9 @@ use texplore::geometry::displace::{MAX_DISPLACED_TRIANGLES, displace, subdivide}
 use texplore::geometry::{Mesh, MeshData, Shape};
 use texplore::math::{Ray, Rgb, Vec2, Vec3, Vec3A};
 use texplore::meshio::{PlyFormat, bumpy_sphere, torus, write_ply};
-use texplore::scene::{AssetCache, Overrides, Scene, build_scene, load_preset, parse_preset};
+use texplore::scene::{
+    AssetCache, BumpDesc, Overrides, Scene, build_scene, load_preset, parse_preset,
+};
 use texplore::texture::{Filter, save_png};
 
 fn write_mesh(dir: &Path, name: &str, data: &MeshData) -> PathBuf {
@@ -371,6 +373,42 @@ fn the_displaced_preset_shows_outline_and_shadow() {
         }
     }
     assert!(count[2] as f32 > 1.1 * count[1] as f32, "{count:?}");
+    // The same knot bump-mapped in the displaced one's place: the floor in its shadow (a ray
+    // toward the sun meets the knot) is a part of the displaced knot's shadow, which is bigger.
+    let mut twin = desc.clone();
+    let d = twin.objects[2].displace.take().unwrap();
+    twin.objects[2].bump = Some(BumpDesc {
+        height: d.height,
+        scale: d.scale,
+    });
+    let twin = build_with(&twin, &path, sized(160, 120, 1), &mut AssetCache::new());
+    let to_sun = Vec3A::new(-0.5, 1.0, 0.45).normalize();
+    let shadowed = |scene: &Scene, ray: &Ray| {
+        let h = scene.hit(ray).filter(|h| h.object == 0)?;
+        let up = Ray::new(h.p + Vec3A::Y * 1e-3, to_sun);
+        Some(scene.hit(&up).is_some_and(|b| b.object == 2))
+    };
+    let (mut both, mut only_displaced, mut only_bumped) = (0, 0, 0);
+    for y in 0..120 {
+        for x in 0..160 {
+            let (ray, _) = scene
+                .camera
+                .ray(Vec2::new(x as f32 + 0.5, y as f32 + 0.5), 1.0)
+                .unwrap();
+            // Floor points both cameras see (the thicker knot hides a little more floor).
+            match (shadowed(&scene, &ray), shadowed(&twin, &ray)) {
+                (Some(true), Some(true)) => both += 1,
+                (Some(true), Some(false)) => only_displaced += 1,
+                (Some(false), Some(true)) => only_bumped += 1,
+                _ => {}
+            }
+        }
+    }
+    assert!(both > 200, "{both}");
+    assert!(
+        only_displaced > 30 && only_bumped <= 2,
+        "displaced only {only_displaced}, bumped only {only_bumped}"
+    );
     let inspected = (0..120)
         .flat_map(|y| (0..160).map(move |x| Vec2::new(x as f32 + 0.5, y as f32 + 0.5)))
         .filter_map(|p| scene.inspect(p))

@@ -415,12 +415,22 @@ fn the_displaced_preset_shows_outline_and_shadow() {
         .find(|i| i.object == 2)
         .expect("the displaced knot is in view");
     assert!(
-        inspected.shape.contains(
-            "displaced by gravel_gray_512.png (scale 0.15, 3 subdivision levels: 393216 triangles from 6144)"
-        ),
+        inspected
+            .shape
+            .starts_with("mesh torus-knot.ply (displaced), triangle "),
         "{}",
         inspected.shape
     );
+    let lines = &inspected.mesh.as_ref().unwrap().lines;
+    assert_eq!(
+        lines[..3],
+        [
+            "displaced at load by gravel_gray_512.png,",
+            "scale 0.15, 3 subdivision levels:",
+            "393216 triangles from the file's 6144"
+        ]
+    );
+    assert!(lines[3].starts_with("weights: "), "{lines:?}");
 }
 
 /// A subdivision past the triangle limit is refused before any work, naming the preset, the

@@ -198,8 +198,8 @@ pub struct Mesh {
     material: Option<MeshMaterial>,
     material_problem: Option<String>,
     degenerate: Degenerate,
-    /// How the mesh was displaced, in words, when it is a displaced copy of a file's mesh.
-    displacement: Option<String>,
+    /// How the mesh was displaced, when it is a displaced copy of a file's mesh.
+    displacement: Option<super::displace::Displacement>,
 }
 
 impl std::fmt::Debug for Mesh {
@@ -320,7 +320,7 @@ impl Mesh {
     /// format, material and mapping frame (so generated mappings read the same texels at the
     /// same surface points as on `base`), and `what` saying how it was displaced.
     #[must_use]
-    pub fn displaced_from(mut self, base: &Self, what: String) -> Self {
+    pub fn displaced_from(mut self, base: &Self, what: super::displace::Displacement) -> Self {
         self.path.clone_from(&base.path);
         self.file_normals = base.file_normals;
         self.map_centre = base.map_centre;
@@ -336,8 +336,8 @@ impl Mesh {
 
     /// How the mesh was displaced (height texture, scale, subdivision levels), when it was.
     #[must_use]
-    pub fn displacement(&self) -> Option<&str> {
-        self.displacement.as_deref()
+    pub const fn displacement(&self) -> Option<&super::displace::Displacement> {
+        self.displacement.as_ref()
     }
 
     /// The file it was read from.

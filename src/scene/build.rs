@@ -8,7 +8,7 @@ use super::{RenderSettings, Scene};
 use crate::camera::{Camera, Projection};
 use crate::error::{Error, Result};
 use crate::geometry::displace::{
-    MAX_DISPLACED_TRIANGLES, displace, subdivide, subdivided_triangle_count,
+    Displacement, MAX_DISPLACED_TRIANGLES, displace, subdivide, subdivided_triangle_count,
 };
 use crate::geometry::{Mesh, MeshShape, Object, Shape};
 use crate::mapping::{Mapping, UvAffine, UvTransform};
@@ -635,15 +635,13 @@ fn displaced_mesh(
             .collect()
     };
     displace(&mut data, &heights, d.scale);
-    let what = format!(
-        "displaced by {} (scale {}, {} subdivision level{}: {} triangles from {})",
-        texture_words(&d.height),
-        d.scale,
-        d.subdivide,
-        if d.subdivide == 1 { "" } else { "s" },
-        data.triangles.len(),
-        base.triangle_count()
-    );
+    let what = Displacement {
+        height: texture_words(&d.height),
+        scale: d.scale,
+        levels: d.subdivide,
+        file_triangles: base.triangle_count(),
+        triangles: data.triangles.len(),
+    };
     let mesh = Arc::new(Mesh::new(data, file)?.displaced_from(base, what));
     cache.keep_displaced(key, mesh.clone());
     Ok(mesh)

@@ -72,7 +72,8 @@ pub struct MeshPoint {
     pub uvs: Option<[Vec2; 3]>,
     /// The hit's barycentric weights (w0, w1, w2), summing to 1: p = w0 p0 + w1 p1 + w2 p2.
     pub bary: Vec3,
-    /// The interpolation with its numbers (empty without (u, v)).
+    /// On a displaced mesh first how it was displaced (height texture, scale, subdivision
+    /// levels, triangles), then the interpolation with its numbers (none without (u, v)).
     pub lines: Vec<String>,
 }
 
@@ -85,7 +86,8 @@ pub struct Inspection {
     pub object: usize,
     /// Its name.
     pub object_name: String,
-    /// Its shape, in words ("Sphere", "mesh bunny.ply, triangle 812").
+    /// Its shape, in words ("Sphere", "mesh bunny.ply, triangle 812"; "mesh bunny.ply
+    /// (displaced), triangle 812" on a displaced copy, whose [`MeshPoint::lines`] say how).
     pub shape: String,
     /// World-space hit point.
     pub world_point: Vec3A,
@@ -440,7 +442,11 @@ fn mesh_point(mesh: &crate::geometry::Mesh, prim: u32, part: u32, p: Vec3A) -> O
     let (positions, uvs) = mesh.triangle_vertices(prim)?;
     let bary = barycentric(positions, Vec3::from(p));
     let n = |x: f32| explain_number(f64::from(x));
-    let lines = uvs.map_or_else(Vec::new, |t| {
+    let displaced = mesh
+        .displacement()
+        .map(crate::geometry::displace::Displacement::lines)
+        .unwrap_or_default();
+    let interpolation = uvs.map_or_else(Vec::new, |t| {
         let uv = t[0] * bary.x + t[1] * bary.y + t[2] * bary.z;
         vec![
             format!(
@@ -471,6 +477,7 @@ fn mesh_point(mesh: &crate::geometry::Mesh, prim: u32, part: u32, p: Vec3A) -> O
             ),
         ]
     });
+    let lines = displaced.into_iter().chain(interpolation).collect();
     Some(MeshPoint {
         triangle: part,
         positions,
@@ -496,7 +503,7 @@ pub fn barycentric(t: [Vec3; 3], p: Vec3) -> Vec3 {
     Vec3::new((1.0 - w1 - w2) as f32, w1 as f32, w2 as f32)
 }
 
-/// A shape in words, with the triangle hit for meshes.
+/// A shape in words, with the triangle hit for meshes (and whether the mesh was displaced).
 fn shape_label(shape: &Shape, part: u32) -> String {
     match shape {
         Shape::Sphere => "Sphere".into(),
@@ -505,11 +512,18 @@ fn shape_label(shape: &Shape, part: u32) -> String {
         Shape::Rectangle => "Rectangle".into(),
         Shape::Disk => "Disk".into(),
         Shape::Mesh(m) => format!(
-            "mesh {}, triangle {part} of {}",
+            "mesh {}{}, triangle {part} of {}",
             m.mesh
                 .path()
                 .file_name()
                 .map_or_else(String::new, |n| n.to_string_lossy().into_owned()),
+            // A displaced copy says so (how, in the mesh lines): its triangles are the
+            // subdivided ones.
+            if m.mesh.displacement().is_some() {
+                " (displaced)"
+            } else {
+                ""
+            },
             m.mesh.triangle_count()
         ),
     }

@@ -198,6 +198,8 @@ pub struct Mesh {
     material: Option<MeshMaterial>,
     material_problem: Option<String>,
     degenerate: Degenerate,
+    /// How the mesh was displaced, when it is a displaced copy of a file's mesh.
+    displacement: Option<super::displace::Displacement>,
 }
 
 impl std::fmt::Debug for Mesh {
@@ -295,7 +297,47 @@ impl Mesh {
             material,
             material_problem,
             degenerate,
+            displacement: None,
         })
+    }
+
+    /// The vertex arrays (vertex normals always: the file's or the area-weighted ones) and the
+    /// triangles (in BVH order), as [`MeshData`] without the file's facts: what a displaced copy
+    /// starts from.
+    #[must_use]
+    pub fn to_data(&self) -> MeshData {
+        MeshData {
+            positions: self.positions.clone(),
+            uvs: self.uvs.clone(),
+            normals: self.normals.clone(),
+            triangles: self.triangles.clone(),
+            faces: self.triangles.len(),
+            ..MeshData::default()
+        }
+    }
+
+    /// This mesh, built from a subdivided and displaced copy of `base`, with `base`'s file,
+    /// format, material and mapping frame (so generated mappings read the same texels at the
+    /// same surface points as on `base`), and `what` saying how it was displaced.
+    #[must_use]
+    pub fn displaced_from(mut self, base: &Self, what: super::displace::Displacement) -> Self {
+        self.path.clone_from(&base.path);
+        self.file_normals = base.file_normals;
+        self.map_centre = base.map_centre;
+        self.map_scale = base.map_scale;
+        self.faces = base.faces;
+        self.format.clone_from(&base.format);
+        self.uv_names.clone_from(&base.uv_names);
+        self.material.clone_from(&base.material);
+        self.material_problem.clone_from(&base.material_problem);
+        self.displacement = Some(what);
+        self
+    }
+
+    /// How the mesh was displaced (height texture, scale, subdivision levels), when it was.
+    #[must_use]
+    pub const fn displacement(&self) -> Option<&super::displace::Displacement> {
+        self.displacement.as_ref()
     }
 
     /// The file it was read from.

@@ -6,6 +6,7 @@
 //! transform. Meshes keep the coordinates of their file.
 
 pub mod bvh;
+pub mod displace;
 pub mod mesh;
 mod shapes;
 

@@ -1,20 +1,23 @@
 //! Reading, validating and writing presets, and building the runtime [`Scene`] from one.
 
 use super::desc::{
-    AdaptiveDesc, CameraDesc, ColorDesc, LightDesc, MaterialDesc, PRESET_VERSION, ParamRef,
-    ProjectionDesc, RenderDesc, ScalarDesc, SceneDesc, TextureDesc, TransformDesc,
+    AdaptiveDesc, CameraDesc, ColorDesc, DisplaceDesc, LightDesc, MaterialDesc, PRESET_VERSION,
+    ParamRef, ProjectionDesc, RenderDesc, ScalarDesc, SceneDesc, TextureDesc, TransformDesc,
 };
 use super::{RenderSettings, Scene};
 use crate::camera::{Camera, Projection};
 use crate::error::{Error, Result};
+use crate::geometry::displace::{
+    Displacement, MAX_DISPLACED_TRIANGLES, displace, subdivide, subdivided_triangle_count,
+};
 use crate::geometry::{Mesh, MeshShape, Object, Shape};
-use crate::mapping::{UvAffine, UvTransform};
+use crate::mapping::{Mapping, UvAffine, UvTransform};
 use crate::material::{Bump, Colour, Light, Material, NormalMap, Scalar, ScalarTexture};
 use crate::math::{Affine3A, Quat, Vec3, Vec3A};
 use crate::sampler::{PixelFilter, PixelSampler};
 use crate::texture::{
     Channel, Checker, Filter, ImageData, ImageTexture, Lookup, MAX_ANISOTROPY_LIMIT, MipPyramid,
-    Texture, View, load_alpha, load_image, uv_grid_image,
+    Texture, TextureContext, View, load_alpha, load_image, uv_grid_image,
 };
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -203,6 +206,10 @@ impl Numbers {
             self.check(|| format!("{at}.normal.strength"), &[n.strength]);
             self.texture(&format!("{at}.normal.map"), &n.map);
         }
+        if let Some(d) = &o.displace {
+            self.check(|| format!("{at}.displace.scale"), &[d.scale]);
+            self.texture(&format!("{at}.displace.height"), &d.height);
+        }
     }
 
     /// Every number of one texture; `tex` names it.
@@ -258,7 +265,17 @@ pub struct AssetCache {
     /// Mip pyramids, built on first use by a mip filter and keyed by their base image (the
     /// cache holds every base image, so an `Arc` pointer stays a unique key).
     mips: Vec<(Arc<ImageData>, Arc<MipPyramid>)>,
+    /// The latest displaced meshes (at most [`DISPLACED_KEPT`]), by mesh file, the folder the
+    /// height texture's path is relative to, and the displacement.
+    displaced: Vec<(DisplacedKey, Arc<Mesh>)>,
 }
+
+/// What a displaced mesh is made from: the mesh file, the preset's folder and the displacement.
+type DisplacedKey = (PathBuf, PathBuf, DisplaceDesc);
+
+/// How many displaced meshes the cache keeps (the latest), so editing a displacement in the
+/// window does not pile up copies.
+pub const DISPLACED_KEPT: usize = 4;
 
 impl AssetCache {
     /// An empty cache.
@@ -310,6 +327,23 @@ impl AssetCache {
     /// Makes `mesh` what presets naming `path` get (a generated mesh, for benchmarks).
     pub fn insert_mesh(&mut self, path: &Path, mesh: Arc<Mesh>) {
         self.meshes.insert(path.to_path_buf(), mesh);
+    }
+
+    /// The displaced mesh made for `key`, if one is kept.
+    fn displaced(&self, key: &DisplacedKey) -> Option<Arc<Mesh>> {
+        self.displaced
+            .iter()
+            .find(|(k, _)| k == key)
+            .map(|(_, m)| m.clone())
+    }
+
+    /// Keeps `mesh` as the displaced mesh of `key`, forgetting the oldest beyond
+    /// [`DISPLACED_KEPT`].
+    fn keep_displaced(&mut self, key: DisplacedKey, mesh: Arc<Mesh>) {
+        if self.displaced.len() >= DISPLACED_KEPT {
+            self.displaced.remove(0);
+        }
+        self.displaced.push((key, mesh));
     }
 
     /// The generated UV test grid.
@@ -397,12 +431,30 @@ pub fn build_scene(desc: &SceneDesc, preset_path: &Path, cache: &mut AssetCache)
         };
         let transform =
             transform(&o.transform).map_err(|m| bad(format!("{what}.transform: {m}")))?;
-        let shape = match &o.shape {
-            super::ShapeDesc::Mesh { path, shading } => Shape::Mesh(MeshShape {
-                mesh: cache.mesh(&base.join(path))?,
-                shading: *shading,
-            }),
-            generic => generic
+        let shape = match (&o.shape, &o.displace) {
+            (super::ShapeDesc::Mesh { path, shading }, displace) => {
+                let file = base.join(path);
+                let mut mesh = cache.mesh(&file)?;
+                if let Some(d) = displace {
+                    mesh = displaced_mesh(&mesh, &file, d, base, cache).map_err(|e| match e {
+                        Error::Invalid { message, .. } => bad(format!("{what}.displace.{message}")),
+                        other => other,
+                    })?;
+                }
+                Shape::Mesh(MeshShape {
+                    mesh,
+                    shading: *shading,
+                })
+            }
+            (generic, Some(_)) => {
+                return Err(bad(format!(
+                    "{what}.displace: a displacement map needs a Mesh shape, and {} is a generic \
+                     shape; use a mesh (which is subdivided and displaced at load), or a bump map \
+                     (bump: ...) for the look without moving the surface",
+                    generic.kind()
+                )));
+            }
+            (generic, None) => generic
                 .generic()
                 .ok_or_else(|| bad(format!("{what}.shape: {generic:?} is not a generic shape")))?,
         };
@@ -502,6 +554,111 @@ pub fn build_scene(desc: &SceneDesc, preset_path: &Path, cache: &mut AssetCache)
         normal_maps,
         has_perturbations,
     })
+}
+
+/// `base` (read from `file`) subdivided and displaced as `d` says, through the cache (each
+/// displacement of a file is made once; the file's own mesh stays shared and untouched).
+/// Messages start with the field (`subdivide: ...`, `height.Image.scale: ...`); the caller
+/// prefixes the object and `displace`.
+fn displaced_mesh(
+    base: &Arc<Mesh>,
+    file: &Path,
+    d: &DisplaceDesc,
+    dir: &Path,
+    cache: &mut AssetCache,
+) -> Result<Arc<Mesh>> {
+    let invalid = |m: String| Error::invalid(dir, m);
+    if !(d.scale.is_finite() && d.scale.abs() <= 1e6) {
+        return Err(invalid(format!(
+            "scale: {} is out of range (-1e6 to 1e6 mesh units)",
+            d.scale
+        )));
+    }
+    let limit = MAX_DISPLACED_TRIANGLES;
+    let triangles = subdivided_triangle_count(base.triangle_count(), d.subdivide);
+    if triangles > limit {
+        return Err(invalid(format!(
+            "subdivide: {} levels would make {} triangles of the {} in {} (each level makes \
+             4 of every triangle); at most {limit} (4 M) are allowed: use fewer levels",
+            d.subdivide,
+            if triangles == usize::MAX {
+                "more than 2^64".to_owned()
+            } else {
+                triangles.to_string()
+            },
+            base.triangle_count(),
+            file.display()
+        )));
+    }
+    let key = (file.to_path_buf(), dir.to_path_buf(), d.clone());
+    if let Some(m) = cache.displaced(&key) {
+        return Ok(m);
+    }
+    if !base.has_uv()
+        && let Some(Mapping::Uv) = d.height.mapping()
+    {
+        return Err(invalid(format!(
+            "height: {} has no texture coordinates; choose a generated mapping (spherical, \
+             cylindrical, rectangular)",
+            file.display()
+        )));
+    }
+    let height = param_texture("height", &d.height, dir, cache)?;
+    let moves_nothing = match &height {
+        Texture::Constant(c) => c.luminance() * d.scale == 0.0,
+        _ => d.scale == 0.0,
+    };
+    if moves_nothing {
+        // A displacement that moves nothing is none: the file's mesh as it is, shared.
+        return Ok(base.clone());
+    }
+    let (mut data, _) = subdivide(&base.to_data(), d.subdivide);
+    let natural = super::natural_mapping(&Shape::Mesh(MeshShape {
+        mesh: base.clone(),
+        shading: crate::geometry::Shading::Smooth,
+    }));
+    let heights: Vec<f32> = {
+        use rayon::prelude::*;
+        let uvs = &data.uvs;
+        data.positions
+            .par_iter()
+            .enumerate()
+            .map(|(v, p)| {
+                let (p, _) = base.to_mapping_frame((*p).into());
+                let ctx = TextureContext {
+                    p,
+                    dpdx: Vec3A::ZERO,
+                    dpdy: Vec3A::ZERO,
+                    shape_uv: uvs.get(v).map(|uv| (*uv, None)),
+                    natural,
+                };
+                let h = height.eval(&ctx).luminance();
+                if h.is_finite() { h } else { 0.0 }
+            })
+            .collect()
+    };
+    displace(&mut data, &heights, d.scale);
+    let what = Displacement {
+        height: texture_words(&d.height),
+        scale: d.scale,
+        levels: d.subdivide,
+        file_triangles: base.triangle_count(),
+        triangles: data.triangles.len(),
+    };
+    let mesh = Arc::new(Mesh::new(data, file)?.displaced_from(base, what));
+    cache.keep_displaced(key, mesh.clone());
+    Ok(mesh)
+}
+
+/// A texture in a few words, for the inspector: an image's file name, else its kind.
+fn texture_words(t: &TextureDesc) -> String {
+    match t {
+        TextureDesc::Image { path, .. } => Path::new(path)
+            .file_name()
+            .map_or_else(|| path.clone(), |n| n.to_string_lossy().into_owned()),
+        TextureDesc::Constant(c) => format!("a constant {:?}", c.to_array()),
+        other => format!("a {} texture", other.kind()),
+    }
 }
 
 /// A normal map: its texture read raw (normals are not colours), never a constant (which has
@@ -984,6 +1141,7 @@ pub fn apply_overrides(desc: &mut SceneDesc, o: Overrides) {
         let alpha = obj.alpha.as_mut().and_then(ScalarDesc::texture_mut);
         let bump = obj.bump.as_mut().map(|b| &mut b.height);
         let normal = obj.normal.as_mut().map(|n| &mut n.map);
+        let displace = obj.displace.as_mut().map(|d| &mut d.height);
         for t in obj
             .material
             .textures_mut()
@@ -991,6 +1149,7 @@ pub fn apply_overrides(desc: &mut SceneDesc, o: Overrides) {
             .chain(alpha)
             .chain(bump)
             .chain(normal)
+            .chain(displace)
         {
             match t {
                 TextureDesc::Image {

@@ -320,6 +320,46 @@ pub struct ObjectDesc {
         deserialize_with = "some_alpha"
     )]
     pub normal: Option<NormalMapDesc>,
+    /// A displacement map, meshes only: at load, every triangle is split into four `subdivide`
+    /// times, then each vertex moves along its normal by the height texture there (the
+    /// surface itself moves: silhouettes and shadows change): `displace: (height:
+    /// Image(path: "gravel.png", mapping: Uv), scale: 0.05, subdivide: 3)`; default none.
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        serialize_with = "bare_alpha",
+        deserialize_with = "some_alpha"
+    )]
+    pub displace: Option<DisplaceDesc>,
+}
+
+/// A displacement map ([`ObjectDesc::displace`]), on a `Mesh` shape only (the generic shapes
+/// are analytic; a bump map gives them the look). The mesh is subdivided, then every vertex
+/// moves along its normal by `scale` times the height texture's luminance there (read at the
+/// vertex's point, through the texture's own mapping, with no footprint), before the BVH is
+/// built. At most [`MAX_DISPLACED_TRIANGLES`](crate::geometry::displace::MAX_DISPLACED_TRIANGLES)
+/// triangles (4 M) after subdivision.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DisplaceDesc {
+    /// The height field: its luminance, times `scale`, is how far a vertex moves (as a bump
+    /// map's height).
+    pub height: TextureDesc,
+    /// How far a texture value of 1 moves the surface, in the mesh file's units (finite, at
+    /// most 1e6 in size; negative pushes in); default 0.02.
+    #[serde(default = "default_bump_scale")]
+    pub scale: f32,
+    /// How many times every triangle is split into four before moving the vertices (0 moves
+    /// only the file's vertices); default 2.
+    #[serde(default = "default_subdivide")]
+    pub subdivide: u32,
+}
+
+/// The default [`DisplaceDesc::subdivide`].
+pub const DEFAULT_SUBDIVIDE: u32 = 2;
+
+fn default_subdivide() -> u32 {
+    DEFAULT_SUBDIVIDE
 }
 
 /// A normal map ([`ObjectDesc::normal`]).
@@ -351,7 +391,7 @@ fn default_bump_scale() -> f32 {
     0.02
 }
 
-/// Writes an optional field (`alpha`, `bump`) as its value itself, without RON's `Some(...)`,
+/// Writes an optional field (`alpha`, `bump`, `normal`, `displace`) as its value itself, without RON's `Some(...)`,
 /// as it is read.
 #[allow(clippy::ref_option)] // serde's serialize_with passes a reference to the field
 fn bare_alpha<S: serde::Serializer, T: Serialize>(a: &Option<T>, s: S) -> Result<S::Ok, S::Error> {
@@ -361,7 +401,7 @@ fn bare_alpha<S: serde::Serializer, T: Serialize>(a: &Option<T>, s: S) -> Result
     }
 }
 
-/// Reads an optional field (`alpha`, `bump`) written as its value itself.
+/// Reads an optional field (`alpha`, `bump`, `normal`, `displace`) written as its value itself.
 fn some_alpha<'de, D: serde::Deserializer<'de>, T: Deserialize<'de>>(
     d: D,
 ) -> Result<Option<T>, D::Error> {

@@ -186,6 +186,7 @@ pub fn asset_paths(desc: &SceneDesc, preset_dir: &Path) -> Vec<PathBuf> {
         let alpha = o.alpha.as_ref().and_then(|a| a.texture());
         let bump = o.bump.as_ref().map(|b| &b.height);
         let normal = o.normal.as_ref().map(|n| &n.map);
+        let displace = o.displace.as_ref().map(|d| &d.height);
         for t in o
             .material
             .textures()
@@ -194,6 +195,7 @@ pub fn asset_paths(desc: &SceneDesc, preset_dir: &Path) -> Vec<PathBuf> {
             .chain(alpha)
             .chain(bump)
             .chain(normal)
+            .chain(displace)
         {
             if let TextureDesc::Image { path, .. } = t {
                 add(preset_dir.join(path));
@@ -229,6 +231,7 @@ pub fn rebase_assets(desc: &mut SceneDesc, from: &Path, to: &Path) {
         let alpha = o.alpha.as_mut().and_then(super::ScalarDesc::texture_mut);
         let bump = o.bump.as_mut().map(|b| &mut b.height);
         let normal = o.normal.as_mut().map(|n| &mut n.map);
+        let displace = o.displace.as_mut().map(|d| &mut d.height);
         for t in o
             .material
             .textures_mut()
@@ -236,6 +239,7 @@ pub fn rebase_assets(desc: &mut SceneDesc, from: &Path, to: &Path) {
             .chain(alpha)
             .chain(bump)
             .chain(normal)
+            .chain(displace)
         {
             if let TextureDesc::Image { path, .. } = t {
                 rebase(path);
@@ -286,7 +290,7 @@ fn relative_to(target: &Path, base: &Path) -> PathBuf {
 /// (u, v), then beyond the lecture the checkers that show aliasing, bump and clip maps, and the
 /// scene shared with Mitsuba. Menus list the presets in this order; a preset not named here
 /// comes after them, by name.
-pub const LECTURE_ORDER: [&str; 16] = [
+pub const LECTURE_ORDER: [&str; 17] = [
     "earth",
     "texels",
     "earth-day-night",
@@ -301,6 +305,7 @@ pub const LECTURE_ORDER: [&str; 16] = [
     "checker",
     "checker-plane",
     "bumps",
+    "displaced",
     "cutout",
     "peer-sphere",
 ];

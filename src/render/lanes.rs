@@ -110,7 +110,7 @@ impl V3 {
         let mut r = *self;
         for i in 0..LANES {
             let rcp = 1.0 / len2[i].sqrt();
-            let ok = rcp.is_finite() && rcp > 0.0;
+            let ok = rcp.is_finite() & (rcp > 0.0);
             r.x[i] = if ok { self.x[i] * rcp } else { fallback.x };
             r.y[i] = if ok { self.y[i] * rcp } else { fallback.y };
             r.z[i] = if ok { self.z[i] * rcp } else { fallback.z };
@@ -221,7 +221,7 @@ fn rescaled(p: &V3) -> (V3, M) {
     let mut q = *p;
     let mut ok = [false; LANES];
     for i in 0..LANES {
-        ok[i] = s[i] > 0.0 && s[i].is_finite();
+        ok[i] = (s[i] > 0.0) & s[i].is_finite();
         q.x[i] = p.x[i] / s[i];
         q.y[i] = p.y[i] / s[i];
         q.z[i] = p.z[i] / s[i];
@@ -233,7 +233,7 @@ fn rescaled(p: &V3) -> (V3, M) {
 #[inline(always)]
 fn finite_or_centre(u: &mut F, v: &mut F) {
     for i in 0..LANES {
-        let ok = u[i].is_finite() && v[i].is_finite();
+        let ok = u[i].is_finite() & v[i].is_finite();
         u[i] = if ok { u[i] } else { 0.5 };
         v[i] = if ok { v[i] } else { 0.5 };
     }
@@ -310,9 +310,9 @@ pub fn sphere(o: &V3, d: &V3, t_max: &F) -> (F, M) {
     let mut hit = [false; LANES];
     for i in 0..LANES {
         let c = oo[i] - 1.0;
-        let away = c > 0.0 && half_b[i] >= 0.0;
+        let away = (c > 0.0) & (half_b[i] >= 0.0);
         let disc = a[i] - perp2a[i];
-        let real = !(disc < 0.0 || a[i] <= 0.0);
+        let real = !((disc < 0.0) | (a[i] <= 0.0));
         let root = disc.sqrt();
         let q = if half_b[i] > 0.0 {
             -half_b[i] - root
@@ -329,7 +329,7 @@ pub fn sphere(o: &V3, d: &V3, t_max: &F) -> (F, M) {
         } else {
             t1
         };
-        hit[i] = !away && real && ti > 0.0 && ti < t_max[i];
+        hit[i] = !away & real & (ti > 0.0) & (ti < t_max[i]);
         t[i] = ti;
     }
     (t, hit)
@@ -368,10 +368,10 @@ pub fn flat(o: &V3, d: &V3, t_max: &F, flat: Flat) -> (F, V3, M) {
         let (x, z) = (p.x[i], p.z[i]);
         let inside = match flat {
             Flat::Plane => true,
-            Flat::Rectangle => x.abs() <= 1.0 && z.abs() <= 1.0,
+            Flat::Rectangle => (x.abs() <= 1.0) & (z.abs() <= 1.0),
             Flat::Disk => x * x + z * z <= 1.0,
         };
-        hit[i] = d.y[i] != 0.0 && t[i] > 0.0 && t[i] < t_max[i] && inside;
+        hit[i] = (d.y[i] != 0.0) & (t[i] > 0.0) & (t[i] < t_max[i]) & inside;
         p.y[i] = 0.0;
     }
     (t, p, hit)

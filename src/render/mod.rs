@@ -57,7 +57,7 @@ pub fn render_pass(
 #[must_use]
 #[inline]
 pub fn sample_position(s: &RenderSettings, x: u32, y: u32, k: u32) -> Vec2 {
-    sample_position_and_cell(s, x, y, k).0
+    sample_position_impl::<false>(s, x, y, k).0
 }
 
 /// [`sample_position`] and the size (pixels along x and y) of the part of the pixel the sample
@@ -66,18 +66,33 @@ pub fn sample_position(s: &RenderSettings, x: u32, y: u32, k: u32) -> Vec2 {
 #[must_use]
 #[inline]
 pub fn sample_position_and_cell(s: &RenderSettings, x: u32, y: u32, k: u32) -> (Vec2, Vec2) {
+    sample_position_impl::<true>(s, x, y, k)
+}
+
+/// [`sample_position_and_cell`], with the cell only when `CELL` (zero otherwise).
+#[inline(always)]
+fn sample_position_impl<const CELL: bool>(
+    s: &RenderSettings,
+    x: u32,
+    y: u32,
+    k: u32,
+) -> (Vec2, Vec2) {
     let pixel = y * s.width + x;
+    let cell_of = |j: u32, n: u32| {
+        if CELL {
+            s.sampler.cell_size(j, n)
+        } else {
+            Vec2::ZERO
+        }
+    };
     let (offset, cell) = if k < s.spp {
-        (
-            s.sampler.sample(s.seed, pixel, k, s.spp),
-            s.sampler.cell_size(k, s.spp),
-        )
+        (s.sampler.sample(s.seed, pixel, k, s.spp), cell_of(k, s.spp))
     } else {
         let n = s.max_spp().saturating_sub(s.spp).max(1);
         let j = permute((k - s.spp) % n, n, hash3(s.seed, pixel, ADAPTIVE_STREAM));
         (
             s.sampler.sample(s.seed ^ ADAPTIVE_STREAM, pixel, j, n),
-            s.sampler.cell_size(j, n),
+            cell_of(j, n),
         )
     };
     let corner = Vec2::new(x as f32, y as f32);
@@ -157,8 +172,13 @@ pub fn render_pass_with(
                     exposure: s.exposure_scale,
                 };
                 match &plan {
-                    Some(plan) => arch.dispatch(|| {
-                        packet_row(scene, plan, &mut row, y as u32, sample, row_mask);
+                    Some(plan) => arch.dispatch(PacketRow {
+                        scene,
+                        plan,
+                        row: &mut row,
+                        y: y as u32,
+                        sample,
+                        mask: row_mask,
                     }),
                     None => scalar_row(scene, &mut row, y as u32, sample, row_mask),
                 }
@@ -181,19 +201,25 @@ impl Row<'_> {
     /// Adds one sample's radiance `l` with edge key `edge_key` to pixel `x`.
     #[inline(always)]
     fn add(&mut self, x: usize, l: Rgb, edge_key: u32) {
+        self.add_parts(x, l.0, l.1, l.2, edge_key);
+    }
+
+    /// [`Row::add`] of the radiance (r, g, b).
+    #[inline(always)]
+    fn add_parts(&mut self, x: usize, r: f32, g: f32, b: f32, edge_key: u32) {
         let px = &mut self.px[x];
         if self.stats_on {
             if px[3] == 0.0 {
                 self.keys[x] = edge_key;
             }
-            let e = display_luminance(l, self.exposure);
+            let e = display_luminance(Rgb(r, g, b), self.exposure);
             let st = &mut self.st[x];
             st[0] += e;
             st[1] += e * e;
         }
-        px[0] += l.0;
-        px[1] += l.1;
-        px[2] += l.2;
+        px[0] += r;
+        px[1] += g;
+        px[2] += b;
         px[3] += 1.0;
     }
 }
@@ -214,6 +240,35 @@ fn scalar_row(scene: &Scene, row: &mut Row, y: u32, sample: u32, mask: Option<&[
     }
 }
 
+/// [`packet_row`] as pulp's operation: `with_simd` is inlined into the `#[target_feature]`
+/// function [`pulp::Arch::dispatch`] picks, and everything below it is `#[inline(always)]`, so
+/// the whole packet kernel is compiled for that instruction set. (A closure would not do: its
+/// body stays a separate function compiled for the baseline.)
+struct PacketRow<'s, 'r, 'f> {
+    scene: &'s Scene,
+    plan: &'s packet::PacketPlan<'s>,
+    row: &'r mut Row<'f>,
+    y: u32,
+    sample: u32,
+    mask: Option<&'s [bool]>,
+}
+
+impl pulp::WithSimd for PacketRow<'_, '_, '_> {
+    type Output = ();
+
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _simd: S) {
+        packet_row(
+            self.scene,
+            self.plan,
+            self.row,
+            self.y,
+            self.sample,
+            self.mask,
+        );
+    }
+}
+
 /// The packet path over one row: [`LANES`] consecutive pixels at a time, the lanes the packet
 /// path cannot shade traced again by the scalar path.
 #[inline(always)]
@@ -230,16 +285,16 @@ fn packet_row(
     for x0 in (0..width).step_by(LANES) {
         let mut active = [false; LANES];
         let (mut px, mut py) = ([0.0_f32; LANES], [0.0_f32; LANES]);
-        let mut cells = [Vec2::ZERO; LANES];
         for i in 0..LANES {
             let x = x0 + i;
             if x >= width || mask.is_some_and(|m| !m[x]) {
                 continue;
             }
             active[i] = true;
-            let (pos, cell) = sample_position_and_cell(s, x as u32, y, sample);
+            // The position alone: a sample's cell matters only to lanes the scalar path
+            // traces, which compute it again.
+            let pos = sample_position(s, x as u32, y, sample);
             (px[i], py[i]) = (pos.x, pos.y);
-            cells[i] = cell;
         }
         if !active.contains(&true) {
             continue;
@@ -249,17 +304,16 @@ fn packet_row(
             if !active[i] {
                 continue;
             }
-            let (l, key) = if fallback[i] {
-                radiance_keyed_cell(scene, Vec2::new(px[i], py[i]), cells[i])
+            if fallback[i] {
+                let x = (x0 + i) as u32;
+                let (pos, cell) = sample_position_and_cell(s, x, y, sample);
+                let (l, key) = radiance_keyed_cell(scene, pos, cell);
+                debug_assert!(l.is_finite(), "non-finite radiance at pixel ({x}, {y})");
+                row.add(x0 + i, l, key);
             } else {
-                (Rgb(rgb[0][i], rgb[1][i], rgb[2][i]), keys[i])
-            };
-            debug_assert!(
-                l.is_finite(),
-                "non-finite radiance at pixel ({}, {y})",
-                x0 + i
-            );
-            row.add(x0 + i, l, key);
+                // Straight from the lanes: no Rgb through memory (a store-forwarding stall).
+                row.add_parts(x0 + i, rgb[0][i], rgb[1][i], rgb[2][i], keys[i]);
+            }
         }
     }
 }

@@ -348,12 +348,15 @@ impl<'a> PacketPlan<'a> {
                 }
             };
             for i in 0..LANES {
-                if hit[i] {
-                    t_best[i] = t[i];
-                    object[i] = k as u32;
-                    lp.set_lane(i, p.lane(i));
-                    ln.set_lane(i, n.lane(i));
-                }
+                let h = hit[i];
+                t_best[i] = if h { t[i] } else { t_best[i] };
+                object[i] = if h { k as u32 } else { object[i] };
+                lp.x[i] = if h { p.x[i] } else { lp.x[i] };
+                lp.y[i] = if h { p.y[i] } else { lp.y[i] };
+                lp.z[i] = if h { p.z[i] } else { lp.z[i] };
+                ln.x[i] = if h { n.x[i] } else { ln.x[i] };
+                ln.y[i] = if h { n.y[i] } else { ln.y[i] };
+                ln.z[i] = if h { n.z[i] } else { ln.z[i] };
             }
         }
 

@@ -144,7 +144,7 @@ fn packet_renders_are_the_same_for_1_and_2_threads() {
 /// and rectangle.
 #[test]
 fn packets_with_hits_misses_and_scalar_lanes_match_the_scalar_path() {
-    let text = r#"(
+    let text = r"(
         version: 1,
         camera: (eye: (0.3, 1.2, 5), look_at: (0, 0, 0), projection: Pinhole(fov: 50)),
         render: (width: 61, height: 45, spp: 2, background: (0.1, 0.2, 0.3)),
@@ -165,7 +165,7 @@ fn packets_with_hits_misses_and_scalar_lanes_match_the_scalar_path() {
             (shape: Rectangle, transform: (translate: (1.5, 0.5, -1), scale: (0.4, 1, 0.4), rotate: (70, -20, 0)),
              material: Matte(cd: UvGrid(mapping: Uv, filter: Bilinear))),
         ],
-    )"#;
+    )";
     let mut desc = parse_preset(text, Path::new("mixed.ron")).expect("the test scene parses");
     desc.render.adaptive = Some(ADAPTIVE);
     let scene = build_scene(&desc, Path::new("mixed.ron"), &mut AssetCache::new())

@@ -10,6 +10,10 @@
 //! lane gives the scalar path's number bit for bit: the tests in `tests/simd.rs` and below
 //! compare them on hard inputs.
 
+// Lane loops index several arrays by the lane (`for i in 0..LANES`), the form the vectoriser
+// reads best; `&` and `|` between lane conditions keep them branch-free (selects, not jumps).
+#![allow(clippy::needless_range_loop, clippy::needless_bitwise_bool)]
+
 use crate::math::{ATAN_POLY, Affine3A, PI, TAU, Vec3A};
 use std::f32::consts::FRAC_PI_2;
 

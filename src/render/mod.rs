@@ -299,7 +299,7 @@ fn packet_row(
         if !active.contains(&true) {
             continue;
         }
-        let (rgb, keys, fallback) = plan.trace(&px, &py, &active);
+        let (rgb, keys, fallback) = plan.trace(&px, &py, active);
         for i in 0..LANES {
             if !active[i] {
                 continue;

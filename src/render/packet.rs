@@ -22,6 +22,10 @@
 //! SSE2 baseline; NEON on aarch64). Everything on the packet's hot path is `#[inline(always)]`,
 //! so it is compiled for that level.
 
+// Lane loops index several arrays by the lane (`for i in 0..LANES`), the form the vectoriser
+// reads best; `&` and `|` between lane conditions keep them branch-free (selects, not jumps).
+#![allow(clippy::needless_range_loop, clippy::needless_bitwise_bool)]
+
 use super::lanes::{self, F, Flat, LANES, M, V3, splat};
 use crate::camera::Projection;
 use crate::geometry::Shape;
@@ -312,7 +316,7 @@ impl<'a> PacketPlan<'a> {
     /// (r, g, b per lane), the edge keys, and the lanes the scalar path must trace instead.
     #[allow(clippy::too_many_lines)]
     #[inline(always)]
-    pub(crate) fn trace(&self, px: &F, py: &F, active: &M) -> ([F; 3], [u32; LANES], M) {
+    pub(crate) fn trace(&self, px: &F, py: &F, active: M) -> ([F; 3], [u32; LANES], M) {
         let scene = self.scene;
         let (o, d) = self.camera_rays(px, py);
 

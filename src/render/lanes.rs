@@ -325,14 +325,10 @@ pub fn sphere(o: &V3, d: &V3, t_max: &F) -> (F, M) {
         };
         let (r0, r1) = (c / q, q / a[i]);
         let (t0, t1) = if r0 < r1 { (r0, r1) } else { (r1, r0) };
-        // q == 0 is the scalar path's double root at 0, which is no hit (t > 0 fails).
-        let ti = if q == 0.0 {
-            0.0
-        } else if t0 > 0.0 {
-            t0
-        } else {
-            t1
-        };
+        // q == 0 is the scalar path's double root at 0, which is no hit. Here c / 0 is
+        // +-inf or NaN and 0 / a is 0, so t is 0, inf or NaN: no hit either, without a branch
+        // (which kept the divisions from vectorising).
+        let ti = if t0 > 0.0 { t0 } else { t1 };
         hit[i] = !away & real & (ti > 0.0) & (ti < t_max[i]);
         t[i] = ti;
     }
@@ -517,6 +513,7 @@ mod tests {
             (Vec3A::new(0.3, -0.2, 0.1), Vec3A::new(1.0, 2.0, -0.5)), // from inside
             (Vec3A::new(0.0, 0.0, 5.0), -z),                          // heading away
             (Vec3A::new(0.0, 0.0, 1.0), z),                           // starting on the surface
+            (Vec3A::X, z), // on the surface and tangent: the double root at 0
             (Vec3A::new(0.0, 3.0, 0.0), Vec3A::new(0.0, -1.0, 0.0)),
             (Vec3A::new(0.5, 1.0, 0.5), Vec3A::new(0.0, 0.0, 1.0)), // parallel to y = 0
             (Vec3A::new(0.9, 2.0, 0.9), Vec3A::new(0.1, -1.0, 0.1)),

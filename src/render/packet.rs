@@ -131,6 +131,29 @@ struct Shading<'a> {
     response: Response,
 }
 
+/// The (u, v) of object-space points `p` under `mapping` (spherical, cylindrical or
+/// rectangular), then the (u, v) transform `affine` (`UvAffine::apply`: non-finite results
+/// become (0, 0)).
+#[inline(always)]
+fn map_lanes(mapping: Mapping, affine: Option<&UvAffine>, p: &V3) -> (F, F) {
+    let (mut u, mut v) = match mapping {
+        Mapping::Spherical => lanes::spherical(p),
+        Mapping::Cylindrical => lanes::cylindrical(p),
+        _ => lanes::rectangular(p),
+    };
+    if let Some(a) = affine {
+        let (mx, my) = (a.matrix.x_axis, a.matrix.y_axis);
+        for i in 0..LANES {
+            let nu = (mx.x * u[i] + my.x * v[i]) + a.offset.x;
+            let nv = (mx.y * u[i] + my.y * v[i]) + a.offset.y;
+            let ok = nu.is_finite() & nv.is_finite();
+            u[i] = if ok { nu } else { 0.0 };
+            v[i] = if ok { nv } else { 0.0 };
+        }
+    }
+    (u, v)
+}
+
 /// One object as the packet path sees it.
 #[derive(Clone, Debug)]
 struct ObjectPlan<'a> {
@@ -418,24 +441,12 @@ impl<'a> PacketPlan<'a> {
                 }
             }
             // (u, v) of the object-space point, then the (u, v) transform.
-            let uv = sh.mapping.map(|m| {
-                let (mut u, mut v) = match m {
-                    Mapping::Spherical => lanes::spherical(&lp),
-                    Mapping::Cylindrical => lanes::cylindrical(&lp),
-                    _ => lanes::rectangular(&lp),
-                };
-                if let Some(a) = &sh.affine {
-                    let (mx, my) = (a.matrix.x_axis, a.matrix.y_axis);
-                    for i in 0..LANES {
-                        let nu = (mx.x * u[i] + my.x * v[i]) + a.offset.x;
-                        let nv = (mx.y * u[i] + my.y * v[i]) + a.offset.y;
-                        let ok = nu.is_finite() && nv.is_finite();
-                        u[i] = if ok { nu } else { 0.0 };
-                        v[i] = if ok { nv } else { 0.0 };
-                    }
-                }
-                (u, v)
-            });
+            // A function, not a closure: a closure this size stays out of line, compiled for
+            // the baseline instead of the dispatched level.
+            let uv = match sh.mapping {
+                Some(m) => Some(map_lanes(m, sh.affine.as_ref(), &lp)),
+                None => None,
+            };
             for i in 0..LANES {
                 if !mine[i] {
                     continue;

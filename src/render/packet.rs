@@ -447,11 +447,13 @@ impl<'a> PacketPlan<'a> {
                 Some(m) => Some(map_lanes(m, sh.affine.as_ref(), &lp)),
                 None => None,
             };
+            // The texel lookups first, the scalar filter per lane (a gather); then the
+            // material's terms lane-wise.
+            let mut tex = [[0.0; LANES]; 3];
             for i in 0..LANES {
                 if !mine[i] {
                     continue;
                 }
-                // The texel lookup: the scalar filter, per lane (a gather).
                 let c = match &uv {
                     Some((u, v)) => sh.texture.eval_tex_coord(TexCoord {
                         uv: Vec2::new(u[i], v[i]),
@@ -460,32 +462,51 @@ impl<'a> PacketPlan<'a> {
                     }),
                     None => sh.texture.eval_tex_coord(TexCoord::default()),
                 };
-                match sh.response {
-                    Response::Lit {
-                        ka,
-                        kd_pi,
-                        specular,
-                        glow: g,
-                    } => {
-                        let b = c * ambient * ka;
-                        let dif = c * kd_pi;
-                        (base[0][i], base[1][i], base[2][i]) = (b.0, b.1, b.2);
-                        (diffuse[0][i], diffuse[1][i], diffuse[2][i]) = (dif.0, dif.1, dif.2);
-                        if let Some((s, e)) = specular {
-                            (spec[0][i], spec[1][i], spec[2][i]) = (s.0, s.1, s.2);
-                            exponent[i] = e;
-                            has_spec[i] = true;
+                (tex[0][i], tex[1][i], tex[2][i]) = (c.0, c.1, c.2);
+            }
+            let amb = [ambient.0, ambient.1, ambient.2];
+            match sh.response {
+                Response::Lit {
+                    ka,
+                    kd_pi,
+                    specular,
+                    glow: g,
+                } => {
+                    let g = [g.0, g.1, g.2];
+                    let (s, e) = specular.map_or(([0.0; 3], 0.0), |(s, e)| ([s.0, s.1, s.2], e));
+                    for c in 0..3 {
+                        for i in 0..LANES {
+                            let m = mine[i];
+                            // c ambient ka and c (kd / pi), as `Material::shade_point`.
+                            base[c][i] = if m {
+                                tex[c][i] * amb[c] * ka
+                            } else {
+                                base[c][i]
+                            };
+                            diffuse[c][i] = if m { tex[c][i] * kd_pi } else { diffuse[c][i] };
+                            spec[c][i] = if m { s[c] } else { spec[c][i] };
+                            glow[c][i] = if m { g[c] } else { glow[c][i] };
                         }
-                        (glow[0][i], glow[1][i], glow[2][i]) = (g.0, g.1, g.2);
-                        lit_material[i] = true;
                     }
-                    Response::Emissive { ls } => {
-                        let b = c * ls;
-                        (base[0][i], base[1][i], base[2][i]) = (b.0, b.1, b.2);
+                    for i in 0..LANES {
+                        let m = mine[i];
+                        exponent[i] = if m { e } else { exponent[i] };
+                        has_spec[i] = if m { specular.is_some() } else { has_spec[i] };
+                        lit_material[i] |= m;
                     }
                 }
-                trans[i] = ob.translation_max_abs;
-                self_shadowing_sphere[i] = ob.kind == Kind::Sphere;
+                Response::Emissive { ls } => {
+                    for c in 0..3 {
+                        for i in 0..LANES {
+                            base[c][i] = if mine[i] { tex[c][i] * ls } else { base[c][i] };
+                        }
+                    }
+                }
+            }
+            for i in 0..LANES {
+                let m = mine[i];
+                trans[i] = if m { ob.translation_max_abs } else { trans[i] };
+                self_shadowing_sphere[i] |= m & (ob.kind == Kind::Sphere);
             }
         }
 

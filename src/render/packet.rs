@@ -443,6 +443,7 @@ impl<'a> PacketPlan<'a> {
             // (u, v) of the object-space point, then the (u, v) transform.
             // A function, not a closure: a closure this size stays out of line, compiled for
             // the baseline instead of the dispatched level.
+            #[allow(clippy::manual_map)]
             let uv = match sh.mapping {
                 Some(m) => Some(map_lanes(m, sh.affine.as_ref(), &lp)),
                 None => None,

@@ -89,6 +89,14 @@ impl Camera {
         }
     }
 
+    /// The film-plane size of one pixel of the pinhole and orthographic cameras (0 for the
+    /// others): the packet path's lane-wise twin of [`Camera::direction`] reads it.
+    #[must_use]
+    #[inline]
+    pub(crate) fn pixel_scale(&self) -> f32 {
+        self.pixel_scale
+    }
+
     /// The direction (unnormalised) through film position `pos` in pixels (x right, y down,
     /// (0, 0) the top-left corner), or `None` where the projection sees nothing.
     #[must_use]

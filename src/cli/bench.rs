@@ -1,7 +1,10 @@
 //! `texplore bench`: full-pass and preview timings per thread count.
 
 use crate::geometry::Mesh;
-use crate::render::{Film, PREVIEW_BLOCKS, render_pass, render_preview, thread_pool};
+use crate::render::{
+    Film, LANES, PREVIEW_BLOCKS, SimdMode, packet_eligibility, render_pass_with,
+    render_preview_into, simd_level, thread_pool,
+};
 use crate::scene::{
     AssetCache, Overrides, apply_overrides, build_scene, parse_preset, read_preset_or_png,
 };
@@ -35,6 +38,10 @@ pub struct BenchArgs {
     /// Timed passes per thread count (after one warm-up); the median is reported.
     #[arg(long, default_value_t = 9, value_parser = super::parse_repeat)]
     pub repeat: usize,
+    /// Force the scalar path (one ray at a time) instead of the packet path, for comparison
+    /// (`TEXPLORE_SIMD=off` does the same for every command).
+    #[arg(long)]
+    pub scalar: bool,
 }
 
 fn median(mut v: Vec<Duration>) -> Duration {
@@ -122,26 +129,41 @@ pub fn run(a: &BenchArgs) -> Result<()> {
         a.height,
         a.repeat.max(1)
     );
+    let mode = if a.scalar {
+        SimdMode::Scalar
+    } else {
+        SimdMode::from_env()
+    };
+    match packet_eligibility(&scene, mode) {
+        Ok(()) => println!(
+            "path: packets of {LANES} rays, {} (runtime dispatch)",
+            simd_level()
+        ),
+        Err(why) => println!("path: scalar, one ray at a time ({why})"),
+    }
     let mut base = None;
     for &threads in &a.threads {
         let pool = thread_pool(threads)?;
         let never = || false;
         let passes = pool.install(|| {
+            // One film and one preview buffer for every pass: the timings measure tracing,
+            // not the allocator and the kernel clearing fresh pages.
             let mut film = Film::new(a.width, a.height);
-            let _ = render_pass(&scene, &mut film, 0, &never);
+            let mut preview = Vec::new();
+            let _ = render_pass_with(&scene, &mut film, 0, None, mode, &never);
             let mut passes = Vec::new();
             let mut previews = Vec::new();
             let mut cpu = Some(0.0);
             for i in 0..a.repeat.max(1) {
                 let (t0, c0) = (Instant::now(), process_cpu_seconds());
-                let _ = render_pass(&scene, &mut film, i as u32, &never);
+                let _ = render_pass_with(&scene, &mut film, i as u32, None, mode, &never);
                 passes.push(t0.elapsed());
                 cpu = match (cpu, c0, process_cpu_seconds()) {
                     (Some(sum), Some(c0), Some(c1)) => Some(sum + c1 - c0),
                     _ => None,
                 };
                 let t0 = Instant::now();
-                let _ = render_preview(&scene, PREVIEW_BLOCKS[0], &never);
+                let _ = render_preview_into(&scene, PREVIEW_BLOCKS[0], &mut preview, &never);
                 previews.push(t0.elapsed());
             }
             (passes, previews, cpu)

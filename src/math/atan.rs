@@ -12,7 +12,7 @@
 use std::f32::consts::{FRAC_PI_2, PI};
 
 /// atan(t) / t - 1 = t^2 (C1 + t^2 (C2 + ...)) on [0, 1].
-const C: [f32; 8] = [
+pub(crate) const C: [f32; 8] = [
     -0.333_329_86,
     0.199_903_96,
     -0.141_859_74,

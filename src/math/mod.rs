@@ -5,6 +5,8 @@ mod atan;
 mod color;
 mod rng;
 
+/// The coefficients of [`atan2`]'s polynomial, for the packet path's lane-wise twin.
+pub(crate) use atan::C as ATAN_POLY;
 pub use atan::atan2;
 pub use color::{
     DisplayImage, Rgb, encode_display, encode_srgb8, linear_to_srgb, linear_to_srgb8, quantize8,

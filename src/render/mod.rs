@@ -4,11 +4,15 @@
 mod adaptive;
 mod film;
 mod job;
+mod lanes;
+mod packet;
 mod pool;
 
 pub use adaptive::{CONTRAST_FACTOR, adaptive_mask, display_luminance};
 pub use film::{DisplayImage, Film, encode_srgb8};
 pub use job::{Generation, Progress, RenderJob, RenderOptions};
+pub use lanes::LANES;
+pub use packet::{Ineligible, SimdMode, packet_eligibility, simd_level};
 pub use pool::{MAX_THREADS, PoolError, thread_pool};
 
 use crate::math::{Rgb, Vec2, hash3};
@@ -53,7 +57,7 @@ pub fn render_pass(
 #[must_use]
 #[inline]
 pub fn sample_position(s: &RenderSettings, x: u32, y: u32, k: u32) -> Vec2 {
-    sample_position_and_cell(s, x, y, k).0
+    sample_position_impl::<false>(s, x, y, k).0
 }
 
 /// [`sample_position`] and the size (pixels along x and y) of the part of the pixel the sample
@@ -62,18 +66,33 @@ pub fn sample_position(s: &RenderSettings, x: u32, y: u32, k: u32) -> Vec2 {
 #[must_use]
 #[inline]
 pub fn sample_position_and_cell(s: &RenderSettings, x: u32, y: u32, k: u32) -> (Vec2, Vec2) {
+    sample_position_impl::<true>(s, x, y, k)
+}
+
+/// [`sample_position_and_cell`], with the cell only when `CELL` (zero otherwise).
+#[inline(always)]
+fn sample_position_impl<const CELL: bool>(
+    s: &RenderSettings,
+    x: u32,
+    y: u32,
+    k: u32,
+) -> (Vec2, Vec2) {
     let pixel = y * s.width + x;
+    let cell_of = |j: u32, n: u32| {
+        if CELL {
+            s.sampler.cell_size(j, n)
+        } else {
+            Vec2::ZERO
+        }
+    };
     let (offset, cell) = if k < s.spp {
-        (
-            s.sampler.sample(s.seed, pixel, k, s.spp),
-            s.sampler.cell_size(k, s.spp),
-        )
+        (s.sampler.sample(s.seed, pixel, k, s.spp), cell_of(k, s.spp))
     } else {
         let n = s.max_spp().saturating_sub(s.spp).max(1);
         let j = permute((k - s.spp) % n, n, hash3(s.seed, pixel, ADAPTIVE_STREAM));
         (
             s.sampler.sample(s.seed ^ ADAPTIVE_STREAM, pixel, j, n),
-            s.sampler.cell_size(j, n),
+            cell_of(j, n),
         )
     };
     let corner = Vec2::new(x as f32, y as f32);
@@ -90,7 +109,8 @@ const ADAPTIVE_STREAM: u32 = 0xada9_7e55;
 
 /// Like [`render_pass`], but only for pixels where `mask` is true (all when `None`). When the
 /// scene renders adaptively, each sample's display luminance also goes into the film's
-/// statistics.
+/// statistics. Primary rays take the packet path where the scene is eligible and the process
+/// default ([`SimdMode::from_env`]) allows it.
 ///
 /// # Errors
 /// [`Cancelled`] if `cancelled` returned true.
@@ -101,10 +121,30 @@ pub fn render_pass_masked(
     mask: Option<&[bool]>,
     cancelled: &(dyn Fn() -> bool + Sync),
 ) -> Result<(), Cancelled> {
+    render_pass_with(scene, film, sample, mask, SimdMode::from_env(), cancelled)
+}
+
+/// [`render_pass_masked`] with the path chosen by `mode`: [`SimdMode::Scalar`] forces the
+/// scalar path, [`SimdMode::Auto`] takes the packet path where [`packet_eligibility`] allows.
+/// Both give the same film within the snapshot tolerance (bit for bit where the lane-wise
+/// kernels follow the scalar ones exactly).
+///
+/// # Errors
+/// [`Cancelled`] if `cancelled` returned true.
+pub fn render_pass_with(
+    scene: &Scene,
+    film: &mut Film,
+    sample: u32,
+    mask: Option<&[bool]>,
+    mode: SimdMode,
+    cancelled: &(dyn Fn() -> bool + Sync),
+) -> Result<(), Cancelled> {
     let s = &scene.settings;
     let width = film.width() as usize;
     let stats_on = s.adaptive.is_some();
     let rows = width * TILE_ROWS;
+    let plan = packet::PacketPlan::new(scene, mode).ok();
+    let arch = pulp::Arch::new();
     let (sums, stats, keys) = film.buffers_mut();
     let result: Result<(), Cancelled> = sums
         .par_chunks_mut(rows)
@@ -124,32 +164,158 @@ pub fn render_pass_masked(
             for (r, ((row_px, row_st), row_k)) in rows_here.enumerate() {
                 let y = y0 + r;
                 let row_mask = mask.map(|m| &m[y * width..(y + 1) * width]);
-                for (x, ((px, st), k)) in row_px.iter_mut().zip(row_st).zip(row_k).enumerate() {
-                    if row_mask.is_some_and(|m| !m[x]) {
-                        continue;
-                    }
-                    // Each sample's footprint is its cell: a stratified set's footprints tile
-                    // the pixel, whatever the count.
-                    let (pos, cell) = sample_position_and_cell(s, x as u32, y as u32, sample);
-                    let (l, edge_key) = radiance_keyed_cell(scene, pos, cell);
-                    debug_assert!(l.is_finite(), "non-finite radiance at pixel ({x}, {y})");
-                    if stats_on {
-                        if px[3] == 0.0 {
-                            *k = edge_key;
-                        }
-                        let e = display_luminance(l, s.exposure_scale);
-                        st[0] += e;
-                        st[1] += e * e;
-                    }
-                    px[0] += l.0;
-                    px[1] += l.1;
-                    px[2] += l.2;
-                    px[3] += 1.0;
+                let mut row = Row {
+                    px: row_px,
+                    st: row_st,
+                    keys: row_k,
+                    stats_on,
+                    exposure: s.exposure_scale,
+                };
+                match &plan {
+                    Some(plan) => arch.dispatch(PacketRow {
+                        scene,
+                        plan,
+                        row: &mut row,
+                        y: y as u32,
+                        sample,
+                        mask: row_mask,
+                    }),
+                    None => scalar_row(scene, &mut row, y as u32, sample, row_mask),
                 }
             }
             Ok(())
         });
     result
+}
+
+/// One row of a tile's film: running sums, adaptive statistics and edge keys.
+struct Row<'a> {
+    px: &'a mut [[f32; 4]],
+    st: &'a mut [[f32; 2]],
+    keys: &'a mut [u32],
+    stats_on: bool,
+    exposure: f32,
+}
+
+impl Row<'_> {
+    /// Adds one sample's radiance `l` with edge key `edge_key` to pixel `x`.
+    #[inline(always)]
+    fn add(&mut self, x: usize, l: Rgb, edge_key: u32) {
+        self.add_parts(x, l.0, l.1, l.2, edge_key);
+    }
+
+    /// [`Row::add`] of the radiance (r, g, b).
+    #[inline(always)]
+    fn add_parts(&mut self, x: usize, r: f32, g: f32, b: f32, edge_key: u32) {
+        let px = &mut self.px[x];
+        if self.stats_on {
+            if px[3] == 0.0 {
+                self.keys[x] = edge_key;
+            }
+            let e = display_luminance(Rgb(r, g, b), self.exposure);
+            let st = &mut self.st[x];
+            st[0] += e;
+            st[1] += e * e;
+        }
+        px[0] += r;
+        px[1] += g;
+        px[2] += b;
+        px[3] += 1.0;
+    }
+}
+
+/// The scalar path over one row: one ray at a time.
+fn scalar_row(scene: &Scene, row: &mut Row, y: u32, sample: u32, mask: Option<&[bool]>) {
+    let s = &scene.settings;
+    for x in 0..row.px.len() {
+        if mask.is_some_and(|m| !m[x]) {
+            continue;
+        }
+        // Each sample's footprint is its cell: a stratified set's footprints tile the pixel,
+        // whatever the count.
+        let (pos, cell) = sample_position_and_cell(s, x as u32, y, sample);
+        let (l, edge_key) = radiance_keyed_cell(scene, pos, cell);
+        debug_assert!(l.is_finite(), "non-finite radiance at pixel ({x}, {y})");
+        row.add(x, l, edge_key);
+    }
+}
+
+/// [`packet_row`] as pulp's operation: `with_simd` is inlined into the `#[target_feature]`
+/// function [`pulp::Arch::dispatch`] picks, and everything below it is `#[inline(always)]`, so
+/// the whole packet kernel is compiled for that instruction set. (A closure would not do: its
+/// body stays a separate function compiled for the baseline.)
+struct PacketRow<'s, 'r, 'f> {
+    scene: &'s Scene,
+    plan: &'s packet::PacketPlan<'s>,
+    row: &'r mut Row<'f>,
+    y: u32,
+    sample: u32,
+    mask: Option<&'s [bool]>,
+}
+
+impl pulp::WithSimd for PacketRow<'_, '_, '_> {
+    type Output = ();
+
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _simd: S) {
+        packet_row(
+            self.scene,
+            self.plan,
+            self.row,
+            self.y,
+            self.sample,
+            self.mask,
+        );
+    }
+}
+
+/// The packet path over one row: [`LANES`] consecutive pixels at a time, the lanes the packet
+/// path cannot shade traced again by the scalar path.
+#[inline(always)]
+fn packet_row(
+    scene: &Scene,
+    plan: &packet::PacketPlan,
+    row: &mut Row,
+    y: u32,
+    sample: u32,
+    mask: Option<&[bool]>,
+) {
+    let s = &scene.settings;
+    let width = row.px.len();
+    for x0 in (0..width).step_by(LANES) {
+        let mut active = [false; LANES];
+        let (mut px, mut py) = ([0.0_f32; LANES], [0.0_f32; LANES]);
+        for i in 0..LANES {
+            let x = x0 + i;
+            if x >= width || mask.is_some_and(|m| !m[x]) {
+                continue;
+            }
+            active[i] = true;
+            // The position alone: a sample's cell matters only to lanes the scalar path
+            // traces, which compute it again.
+            let pos = sample_position(s, x as u32, y, sample);
+            (px[i], py[i]) = (pos.x, pos.y);
+        }
+        if !active.contains(&true) {
+            continue;
+        }
+        let (rgb, keys, fallback) = plan.trace(&px, &py, active);
+        for i in 0..LANES {
+            if !active[i] {
+                continue;
+            }
+            if fallback[i] {
+                let x = (x0 + i) as u32;
+                let (pos, cell) = sample_position_and_cell(s, x, y, sample);
+                let (l, key) = radiance_keyed_cell(scene, pos, cell);
+                debug_assert!(l.is_finite(), "non-finite radiance at pixel ({x}, {y})");
+                row.add(x0 + i, l, key);
+            } else {
+                // Straight from the lanes: no Rgb through memory (a store-forwarding stall).
+                row.add_parts(x0 + i, rgb[0][i], rgb[1][i], rgb[2][i], keys[i]);
+            }
+        }
+    }
 }
 
 /// Runs pass `pass` of the scene's schedule: passes below `spp` sample every pixel; with
@@ -165,9 +331,23 @@ pub fn render_scheduled_pass(
     pass: u32,
     cancelled: &(dyn Fn() -> bool + Sync),
 ) -> Result<usize, Cancelled> {
+    render_scheduled_pass_with(scene, film, pass, SimdMode::from_env(), cancelled)
+}
+
+/// [`render_scheduled_pass`] with the path chosen by `mode` (see [`render_pass_with`]).
+///
+/// # Errors
+/// [`Cancelled`] if `cancelled` returned true.
+pub fn render_scheduled_pass_with(
+    scene: &Scene,
+    film: &mut Film,
+    pass: u32,
+    mode: SimdMode,
+    cancelled: &(dyn Fn() -> bool + Sync),
+) -> Result<usize, Cancelled> {
     let s = &scene.settings;
     if pass < s.spp {
-        render_pass(scene, film, pass, cancelled)?;
+        render_pass_with(scene, film, pass, None, mode, cancelled)?;
         return Ok(film.pixels().len());
     }
     let Some(a) = s.adaptive else {
@@ -179,7 +359,7 @@ pub fn render_scheduled_pass(
     let mask = adaptive_mask(film, &a);
     let n = mask.iter().filter(|m| **m).count();
     if n > 0 {
-        render_pass_masked(scene, film, pass, Some(&mask), cancelled)?;
+        render_pass_with(scene, film, pass, Some(&mask), mode, cancelled)?;
     }
     Ok(n)
 }
@@ -249,12 +429,28 @@ pub fn render_preview(
     block: u32,
     cancelled: &(dyn Fn() -> bool + Sync),
 ) -> Result<Vec<Rgb>, Cancelled> {
+    let mut out = Vec::new();
+    render_preview_into(scene, block, &mut out, cancelled).map(|()| out)
+}
+
+/// [`render_preview`] into `out`, reusing its allocation (a benchmark's repeated previews then
+/// measure tracing, not the kernel clearing fresh pages).
+///
+/// # Errors
+/// [`Cancelled`] if `cancelled` returned true; `out` then holds a partial preview.
+pub fn render_preview_into(
+    scene: &Scene,
+    block: u32,
+    out: &mut Vec<Rgb>,
+    cancelled: &(dyn Fn() -> bool + Sync),
+) -> Result<(), Cancelled> {
     let (w, h) = (
         scene.settings.width as usize,
         scene.settings.height as usize,
     );
     let b = block.max(1) as usize;
-    let mut out = vec![Rgb::BLACK; w * h];
+    out.clear();
+    out.resize(w * h, Rgb::BLACK);
     let band = w * b;
     let result: Result<(), Cancelled> =
         out.par_chunks_mut(band)
@@ -277,20 +473,26 @@ pub fn render_preview(
                 }
                 Ok(())
             });
-    result.map(|()| out)
+    result
 }
 
 /// Renders `scene` to completion on the current rayon pool: every pass (adaptive ones too), no
 /// preview. `on_pass` is told the number of passes done after each (for progress bars; the
 /// most there can be is [`RenderSettings::max_spp`]).
 #[must_use]
-pub fn render_blocking(scene: &Scene, mut on_pass: impl FnMut(u32)) -> Film {
+pub fn render_blocking(scene: &Scene, on_pass: impl FnMut(u32)) -> Film {
+    render_blocking_with(scene, SimdMode::from_env(), on_pass)
+}
+
+/// [`render_blocking`] with the path chosen by `mode` (see [`render_pass_with`]).
+#[must_use]
+pub fn render_blocking_with(scene: &Scene, mode: SimdMode, mut on_pass: impl FnMut(u32)) -> Film {
     let s = &scene.settings;
     let mut film = Film::new(s.width, s.height);
     let never = || false;
     for pass in 0..s.max_spp() {
         // Cannot be cancelled: `never` is always false.
-        match render_scheduled_pass(scene, &mut film, pass, &never) {
+        match render_scheduled_pass_with(scene, &mut film, pass, mode, &never) {
             Ok(0) | Err(Cancelled) => break,
             Ok(_) => on_pass(pass + 1),
         }

@@ -17,6 +17,7 @@ const SCALAR_PRESETS: &[(&str, &str)] = &[
     ("checker-plane", "a filter that needs ray differentials"),
     ("cutout", "a filter that needs ray differentials"),
     ("cylinder", "a cylinder"),
+    ("displaced", "a filter that needs ray differentials"),
     ("earth-day-night", "a filter that needs ray differentials"),
     ("mesh", "a mesh"),
     ("panorama", "a fisheye or spherical camera"),

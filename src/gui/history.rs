@@ -256,6 +256,8 @@ pub fn describe(old: &SceneDesc, new: &SceneDesc) -> String {
             "bump map"
         } else if a.normal != b.normal {
             "normal map"
+        } else if a.displace != b.displace {
+            "displacement"
         } else {
             "object"
         };

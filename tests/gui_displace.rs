@@ -286,6 +286,20 @@ fn too_many_levels_show_the_builders_error_and_keep_the_scene() {
     undo(&mut h);
     assert_eq!(desc(&h), before);
     assert_eq!(image_bytes(&h), image_before);
+
+    // A displaced mesh made a sphere: no error (the builder refuses a displaced sphere), the
+    // displacement waits, and undo brings the knot back displaced.
+    choose(&mut h, "Shape", "Sphere");
+    assert!(h.state().error().is_none(), "{:?}", h.state().error());
+    assert_eq!(desc(&h).objects[1].displace, None);
+    assert!(
+        h.get_by_role_and_label(Role::ComboBox, "displacement")
+            .accesskit_node()
+            .is_disabled()
+    );
+    assert_eq!(h.state().undo_label(), Some("shape of Bumped knot"));
+    undo(&mut h);
+    assert_eq!(desc(&h), before);
 }
 
 #[test]

@@ -476,6 +476,14 @@ mod tests {
         assert_eq!(describe(&a, &b), format!("material of {name}"));
 
         let mut b = a.clone();
+        b.objects[0].displace = Some(crate::scene::DisplaceDesc {
+            height: crate::scene::TextureKind::Constant.default_desc(),
+            scale: 0.1,
+            subdivide: 1,
+        });
+        assert_eq!(describe(&a, &b), format!("displacement of {name}"));
+
+        let mut b = a.clone();
         b.camera.eye.x += 1.0;
         assert_eq!(describe(&a, &b), "camera");
 

@@ -20,7 +20,7 @@ use crate::math::Rgb;
 use crate::names::Named;
 use crate::scene::{
     BumpDesc, ChannelDesc, DEFAULT_SUBDIVIDE, DisplaceDesc, NormalMapDesc, ObjectDesc, ScalarDesc,
-    ShapeDesc, TextureDesc, TextureKind, relative_asset_path,
+    TextureDesc, TextureKind, relative_asset_path,
 };
 use crate::texture::{Channel, Filter};
 use std::collections::HashMap;
@@ -50,7 +50,7 @@ const BUMP_SCALE: f32 = 0.02;
 /// refuses levels beyond its limit with an error, and the scene stays as it was.
 const MAX_LEVELS: u32 = MAX_DISPLACED_TRIANGLES.ilog2() / 2;
 
-/// The three maps.
+/// The maps: clip, bump, normal and displacement.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub(super) enum Map {
     /// `alpha`.
@@ -88,7 +88,8 @@ impl Map {
                  texture's filtered derivatives, carried to the surface through the mapping's \
                  dp/du and dp/dv); the surface itself does not move, so the silhouette stays \
                  round. An object has a bump map or a normal map, not both (the preset's \
-                 `bump`)."
+                 `bump`). A mesh can also be displaced (its Displacement editor), which moves \
+                 the surface itself; the other shapes have only the bump map."
             }
             Self::Normal => {
                 "A normal map replaces the shading normal by the one its texel stores, in \
@@ -282,38 +283,19 @@ impl ScenePanel {
         changed
     }
 
-    /// The displacement map editor of the selected object `obj`: on a mesh, its menu, then
-    /// its scale, levels and height texture; on a generic shape, the menu disabled, saying
-    /// why. Returns whether it changed.
+    /// The displacement map editor of the selected object `obj` (a mesh: the caller shows
+    /// none for a generic shape): its menu, then its scale, levels and height texture.
+    /// Returns whether it changed.
     pub(super) fn displacement_ui(
         &mut self,
         ui: &mut egui::Ui,
         obj: &mut ObjectDesc,
         picker: &ImagePicker,
     ) -> bool {
-        if matches!(obj.shape, ShapeDesc::Mesh { .. }) {
-            return ui
-                .push_id(Map::Displace.label(), |ui| {
-                    self.map_ui(ui, obj, Map::Displace, picker)
-                })
-                .inner;
-        }
-        ui.horizontal(|ui| {
-            let tip = "Displacement needs a mesh: the generic shapes are exact surfaces with \
-                       no vertices to move. Use a bump map for the look (the outline stays \
-                       as it is), or make the shape a Mesh.";
-            let l = ui.label(Map::Displace.label()).on_hover_text(tip);
-            ui.add_enabled_ui(false, |ui| {
-                egui::ComboBox::from_id_salt(Map::Displace.label())
-                    .selected_text(Choice::Off.name())
-                    .width(80.0)
-                    .show_ui(ui, |_| {})
-                    .response
-                    .labelled_by(l.id)
-                    .on_disabled_hover_text(tip);
-            });
-        });
-        false
+        ui.push_id(Map::Displace.label(), |ui| {
+            self.map_ui(ui, obj, Map::Displace, picker)
+        })
+        .inner
     }
 
     /// One map: its menu, then its texture's editor and its number (alpha, bump scale,

@@ -61,9 +61,13 @@ impl ScenePanel {
         egui::CollapsingHeader::new("Clip, bump and normal maps")
             .default_open(true)
             .show(ui, |ui| changed |= self.maps_ui(ui, obj, &picker));
-        egui::CollapsingHeader::new("Displacement")
-            .default_open(true)
-            .show(ui, |ui| changed |= self.displacement_ui(ui, obj, &picker));
+        // Only a mesh can be displaced (a generic shape is an exact surface, with no vertices
+        // to move; its bump map's tooltip says so).
+        if matches!(obj.shape, ShapeDesc::Mesh { .. }) {
+            egui::CollapsingHeader::new("Displacement")
+                .default_open(true)
+                .show(ui, |ui| changed |= self.displacement_ui(ui, obj, &picker));
+        }
         changed
     }
 

@@ -331,7 +331,7 @@ fn too_many_levels_show_the_builders_error_and_keep_the_scene() {
 #[test]
 fn a_sphere_offers_no_displacement() {
     let dir = tempfile::tempdir().expect("temp dir");
-    let mut h = harness(small_earth(dir.path()));
+    let h = harness(small_earth(dir.path()));
     let before = desc(&h);
     // The maps are there, the displacement editor is not; the bump map's tooltip says only a
     // mesh can be displaced.

@@ -256,6 +256,8 @@ pub fn describe(old: &SceneDesc, new: &SceneDesc) -> String {
             "bump map"
         } else if a.normal != b.normal {
             "normal map"
+        } else if a.displace != b.displace {
+            "displacement"
         } else {
             "object"
         };
@@ -472,6 +474,14 @@ mod tests {
         let mut b = a.clone();
         b.objects[0].material = b.objects[0].material.converted(MaterialKind::Phong);
         assert_eq!(describe(&a, &b), format!("material of {name}"));
+
+        let mut b = a.clone();
+        b.objects[0].displace = Some(crate::scene::DisplaceDesc {
+            height: crate::scene::TextureKind::Constant.default_desc(),
+            scale: 0.1,
+            subdivide: 1,
+        });
+        assert_eq!(describe(&a, &b), format!("displacement of {name}"));
 
         let mut b = a.clone();
         b.camera.eye.x += 1.0;

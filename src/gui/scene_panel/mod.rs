@@ -3,7 +3,7 @@
 //! resolution scale. Returns whether anything changed, so the app re-renders.
 //!
 //! One file per editor: [`object`] (shape and transform), [`material`], [`texture`] (with the
-//! image path and the assets list), [`maps`] (clip, bump and normal maps), [`render`]
+//! image path and the assets list), [`maps`] (clip, bump, normal and displacement maps), [`render`]
 //! settings, [`camera`] and [`lights`]. The kinds each menu offers, their names, tooltips and
 //! defaults come from [`crate::scene`].
 
@@ -47,7 +47,8 @@ pub struct ScenePanel {
     browser: Browser,
     /// Each camera projection as it was when switched away from (restored when switched back).
     projections: HashMap<ProjectionKind, ProjectionDesc>,
-    /// The clip, bump and normal maps switched off, and the bump/normal note.
+    /// The clip, bump, normal and displacement maps switched off, the bump/normal note, a
+    /// displacement scale being dragged.
     maps: maps::MapMemory,
 }
 

@@ -1,5 +1,6 @@
 //! The object editor: the shape (with a cylinder's caps or a mesh's file and shading), the
-//! transform, and the material, texture and map (clip, bump, normal) editors below them.
+//! transform, and the material, texture, map (clip, bump, normal) and displacement editors
+//! below them.
 
 use super::{ImagePicker, ScenePanel, browse_button, material::material_ui, path_field};
 use crate::geometry::Shading;
@@ -21,6 +22,10 @@ impl ScenePanel {
             .default_open(true)
             .show(ui, |ui| {
                 changed |= self.shape_ui(ui, &mut obj.shape, preset);
+                if !matches!(obj.shape, ShapeDesc::Mesh { .. }) {
+                    // A generic shape cannot be displaced: the map waits for a mesh again.
+                    self.maps.keep_displacement(self.selected, obj, preset);
+                }
                 let t = &mut obj.transform;
                 changed |= vec3(ui, "translate", &mut t.translate, 0.02);
                 changed |= vec3(ui, "rotate", &mut t.rotate, 0.5);
@@ -56,6 +61,13 @@ impl ScenePanel {
         egui::CollapsingHeader::new("Clip, bump and normal maps")
             .default_open(true)
             .show(ui, |ui| changed |= self.maps_ui(ui, obj, &picker));
+        // Only a mesh can be displaced (a generic shape is an exact surface, with no vertices
+        // to move; its bump map's tooltip says so).
+        if matches!(obj.shape, ShapeDesc::Mesh { .. }) {
+            egui::CollapsingHeader::new("Displacement")
+                .default_open(true)
+                .show(ui, |ui| changed |= self.displacement_ui(ui, obj, &picker));
+        }
         changed
     }
 

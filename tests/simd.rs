@@ -4,7 +4,10 @@
 //! deterministic for any thread count.
 
 use std::path::{Path, PathBuf};
-use texplore::render::{Film, SimdMode, packet_eligibility, render_blocking_with, thread_pool};
+use texplore::render::{
+    Film, SimdMode, packet_eligibility, render_blocking_with, render_pass_with, thread_pool,
+};
+use texplore::sampler::PixelSampler;
 use texplore::scene::{
     AdaptiveDesc, AssetCache, Scene, build_scene, list_presets, load_preset, parse_preset,
 };
@@ -201,4 +204,87 @@ fn packets_with_hits_misses_and_scalar_lanes_match_the_scalar_path() {
         keys.is_superset(&[0, 1, 2, 3].into()),
         "objects seen: {keys:?}"
     );
+}
+
+/// The films of passes `0..passes` on both paths, bit for bit: the lane-wise sampler (its
+/// first set and, past `spp` without adaptive sampling, the one-sample second set) and the
+/// lane-wise nearest lookup give the scalar numbers exactly.
+fn assert_films_identical(name: &str, scene: &Scene, passes: u32) {
+    let s = &scene.settings;
+    let mut films = [SimdMode::Auto, SimdMode::Scalar].map(|mode| {
+        let mut film = Film::new(s.width, s.height);
+        for k in 0..passes {
+            render_pass_with(scene, &mut film, k, None, mode, &|| false).expect("not cancelled");
+        }
+        film
+    });
+    let [packet, scalar] = &mut films;
+    for (i, (p, q)) in packet.pixels().iter().zip(scalar.pixels()).enumerate() {
+        assert!(
+            p.map(f32::to_bits) == q.map(f32::to_bits),
+            "{name}: pixel ({}, {}) is {p:?} on the packet path, {q:?} on the scalar path",
+            i as u32 % s.width,
+            i as u32 / s.width
+        );
+    }
+}
+
+#[test]
+fn nearest_image_lookups_and_lane_samplers_are_bit_identical_to_the_scalar_path() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("presets");
+    let mut cache = AssetCache::new();
+    // The Earth (sRGB texels, repeat in u, clamp in v), the four texels under the centred and
+    // the lecture's lookup (clamp), the coffee rectangle (clamp), and an HDR image's linear
+    // texels read nearest on a sphere, tiled past [0, 1] by a (u, v) transform (repeat).
+    let mut cases: Vec<(String, String, PathBuf)> = ["earth", "texels", "rectangle"]
+        .iter()
+        .map(|n| {
+            let path = dir.join(format!("{n}.ron"));
+            let text = std::fs::read_to_string(&path).expect("preset");
+            ((*n).to_owned(), text, path)
+        })
+        .collect();
+    let texels = cases[1].1.replace("lookup: Centred", "lookup: Lecture");
+    assert_ne!(texels, cases[1].1, "texels.ron names its lookup");
+    cases.push(("texels-lecture".into(), texels, dir.join("texels.ron")));
+    cases.push((
+        "hdr-nearest".into(),
+        r#"(
+            version: 1,
+            camera: (eye: (0, 0.4, 3.2), look_at: (0, 0, 0), projection: Pinhole(fov: 45)),
+            render: (width: 64, height: 48, spp: 1),
+            ambient: (ls: 0.5),
+            lights: [Directional(direction: (1, 1, 1), ls: 2.0)],
+            objects: [
+                (shape: Sphere, material: Matte(cd: Image(path: "../assets/courtyard_probe.hdr",
+                    mapping: Spherical, filter: Nearest, uv: (scale: (3, 2), offset: (-0.4, 0.3))))),
+            ],
+        )"#
+        .into(),
+        dir.join("hdr-nearest.ron"),
+    ));
+    for (name, text, path) in &cases {
+        let mut desc = parse_preset(text, path).unwrap_or_else(|e| panic!("{name}: {e}"));
+        desc.render.width = 67; // not a multiple of the packet width
+        desc.render.height = 41;
+        desc.render.adaptive = None;
+        for sampler in [
+            PixelSampler::Jittered,
+            PixelSampler::Random,
+            PixelSampler::Regular,
+        ] {
+            desc.render.sampler = sampler;
+            desc.render.spp = 1;
+            let scene = build_scene(&desc, path, &mut cache).unwrap_or_else(|e| panic!("{e}"));
+            packet_eligibility(&scene, SimdMode::Auto)
+                .unwrap_or_else(|why| panic!("{name} should take the packet path: {why}"));
+            // Pass 0 from the first set, passes 1 and 2 from the second.
+            assert_films_identical(&format!("{name} {sampler} 1 spp"), &scene, 3);
+        }
+        // More samples than the lane-wise sampler takes (jittered cells): per lane, the same.
+        desc.render.sampler = PixelSampler::Jittered;
+        desc.render.spp = 3;
+        let scene = build_scene(&desc, path, &mut cache).unwrap_or_else(|e| panic!("{e}"));
+        assert_films_identical(&format!("{name} jittered 3 spp"), &scene, 3);
+    }
 }

@@ -13,7 +13,7 @@ pub use color::{
     srgb_to_linear, srgb8_table, srgb8_to_linear,
 };
 pub use glam::{Affine3A, Mat3, Mat3A, Quat, Vec2, Vec3, Vec3A};
-pub use rng::{SampleRng, hash3};
+pub use rng::{SampleRng, hash3, hash3_lanes, pcg_lanes, unit_f32};
 
 /// 2 pi, the cylindrical and spherical maps' full turn.
 pub const TAU: f32 = std::f32::consts::TAU;

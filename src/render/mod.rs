@@ -284,21 +284,25 @@ fn packet_row(
     let width = row.px.len();
     for x0 in (0..width).step_by(LANES) {
         let mut active = [false; LANES];
-        let (mut px, mut py) = ([0.0_f32; LANES], [0.0_f32; LANES]);
-        for i in 0..LANES {
+        for (i, a) in active.iter_mut().enumerate() {
             let x = x0 + i;
-            if x >= width || mask.is_some_and(|m| !m[x]) {
-                continue;
-            }
-            active[i] = true;
-            // The position alone: a sample's cell matters only to lanes the scalar path
-            // traces, which compute it again.
-            let pos = sample_position(s, x as u32, y, sample);
-            (px[i], py[i]) = (pos.x, pos.y);
+            *a = x < width && mask.is_none_or(|m| m[x]);
         }
         if !active.contains(&true) {
             continue;
         }
+        // The positions alone: a sample's cell matters only to lanes the scalar path traces,
+        // which compute it again. Lane-wise where the sampler allows, else per lane.
+        let (px, py) = sample_positions_lanes(s, x0 as u32, y, sample).unwrap_or_else(|| {
+            let (mut px, mut py) = ([0.0_f32; LANES], [0.0_f32; LANES]);
+            for i in 0..LANES {
+                if active[i] {
+                    let pos = sample_position(s, (x0 + i) as u32, y, sample);
+                    (px[i], py[i]) = (pos.x, pos.y);
+                }
+            }
+            (px, py)
+        });
         let (rgb, keys, fallback) = plan.trace(&px, &py, active);
         for i in 0..LANES {
             if !active[i] {
@@ -316,6 +320,45 @@ fn packet_row(
             }
         }
     }
+}
+
+/// [`sample_position`] of sample `k` for the [`LANES`] pixels from (`x0`, `y`) along the row,
+/// lane-wise ([`crate::sampler::PixelSampler::sample_lanes`]): the same positions bit for bit,
+/// for the box pixel filter where the sampler has a lane-wise form (the first `spp` samples, and
+/// those past it when the second set has one sample); `None` otherwise. Lanes past the row's end get positions nobody reads.
+#[inline(always)]
+fn sample_positions_lanes(
+    s: &RenderSettings,
+    x0: u32,
+    y: u32,
+    k: u32,
+) -> Option<([f32; LANES], [f32; LANES])> {
+    if s.pixel_filter != PixelFilter::Box {
+        return None;
+    }
+    // Past `spp`, the second set's sample `j` of `n`; with a set of one (`n` = 1, as for every
+    // pass past the first of a scene without adaptive sampling, `texplore bench`'s) `permute`
+    // gives j = 0 whatever its hash. Larger sets take the scalar `permute` per lane.
+    let (seed, index, count) = if k < s.spp {
+        (s.seed, k, s.spp)
+    } else if s.max_spp().saturating_sub(s.spp) <= 1 {
+        (s.seed ^ ADAPTIVE_STREAM, 0, 1)
+    } else {
+        return None;
+    };
+    let first = y.wrapping_mul(s.width).wrapping_add(x0);
+    let mut pixels = [0_u32; LANES];
+    for (i, p) in pixels.iter_mut().enumerate() {
+        *p = first.wrapping_add(i as u32);
+    }
+    let (mut px, mut py) = s.sampler.sample_lanes(seed, &pixels, index, count)?;
+    let row = y as f32;
+    for i in 0..LANES {
+        // The corner plus the offset, as `sample_position_impl` adds them.
+        px[i] += (x0 + i as u32) as f32;
+        py[i] += row;
+    }
+    Some((px, py))
 }
 
 /// Runs pass `pass` of the scene's schedule: passes below `spp` sample every pixel; with

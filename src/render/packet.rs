@@ -31,9 +31,10 @@ use crate::camera::Projection;
 use crate::geometry::Shape;
 use crate::mapping::{Mapping, TexCoord, UvAffine};
 use crate::material::{Colour, Material, Scalar, ShadePoint};
+use crate::math::srgb8_table;
 use crate::math::{Affine3A, INV_PI, Mat3A, Ray, Rgb, Vec2, Vec3A, max_abs};
 use crate::scene::{SHADOW_OFFSET_RELATIVE, Scene, natural_mapping};
-use crate::texture::{Texture, View};
+use crate::texture::{Filter, ImageData, Lookup, Texels, Texture, View, Wrap, tiled_index};
 use std::fmt;
 use std::sync::OnceLock;
 
@@ -125,10 +126,122 @@ enum Response {
 #[derive(Clone, Copy, Debug)]
 struct Shading<'a> {
     texture: &'a Texture,
+    /// The lane-wise nearest lookup, where the texture is an image read that way.
+    nearest: Option<Nearest<'a>>,
     /// The mapping after `Uv` falls back to the shape's own (`None` for a constant).
     mapping: Option<Mapping>,
     affine: Option<UvAffine>,
     response: Response,
+}
+
+/// An image texture under the nearest filter with repeat or clamp wrapping (the Earth's): its
+/// wrap, texel index and tile address computed lane-wise, then one load per lane. Each step is
+/// `ImageData::nearest`'s (`Wrap::coord`, `Lookup::index`, `ImageData::texel`), so a lane reads
+/// the texel the scalar lookup reads.
+#[derive(Clone, Copy, Debug)]
+struct Nearest<'a> {
+    image: &'a ImageData,
+    lookup: Lookup,
+    wu: Wrap,
+    wv: Wrap,
+    scale: f32,
+}
+
+impl<'a> Nearest<'a> {
+    fn new(texture: &'a Texture) -> Option<Self> {
+        let Texture::Image(t) = texture else {
+            return None;
+        };
+        let (wu, wv) = t.wraps();
+        let plain = |w: Wrap| matches!(w, Wrap::Repeat | Wrap::Clamp);
+        (t.filter == Filter::Nearest && plain(wu) && plain(wv)).then_some(Self {
+            image: &t.image,
+            lookup: t.lookup,
+            wu,
+            wv,
+            scale: t.scale,
+        })
+    }
+
+    /// `Wrap::coord` per lane for repeat or clamp (never `None` for these).
+    #[inline(always)]
+    fn coord(wrap: Wrap, t: &mut F) {
+        let repeat = wrap == Wrap::Repeat;
+        for x in t.iter_mut() {
+            let v = *x;
+            let inside = (0.0..=1.0).contains(&v);
+            let f = v - v.floor();
+            let wrapped = if repeat {
+                if f < 1.0 { f } else { 0.0 }
+            } else if v < 0.0 {
+                0.0
+            } else {
+                1.0
+            };
+            let w = if v.is_nan() { 0.0 } else { wrapped };
+            *x = if inside { v } else { w };
+        }
+    }
+
+    /// `Lookup::index` per lane.
+    #[inline(always)]
+    fn index(lookup: Lookup, t: &F, n: u32) -> [u32; LANES] {
+        let last = n - 1;
+        // The lecture's (hres - 1) u or the centred u hres (a product: the order of its
+        // operands does not change it).
+        let nf = match lookup {
+            Lookup::Lecture => last as f32,
+            Lookup::Centred => n as f32,
+        };
+        let mut r = [0; LANES];
+        for i in 0..LANES {
+            r[i] = ((t[i] * nf) as u32).min(last);
+        }
+        r
+    }
+
+    /// The colours (times the texture's scale) at (u, v) per lane, for the lanes in `mine`.
+    #[inline(always)]
+    fn sample(&self, u: &F, v: &F, mine: M) -> [F; 3] {
+        let (mut u, mut v) = (*u, *v);
+        Self::coord(self.wu, &mut u);
+        Self::coord(self.wv, &mut v);
+        let (w, h) = (self.image.width(), self.image.height());
+        let col = Self::index(self.lookup, &u, w);
+        let row = Self::index(self.lookup, &v, h);
+        let tiles_x = self.image.tiles_x();
+        let mut at = [0_usize; LANES];
+        for i in 0..LANES {
+            // `ImageData::texel`: the row from the bottom to the file's row from the top.
+            at[i] = tiled_index(tiles_x, col[i], h - 1 - row[i]);
+        }
+        let mut c = [[0.0; LANES]; 3];
+        let s = self.scale;
+        match self.image.texels() {
+            Texels::Srgb8(px) => {
+                let t = srgb8_table();
+                for i in 0..LANES {
+                    if mine[i] {
+                        let [r, g, b, _] = px[at[i]];
+                        c[0][i] = t[r as usize] * s;
+                        c[1][i] = t[g as usize] * s;
+                        c[2][i] = t[b as usize] * s;
+                    }
+                }
+            }
+            Texels::Linear(px) => {
+                for i in 0..LANES {
+                    if mine[i] {
+                        let [r, g, b] = px[at[i]];
+                        c[0][i] = r * s;
+                        c[1][i] = g * s;
+                        c[2][i] = b * s;
+                    }
+                }
+            }
+        }
+        c
+    }
 }
 
 /// The (u, v) of object-space points `p` under `mapping` (spherical, cylindrical or
@@ -238,6 +351,7 @@ fn shading<'a>(material: &'a Material, shape: &Shape) -> Option<Shading<'a>> {
     }
     Some(Shading {
         texture,
+        nearest: Nearest::new(texture),
         mapping,
         affine: texture.uv_affine(),
         response,
@@ -451,8 +565,11 @@ impl<'a> PacketPlan<'a> {
             // The texel lookups first, the scalar filter per lane (a gather); then the
             // material's terms lane-wise.
             let mut tex = [[0.0; LANES]; 3];
+            if let (Some(n), Some((u, v))) = (&sh.nearest, &uv) {
+                tex = n.sample(u, v, mine);
+            }
             for i in 0..LANES {
-                if !mine[i] {
+                if !mine[i] || (sh.nearest.is_some() & uv.is_some()) {
                     continue;
                 }
                 let c = match &uv {

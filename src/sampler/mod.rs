@@ -6,7 +6,7 @@ mod pixel_filter;
 
 pub use pixel_filter::{GAUSSIAN_RADIUS, GAUSSIAN_SIGMA, PixelFilter};
 
-use crate::math::{SampleRng, Vec2, hash3};
+use crate::math::{SampleRng, Vec2, hash3, hash3_lanes, pcg_lanes, unit_f32};
 use serde::{Deserialize, Serialize};
 
 /// Where in a pixel its samples go.
@@ -91,6 +91,40 @@ impl PixelSampler {
             }
         };
         p.min(Vec2::splat(1.0 - f32::EPSILON / 2.0))
+    }
+}
+
+impl PixelSampler {
+    /// [`PixelSampler::sample`] for `N` pixels at once (`pixels`, one sample `index` of `count`),
+    /// lane-wise where the point is one hash and two draws: random, and jittered or regular at
+    /// one sample per pixel (every interactive pass and `texplore bench`). The same u32
+    /// arithmetic as the scalar sampler in lane loops ([`hash3_lanes`], [`pcg_lanes`]), so each
+    /// lane is bit for bit the scalar point; `None` for the other samplers and counts, which
+    /// the caller samples per lane.
+    #[must_use]
+    #[inline(always)]
+    pub fn sample_lanes<const N: usize>(
+        self,
+        seed: u32,
+        pixels: &[u32; N],
+        index: u32,
+        count: u32,
+    ) -> Option<([f32; N], [f32; N])> {
+        let count = count.max(1);
+        let index = if index < count { index } else { index % count };
+        let cap = 1.0 - f32::EPSILON / 2.0;
+        match self {
+            Self::Regular if count == 1 => Some(([0.5; N], [0.5; N])),
+            Self::Random | Self::Jittered if self == Self::Random || count == 1 => {
+                let mut h = hash3_lanes(seed, pixels, index);
+                pcg_lanes(&mut h);
+                let x = h.map(|b| unit_f32(b).min(cap));
+                pcg_lanes(&mut h);
+                let y = h.map(|b| unit_f32(b).min(cap));
+                Some((x, y))
+            }
+            _ => None,
+        }
     }
 }
 
@@ -340,6 +374,47 @@ mod tests {
 
     fn points(s: PixelSampler, n: u32, pixel: u32) -> Vec<Vec2> {
         (0..n).map(|i| s.sample(7, pixel, i, n)).collect()
+    }
+
+    #[test]
+    fn lane_samples_are_the_scalar_points_bit_for_bit() {
+        let pixels = [0, 1, 2, 3, 639, 640, 307_199, u32::MAX];
+        let mut lane_wise = Vec::new();
+        for &s in PixelSampler::VARIANTS {
+            for count in [0, 1, 2, 4, 16] {
+                for (seed, index) in [(0, 0), (7, 1), (0xada9_7e55, 3), (u32::MAX, 17)] {
+                    let Some((x, y)) = s.sample_lanes(seed, &pixels, index, count) else {
+                        continue;
+                    };
+                    lane_wise.push((s, count));
+                    for (i, &p) in pixels.iter().enumerate() {
+                        let want = s.sample(seed, p, index, count);
+                        assert_eq!(
+                            (x[i].to_bits(), y[i].to_bits()),
+                            (want.x.to_bits(), want.y.to_bits()),
+                            "{s} sample {index} of {count}, pixel {p}, seed {seed}"
+                        );
+                    }
+                }
+            }
+        }
+        // Which ones are lane-wise: random always, jittered and regular at one sample.
+        lane_wise.dedup();
+        let random = |c| (PixelSampler::Random, c);
+        assert_eq!(
+            lane_wise,
+            [
+                (PixelSampler::Regular, 0),
+                (PixelSampler::Regular, 1),
+                random(0),
+                random(1),
+                random(2),
+                random(4),
+                random(16),
+                (PixelSampler::Jittered, 0),
+                (PixelSampler::Jittered, 1),
+            ]
+        );
     }
 
     #[test]

@@ -44,8 +44,8 @@ pub enum Texels {
 pub const TILE: u32 = 4;
 
 /// Index of texel (`column`, `row`) in tiled storage with `tiles_x` tiles per row.
-#[inline]
-fn tiled_index(tiles_x: u32, column: u32, row: u32) -> usize {
+#[inline(always)]
+pub(crate) fn tiled_index(tiles_x: u32, column: u32, row: u32) -> usize {
     let tile = (row / TILE) as usize * tiles_x as usize + (column / TILE) as usize;
     tile * (TILE * TILE) as usize + ((row % TILE) * TILE + column % TILE) as usize
 }
@@ -414,6 +414,12 @@ impl ImageData {
     #[must_use]
     pub const fn height(&self) -> u32 {
         self.height
+    }
+
+    /// Tiles per row of tiles (for [`tiled_index`]).
+    #[must_use]
+    pub(crate) const fn tiles_x(&self) -> u32 {
+        self.tiles_x
     }
 
     /// The storage, in tiles (see [`Texels`]).

@@ -13,6 +13,7 @@ mod procedural;
 
 pub use debug::{View, mip_level_color};
 pub use explain::{explain_lookup, explain_wrap};
+pub(crate) use image::tiled_index;
 pub use image::{
     ImageData, MAX_IMAGE_BYTES, MAX_IMAGE_DIMENSION, TILE, Texels, load_alpha, load_image,
     save_png, save_png_checked,

@@ -335,6 +335,135 @@ pub fn sphere(o: &V3, d: &V3, t_max: &F) -> (F, M) {
     (t, hit)
 }
 
+/// The explicit 8-wide kernels: AVX2 `ymm` operations through pulp's safe `x86::V3` token
+/// (present on AVX2 and AVX-512 CPUs), where LLVM's vectoriser left the lane loops above narrow.
+/// Each is its loop twin operation for operation: the same separate multiplies and adds (no
+/// fused multiply-add), the ordered comparisons Rust's `<`, `<=`, `>` use (false on NaN) and
+/// `blendv` selects for the `if`s, so every lane is bit for bit what the loop (and the scalar
+/// path) gives.
+#[cfg(target_arch = "x86_64")]
+pub mod wide {
+    use super::{F, LANES, M, V3};
+    use pulp::bytemuck::cast;
+    use pulp::x86::V3 as Avx2;
+    use pulp::{Simd, f32x8, m32x8};
+
+    /// A lane mask: all ones where set.
+    pub type W = m32x8;
+
+    /// The token, where the CPU has AVX2 and FMA (checked once per pass).
+    #[must_use]
+    pub fn token() -> Option<Avx2> {
+        Avx2::try_new()
+    }
+
+    #[inline(always)]
+    fn v(a: &F) -> f32x8 {
+        cast(*a)
+    }
+
+    /// (a . b) per lane, summed (x + y) + z as [`V3::dot`].
+    #[inline(always)]
+    fn dot(s: Avx2, a: [f32x8; 3], b: [f32x8; 3]) -> f32x8 {
+        let xy = s.add_f32s(s.mul_f32s(a[0], b[0]), s.mul_f32s(a[1], b[1]));
+        s.add_f32s(xy, s.mul_f32s(a[2], b[2]))
+    }
+
+    /// Whether any lane of `m` is set.
+    #[must_use]
+    #[inline(always)]
+    pub fn any(m: W) -> bool {
+        let u: [u32; LANES] = cast(m);
+        u.iter().fold(0, |a, b| a | b) != 0
+    }
+
+    /// `m` as flags.
+    #[cfg(test)]
+    #[must_use]
+    #[inline(always)]
+    pub fn flags(m: W) -> M {
+        let u: [u32; LANES] = cast(m);
+        u.map(|x| x != 0)
+    }
+
+    /// Flags as a mask.
+    #[must_use]
+    #[inline(always)]
+    pub fn mask(m: &M) -> W {
+        cast(m.map(|b| if b { u32::MAX } else { 0 }))
+    }
+
+    /// [`super::sphere`] 8 wide: t per lane and the hit mask.
+    #[must_use]
+    #[inline(always)]
+    pub fn sphere(s: Avx2, o: &V3, d: &V3, t_max: &F) -> (F, W) {
+        let o = [v(&o.x), v(&o.y), v(&o.z)];
+        let d = [v(&d.x), v(&d.y), v(&d.z)];
+        let oo = dot(s, o, o);
+        let half_b = dot(s, o, d);
+        let a = dot(s, d, d);
+        // V3::cross: (oy dz - dy oz, oz dx - dz ox, ox dy - dx oy).
+        let perp = [
+            s.sub_f32s(s.mul_f32s(o[1], d[2]), s.mul_f32s(d[1], o[2])),
+            s.sub_f32s(s.mul_f32s(o[2], d[0]), s.mul_f32s(d[2], o[0])),
+            s.sub_f32s(s.mul_f32s(o[0], d[1]), s.mul_f32s(d[0], o[1])),
+        ];
+        let perp2a = dot(s, perp, perp);
+        let zero = s.splat_f32s(0.0);
+        let c = s.sub_f32s(oo, s.splat_f32s(1.0));
+        let away = s.and_m32s(
+            s.greater_than_f32s(c, zero),
+            s.greater_than_or_equal_f32s(half_b, zero),
+        );
+        let disc = s.sub_f32s(a, perp2a);
+        let real = s.not_m32s(s.or_m32s(
+            s.less_than_f32s(disc, zero),
+            s.less_than_or_equal_f32s(a, zero),
+        ));
+        let root = s.sqrt_f32s(disc);
+        let nb = s.neg_f32s(half_b);
+        let q = s.select_f32s(
+            s.greater_than_f32s(half_b, zero),
+            s.sub_f32s(nb, root),
+            s.add_f32s(nb, root),
+        );
+        let (r0, r1) = (s.div_f32s(c, q), s.div_f32s(q, a));
+        let lt = s.less_than_f32s(r0, r1);
+        let (t0, t1) = (s.select_f32s(lt, r0, r1), s.select_f32s(lt, r1, r0));
+        let t = s.select_f32s(s.greater_than_f32s(t0, zero), t0, t1);
+        let hit = s.and_m32s(
+            s.and_m32s(s.not_m32s(away), real),
+            s.and_m32s(s.greater_than_f32s(t, zero), s.less_than_f32s(t, v(t_max))),
+        );
+        (cast(t), hit)
+    }
+
+    /// `if m { a } else { b }` per lane.
+    #[must_use]
+    #[inline(always)]
+    pub fn select(s: Avx2, m: W, a: &F, b: &F) -> F {
+        cast(s.select_f32s(m, v(a), v(b)))
+    }
+
+    /// `if m { a } else { b }` per lane, for u32 lanes.
+    #[must_use]
+    #[inline(always)]
+    pub fn select_u32(s: Avx2, m: W, a: &[u32; LANES], b: &[u32; LANES]) -> [u32; LANES] {
+        cast(s.select_u32s(m, cast(*a), cast(*b)))
+    }
+
+    /// `if m { a } else { b }` per lane, for points.
+    #[must_use]
+    #[inline(always)]
+    pub fn select_v3(s: Avx2, m: W, a: &V3, b: &V3) -> V3 {
+        V3 {
+            x: select(s, m, &a.x, &b.x),
+            y: select(s, m, &a.y, &b.y),
+            z: select(s, m, &a.z, &b.z),
+        }
+    }
+}
+
 /// The sphere's hit point per lane: `o + t d` projected onto the unit sphere (also its normal).
 #[must_use]
 #[inline(always)]
@@ -490,6 +619,15 @@ mod tests {
                 Shape::Rectangle => flat(&o, &d, &t_max, Flat::Rectangle),
                 _ => flat(&o, &d, &t_max, Flat::Disk),
             };
+            // The explicit 8-wide sphere gives the loop's t and hit flags bit for bit, the
+            // unused lanes (past the chunk) included.
+            #[cfg(target_arch = "x86_64")]
+            if let (Shape::Sphere, Some(s)) = (shape, wide::token()) {
+                let (tw, hw) = wide::sphere(s, &o, &d, &t_max);
+                let (tl, hl) = sphere(&o, &d, &t_max);
+                assert_eq!(wide::flags(hw), hl, "8-wide sphere hits, rays {chunk:?}");
+                assert_eq!(tw.map(f32::to_bits), tl.map(f32::to_bits), "8-wide t");
+            }
             for (i, &(a, b)) in chunk.iter().enumerate() {
                 let want = intersect_shape(shape, &Ray::new(a, b), f32::INFINITY);
                 assert_eq!(hit[i], want.is_some(), "{shape:?} from {a} along {b}");
@@ -498,6 +636,52 @@ mod tests {
                     assert_eq!(p.lane(i), h.p, "point from {a} along {b}");
                 }
             }
+        }
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[test]
+    fn wide_sphere_and_selects_match_the_lane_loops_on_nan_inf_and_near_t_max() {
+        let Some(s) = wide::token() else { return };
+        let vals = [
+            0.0,
+            -0.0,
+            1.0,
+            -1.0,
+            0.5,
+            3.0,
+            -7.0,
+            f32::NAN,
+            f32::INFINITY,
+            1e-30,
+        ];
+        let mut n = 0_usize;
+        let mut next = || {
+            n = (n * 7 + 3) % vals.len();
+            vals[n]
+        };
+        for round in 0..200 {
+            let mut o = V3::splat(Vec3A::ZERO);
+            let mut d = V3::splat(Vec3A::ZERO);
+            let mut t_max = splat(f32::INFINITY);
+            for i in 0..LANES {
+                o.set_lane(i, Vec3A::new(next(), next(), next() + 2.0));
+                d.set_lane(i, Vec3A::new(next() * 0.1, next() * 0.1, -1.0));
+                t_max[i] = [f32::INFINITY, 1.5, 2.0, 0.0][(round + i) % 4];
+            }
+            let (tw, hw) = wide::sphere(s, &o, &d, &t_max);
+            let (tl, hl) = sphere(&o, &d, &t_max);
+            assert_eq!(wide::flags(hw), hl, "hits from {o:?} along {d:?}");
+            assert_eq!(tw.map(f32::to_bits), tl.map(f32::to_bits), "t from {o:?}");
+            assert_eq!(wide::flags(wide::mask(&hl)), hl);
+            assert_eq!(wide::any(hw), hl.contains(&true));
+            let picked = wide::select(s, hw, &tw, &t_max);
+            for i in 0..LANES {
+                let want = if hl[i] { tl[i] } else { t_max[i] };
+                assert_eq!(picked[i].to_bits(), want.to_bits(), "select lane {i}");
+            }
+            let ids = wide::select_u32(s, hw, &[7; LANES], &[u32::MAX; LANES]);
+            assert_eq!(ids, hl.map(|h| if h { 7 } else { u32::MAX }));
         }
     }
 

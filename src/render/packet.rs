@@ -288,6 +288,9 @@ pub(crate) struct PacketPlan<'a> {
     scene: &'a Scene,
     orthographic: bool,
     objects: Vec<ObjectPlan<'a>>,
+    /// The explicit 8-wide kernels' token (AVX2 and up); `None`: the lane loops alone.
+    #[cfg(target_arch = "x86_64")]
+    wide: Option<pulp::x86::V3>,
 }
 
 fn constant(s: &Scalar) -> Option<f32> {
@@ -414,6 +417,8 @@ impl<'a> PacketPlan<'a> {
             scene,
             orthographic,
             objects,
+            #[cfg(target_arch = "x86_64")]
+            wide: lanes::wide::token(),
         })
     }
 
@@ -474,6 +479,29 @@ impl<'a> PacketPlan<'a> {
                     d.linear(&ob.object_from_world.matrix3),
                 )
             };
+            #[cfg(target_arch = "x86_64")]
+            if let Some(s) = self.wide {
+                use lanes::wide;
+                let (t, p, n, hit) = match ob.kind {
+                    Kind::Sphere => {
+                        let (t, hit) = wide::sphere(s, &oo, &od, &t_best);
+                        if !wide::any(hit) {
+                            continue;
+                        }
+                        let p = lanes::sphere_point(&oo, &od, &t);
+                        (t, p, p, hit)
+                    }
+                    Kind::Flat(f) => {
+                        let (t, p, hit) = lanes::flat(&oo, &od, &t_best, f);
+                        (t, p, V3::splat(Vec3A::Y), wide::mask(&hit))
+                    }
+                };
+                t_best = wide::select(s, hit, &t, &t_best);
+                object = wide::select_u32(s, hit, &[k as u32; LANES], &object);
+                lp = wide::select_v3(s, hit, &p, &lp);
+                ln = wide::select_v3(s, hit, &n, &ln);
+                continue;
+            }
             let (t, p, n, hit) = match ob.kind {
                 Kind::Sphere => {
                     let (t, hit) = lanes::sphere(&oo, &od, &t_best);

@@ -344,9 +344,11 @@ pub fn sphere(o: &V3, d: &V3, t_max: &F) -> (F, M) {
 #[cfg(target_arch = "x86_64")]
 pub mod wide {
     use super::{F, LANES, M, V3};
+    use crate::math::{ATAN_POLY, PI, TAU};
     use pulp::bytemuck::cast;
     use pulp::x86::V3 as Avx2;
     use pulp::{Simd, f32x8, m32x8};
+    use std::f32::consts::FRAC_PI_2;
 
     /// A lane mask: all ones where set.
     pub type W = m32x8;
@@ -436,6 +438,95 @@ pub mod wide {
             s.and_m32s(s.greater_than_f32s(t, zero), s.less_than_f32s(t, v(t_max))),
         );
         (cast(t), hit)
+    }
+
+    /// `x.is_sign_negative()` per lane: the sign bit.
+    #[inline(always)]
+    fn sign_negative(s: Avx2, x: f32x8) -> W {
+        s.less_than_i32s(cast(x), s.splat_i32s(0))
+    }
+
+    /// `x.is_finite()` per lane: |x| < inf (false on NaN).
+    #[inline(always)]
+    fn finite(s: Avx2, x: f32x8) -> W {
+        s.less_than_f32s(s.abs_f32s(x), s.splat_f32s(f32::INFINITY))
+    }
+
+    /// [`super::atan2`] 8 wide: the same polynomial, unfolding and libm fallback lanes.
+    #[must_use]
+    #[inline(always)]
+    pub fn atan2(s: Avx2, y: &F, x: &F) -> F {
+        let (yv, xv) = (v(y), v(x));
+        let (ax, ay) = (s.abs_f32s(xv), s.abs_f32s(yv));
+        let swap = s.greater_than_f32s(ay, ax);
+        let num = s.select_f32s(swap, ax, ay);
+        let den = s.select_f32s(swap, ay, ax);
+        let t = s.div_f32s(num, den);
+        let sq = s.mul_f32s(t, t);
+        let mut p = s.splat_f32s(ATAN_POLY[7]);
+        for k in (0..7).rev() {
+            p = s.add_f32s(s.mul_f32s(p, sq), s.splat_f32s(ATAN_POLY[k]));
+        }
+        // t + t s p, multiplied left to right.
+        let mut a = s.add_f32s(t, s.mul_f32s(s.mul_f32s(t, sq), p));
+        a = s.select_f32s(swap, s.sub_f32s(s.splat_f32s(FRAC_PI_2), a), a);
+        a = s.select_f32s(sign_negative(s, xv), s.sub_f32s(s.splat_f32s(PI), a), a);
+        // copysign(a, y): a's magnitude, y's sign bit.
+        let sign = s.splat_u32s(0x8000_0000);
+        let bits = s.or_u32s(
+            s.and_u32s(cast(a), s.not_u32s(sign)),
+            s.and_u32s(cast(yv), sign),
+        );
+        let mut r: F = cast(bits);
+        let nan = s.not_m32s(s.equal_f32s(t, t));
+        if any(nan) {
+            let ts: F = cast(t);
+            for i in 0..LANES {
+                if ts[i].is_nan() {
+                    r[i] = y[i].atan2(x[i]);
+                }
+            }
+        }
+        r
+    }
+
+    /// [`super::azimuth`] 8 wide.
+    #[inline(always)]
+    fn azimuth(s: Avx2, x: &F, z: &F) -> f32x8 {
+        let a = v(&atan2(s, x, z));
+        let zero = s.splat_f32s(0.0);
+        let tau = s.splat_f32s(TAU);
+        let phi = s.select_f32s(s.less_than_f32s(a, zero), s.add_f32s(a, tau), a);
+        let u = s.div_f32s(phi, tau);
+        // Below 1 the lane is not NaN, where `max` and `maxps` agree (and + 0 clears -0).
+        let kept = s.add_f32s(s.max_f32s(u, zero), zero);
+        s.select_f32s(s.less_than_f32s(u, s.splat_f32s(1.0)), kept, zero)
+    }
+
+    /// [`super::spherical`] 8 wide (the rescaling stays the loop: `f32::max`'s NaN rule).
+    #[must_use]
+    #[inline(always)]
+    pub fn spherical(s: Avx2, p: &V3) -> (F, F) {
+        let (q, ok) = super::rescaled(p);
+        let ok = mask(&ok);
+        let u = azimuth(s, &q.x, &q.z);
+        let (qx, qz) = (v(&q.x), v(&q.z));
+        let rho: F = cast(s.sqrt_f32s(s.add_f32s(s.mul_f32s(qx, qx), s.mul_f32s(qz, qz))));
+        let theta = v(&atan2(s, &rho, &q.y));
+        let (zero, one) = (s.splat_f32s(0.0), s.splat_f32s(1.0));
+        // (1 - theta / pi).clamp(0, 1): NaN stays NaN.
+        let w = s.sub_f32s(one, s.div_f32s(theta, s.splat_f32s(PI)));
+        let w = s.select_f32s(s.less_than_f32s(w, zero), zero, w);
+        let w = s.select_f32s(s.greater_than_f32s(w, one), one, w);
+        let u = s.select_f32s(ok, u, zero);
+        let w = s.select_f32s(ok, w, s.splat_f32s(0.5));
+        // finite_or_centre.
+        let fine = s.and_m32s(finite(s, u), finite(s, w));
+        let half = s.splat_f32s(0.5);
+        (
+            cast(s.select_f32s(fine, u, half)),
+            cast(s.select_f32s(fine, w, half)),
+        )
     }
 
     /// `if m { a } else { b }` per lane.
@@ -539,6 +630,14 @@ mod tests {
             for chunk in specials.chunks(4) {
                 let xs = lanes(chunk);
                 let got = atan2(&splat(y), &xs);
+                #[cfg(target_arch = "x86_64")]
+                if let Some(s) = wide::token() {
+                    let w = wide::atan2(s, &splat(y), &xs);
+                    assert_eq!(w.map(f32::to_bits), got.map(f32::to_bits), "8-wide atan2");
+                    let w = wide::atan2(s, &xs, &splat(y));
+                    let l = atan2(&xs, &splat(y));
+                    assert_eq!(w.map(f32::to_bits), l.map(f32::to_bits), "8-wide atan2");
+                }
                 for i in 0..LANES {
                     let want = crate::math::atan2(y, xs[i]);
                     assert!(
@@ -580,6 +679,12 @@ mod tests {
                 (Mapping::Rectangular, rectangular),
             ] {
                 let (u, v) = f(&p);
+                #[cfg(target_arch = "x86_64")]
+                if let (Mapping::Spherical, Some(s)) = (mapping, wide::token()) {
+                    let (wu, wv) = wide::spherical(s, &p);
+                    assert_eq!(wu.map(f32::to_bits), u.map(f32::to_bits), "8-wide u");
+                    assert_eq!(wv.map(f32::to_bits), v.map(f32::to_bits), "8-wide v");
+                }
                 for (i, &q) in chunk.iter().enumerate() {
                     let want = mapping.map_uv(q);
                     assert_eq!(
@@ -682,6 +787,22 @@ mod tests {
             }
             let ids = wide::select_u32(s, hw, &[7; LANES], &[u32::MAX; LANES]);
             assert_eq!(ids, hl.map(|h| if h { 7 } else { u32::MAX }));
+        }
+        // The spherical map over a sweep of the unit sphere and beyond it, octant by octant.
+        for k in 0..4000_u32 {
+            let mut p = V3::splat(Vec3A::ZERO);
+            for i in 0..LANES {
+                let j = (k * LANES as u32 + i as u32) as f32;
+                let (a, b) = (j * 0.618_034, j * 0.001_3);
+                p.set_lane(
+                    i,
+                    Vec3A::new(a.sin() * b.cos(), b.sin(), a.cos() * (1.0 + b)),
+                );
+            }
+            let (wu, wv) = wide::spherical(s, &p);
+            let (u, v) = spherical(&p);
+            assert_eq!(wu.map(f32::to_bits), u.map(f32::to_bits), "u at {p:?}");
+            assert_eq!(wv.map(f32::to_bits), v.map(f32::to_bits), "v at {p:?}");
         }
     }
 

@@ -529,6 +529,41 @@ pub mod wide {
         )
     }
 
+    /// One light's term added to the radiance `l` and the cosine sum `lit` where `reach`
+    /// (`PacketPlan::trace`'s light loop): `f = diffuse + spec pw` where the highlight is on,
+    /// else `diffuse`; `l += f li (n . wi)`; `lit += n . wi`.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    pub fn add_light(
+        s: Avx2,
+        reach: &M,
+        has_spec: &M,
+        pw: &F,
+        diffuse: &[F; 3],
+        spec: &[F; 3],
+        li: [f32; 3],
+        ndotwi: &F,
+        l: &mut [F; 3],
+        lit: &mut F,
+    ) {
+        let reach = mask(reach);
+        let pw = v(pw);
+        let on = s.and_m32s(
+            mask(has_spec),
+            s.not_m32s(s.equal_f32s(pw, s.splat_f32s(0.0))),
+        );
+        let n = v(ndotwi);
+        for c in 0..3 {
+            let d = v(&diffuse[c]);
+            let f = s.select_f32s(on, s.add_f32s(d, s.mul_f32s(v(&spec[c]), pw)), d);
+            let add = s.mul_f32s(s.mul_f32s(f, s.splat_f32s(li[c])), n);
+            let lc = v(&l[c]);
+            l[c] = cast(s.select_f32s(reach, s.add_f32s(lc, add), lc));
+        }
+        let lt = v(lit);
+        *lit = cast(s.select_f32s(reach, s.add_f32s(lt, n), lt));
+    }
+
     /// `if m { a } else { b }` per lane.
     #[must_use]
     #[inline(always)]

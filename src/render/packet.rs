@@ -780,6 +780,13 @@ impl<'a> PacketPlan<'a> {
                 }
             }
             let li_c = [radiance.0, radiance.1, radiance.2];
+            #[cfg(target_arch = "x86_64")]
+            if let Some(s) = self.wide {
+                lanes::wide::add_light(
+                    s, &reach, &has_spec, &pw, &diffuse, &spec, li_c, &ndotwi, &mut l, &mut lit,
+                );
+                continue;
+            }
             for c in 0..3 {
                 for i in 0..LANES {
                     let f = if has_spec[i] && pw[i] != 0.0 {

@@ -8,32 +8,16 @@ use egui::accesskit::Role;
 use egui::{Key, Modifiers};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable as _;
-use gui_common::{harness, settle, small_earth};
+use gui_common::{choose, desc, harness, image_bytes, settle, small_earth};
 use std::collections::HashMap;
 use texplore::gui::{AppOptions, ExplorerApp, Prefs};
 use texplore::mapping::Mapping;
 use texplore::names::Named;
-use texplore::scene::{MaterialKind, SceneDesc, ShapeKind, TextureKind};
+use texplore::scene::{MaterialKind, ShapeKind, TextureKind};
 use texplore::texture::Filter;
 
 /// The Edit menu's checkbox.
 const CAMERA_RULE: &str = "Camera moves are unsaved changes";
-
-fn desc(h: &Harness<'_, ExplorerApp>) -> SceneDesc {
-    h.state().desc().cloned().expect("a scene")
-}
-
-fn image_bytes(h: &Harness<'_, ExplorerApp>) -> Vec<u8> {
-    h.state().image().expect("an image").rgba.clone()
-}
-
-/// The `item` of the combo box labelled `combo`.
-fn choose(h: &mut Harness<'_, ExplorerApp>, combo: &str, item: &str) {
-    h.get_by_role_and_label(Role::ComboBox, combo).click();
-    h.run_steps(3);
-    h.get_by_label(item).click();
-    settle(h);
-}
 
 fn press(h: &mut Harness<'_, ExplorerApp>, modifiers: Modifiers, key: Key) {
     h.key_press_modifiers(modifiers, key);

@@ -9,7 +9,7 @@ mod gui_common;
 use egui::accesskit::Role;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable as _;
-use gui_common::{harness, settle};
+use gui_common::{choose, harness, settle};
 use std::path::{Path, PathBuf};
 use texplore::gui::ExplorerApp;
 use texplore::names::Named;
@@ -86,14 +86,6 @@ fn open(h: &mut Harness<'_, ExplorerApp>, path: &Path) {
         .set_text_value_accesskit(&path.display().to_string());
     h.step();
     h.get_by_label("Open").click();
-    settle(h);
-}
-
-/// The `item` of the combo box labelled `combo`.
-fn choose(h: &mut Harness<'_, ExplorerApp>, combo: &str, item: &str) {
-    h.get_by_role_and_label(Role::ComboBox, combo).click();
-    h.run_steps(3);
-    h.get_by_label(item).click();
     settle(h);
 }
 

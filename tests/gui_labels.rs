@@ -9,22 +9,11 @@ mod gui_common;
 use egui::accesskit::Role;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable as _;
-use gui_common::{harness, settle, small_earth};
+use gui_common::{choose, harness, settle, small_earth};
 use texplore::gui::ExplorerApp;
 use texplore::names::Named;
 use texplore::scene::{LECTURE_ORDER, ProjectionDesc, ProjectionKind, ShapeDesc};
 use texplore::texture::{Filter, View};
-
-fn choose(h: &mut Harness<'_, ExplorerApp>, combo: &str, item: &str) {
-    // The lower menus of the scene panel (the camera's) are scrolled out of sight at first.
-    h.get_by_role_and_label(Role::ComboBox, combo)
-        .scroll_to_me();
-    h.run_steps(3);
-    h.get_by_role_and_label(Role::ComboBox, combo).click();
-    h.run_steps(3);
-    h.get_by_label(item).click();
-    settle(h);
-}
 
 #[test]
 fn the_presets_menu_follows_the_lecture_and_shows_each_description() {

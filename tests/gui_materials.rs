@@ -10,7 +10,9 @@ use egui::accesskit::Role;
 use egui::{Key, Modifiers};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable as _;
-use gui_common::{harness, harness_with, settle, small_earth};
+use gui_common::{
+    choose, desc, harness, harness_with, image_bytes, select, settle, small_earth, undo,
+};
 use std::path::{Path, PathBuf};
 use texplore::gui::{AppOptions, BrowseFor, Browser, ExplorerApp};
 use texplore::inspect::Inspection;
@@ -21,37 +23,6 @@ use texplore::scene::{
     TextureKind, build_scene, load_preset, save_preset,
 };
 use texplore::texture::{Channel, Lookup};
-
-fn desc(h: &Harness<'_, ExplorerApp>) -> SceneDesc {
-    h.state().desc().cloned().expect("a scene")
-}
-
-fn image_bytes(h: &Harness<'_, ExplorerApp>) -> Vec<u8> {
-    h.state().image().expect("an image").rgba.clone()
-}
-
-/// The `item` of the combo box labelled `combo`.
-fn choose(h: &mut Harness<'_, ExplorerApp>, combo: &str, item: &str) {
-    h.get_by_role_and_label(Role::ComboBox, combo)
-        .scroll_to_me();
-    h.run_steps(3);
-    h.get_by_role_and_label(Role::ComboBox, combo).click();
-    h.run_steps(3);
-    h.get_by_label(item).click();
-    settle(h);
-}
-
-fn select(h: &mut Harness<'_, ExplorerApp>, object: &str) {
-    h.get_by_label(object).scroll_to_me();
-    h.run_steps(3);
-    h.get_by_label(object).click();
-    settle(h);
-}
-
-fn undo(h: &mut Harness<'_, ExplorerApp>) {
-    h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
-    settle(h);
-}
 
 fn redo(h: &mut Harness<'_, ExplorerApp>) {
     h.key_press_modifiers(Modifiers::COMMAND | Modifiers::SHIFT, Key::Z);

@@ -6,10 +6,13 @@
 // Each test file is its own crate and uses a subset of these.
 #![allow(dead_code)]
 
+use egui::accesskit::Role;
+use egui::{Key, Modifiers};
 use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable as _;
 use std::path::{Path, PathBuf};
 use texplore::gui::{AppOptions, ExplorerApp};
-use texplore::scene::{TextureDesc, load_preset, save_preset};
+use texplore::scene::{SceneDesc, TextureDesc, load_preset, save_preset};
 
 /// The window size every test opens.
 pub const WINDOW: [f32; 2] = [1280.0, 800.0];
@@ -57,4 +60,40 @@ pub fn settle(h: &mut Harness<'_, ExplorerApp>) {
     }
     h.step();
     h.step();
+}
+
+/// The scene the window holds.
+pub fn desc(h: &Harness<'_, ExplorerApp>) -> SceneDesc {
+    h.state().desc().cloned().expect("a scene")
+}
+
+/// The window's current image, RGBA bytes.
+pub fn image_bytes(h: &Harness<'_, ExplorerApp>) -> Vec<u8> {
+    h.state().image().expect("an image").rgba.clone()
+}
+
+/// Picks `item` in the combo box labelled `combo` (scrolled into view first: the lower menus
+/// of the scene panel start out of sight), then lets the render finish.
+pub fn choose(h: &mut Harness<'_, ExplorerApp>, combo: &str, item: &str) {
+    h.get_by_role_and_label(Role::ComboBox, combo)
+        .scroll_to_me();
+    h.run_steps(3);
+    h.get_by_role_and_label(Role::ComboBox, combo).click();
+    h.run_steps(3);
+    h.get_by_label(item).click();
+    settle(h);
+}
+
+/// Selects the object labelled `object` in the scene panel's list.
+pub fn select(h: &mut Harness<'_, ExplorerApp>, object: &str) {
+    h.get_by_label(object).scroll_to_me();
+    h.run_steps(3);
+    h.get_by_label(object).click();
+    settle(h);
+}
+
+/// Ctrl+Z.
+pub fn undo(h: &mut Harness<'_, ExplorerApp>) {
+    h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
+    settle(h);
 }

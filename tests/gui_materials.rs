@@ -468,3 +468,27 @@ fn values_beyond_the_drag_ranges_are_shown_and_kept() {
     assert_eq!(desc(&h), before, "showing them changed nothing");
     assert_eq!(h.state().undo_label(), None);
 }
+
+#[test]
+fn every_number_field_keeps_a_preset_value_beyond_its_drag_range() {
+    // The ambient field drags over 0..=100; a preset may say 150 (it validates up to 1e6).
+    let dir = tempfile::tempdir().expect("temp dir");
+    let path = small_earth(dir.path());
+    let mut d = load_preset(&path).expect("preset");
+    d.ambient.ls = 150.0;
+    save_preset(&d, &path).expect("write preset");
+    let mut h = harness(path);
+    let before = desc(&h);
+    let field = h.get_by_label("ambient ls");
+    field.scroll_to_me();
+    h.run_steps(3);
+    let shown: f32 = h
+        .get_by_label("ambient ls")
+        .value()
+        .expect("a value")
+        .parse()
+        .expect("a number");
+    assert!((shown - 150.0).abs() < 1e-3, "{shown}");
+    assert_eq!(desc(&h), before, "showing it changed nothing");
+    assert_eq!(h.state().undo_label(), None);
+}

@@ -27,7 +27,9 @@ pub fn enum_combo<T: Named>(ui: &mut egui::Ui, label: &str, value: &mut T) -> bo
     *value != before
 }
 
-/// A labelled drag value. Returns whether it changed.
+/// A labelled drag value. Returns whether it changed. The range bounds dragging only: a value
+/// beyond it (a preset may hold any number its validation accepts) is shown and kept as it is
+/// until the user changes it, instead of being clamped as soon as it is drawn.
 pub fn number(
     ui: &mut egui::Ui,
     label: &str,
@@ -37,7 +39,7 @@ pub fn number(
 ) -> bool {
     ui.horizontal(|ui| {
         let l = ui.label(label);
-        ui.add(egui::DragValue::new(value).range(range).speed(speed))
+        ui.add(drag(value, range, speed))
             .labelled_by(l.id)
             .changed()
     })
@@ -55,7 +57,7 @@ pub fn number_tip(
 ) -> bool {
     ui.horizontal(|ui| {
         let l = ui.label(label).on_hover_text(tip);
-        ui.add(egui::DragValue::new(value).range(range).speed(speed))
+        ui.add(drag(value, range, speed))
             .labelled_by(l.id)
             .on_hover_text(tip)
             .changed()
@@ -63,29 +65,12 @@ pub fn number_tip(
     .inner
 }
 
-/// [`number_tip`] whose range only bounds dragging: a value beyond it (a preset may hold any
-/// finite number) is shown and kept as it is until the user changes it.
-pub fn number_drag_range(
-    ui: &mut egui::Ui,
-    label: &str,
-    tip: &str,
-    value: &mut f32,
-    range: std::ops::RangeInclusive<f32>,
-    speed: f64,
-) -> bool {
-    ui.horizontal(|ui| {
-        let l = ui.label(label).on_hover_text(tip);
-        ui.add(
-            egui::DragValue::new(value)
-                .range(range)
-                .clamp_existing_to_range(false)
-                .speed(speed),
-        )
-        .labelled_by(l.id)
-        .on_hover_text(tip)
-        .changed()
-    })
-    .inner
+/// The drag value of [`number`]: `range` bounds dragging, not the value already there.
+fn drag(value: &mut f32, range: std::ops::RangeInclusive<f32>, speed: f64) -> egui::DragValue<'_> {
+    egui::DragValue::new(value)
+        .range(range)
+        .clamp_existing_to_range(false)
+        .speed(speed)
 }
 
 /// Three labelled drag values for a vector. Returns whether any changed.

@@ -15,7 +15,7 @@
 use super::material::{channel_ui, texture_settings_ui};
 use super::{ImagePicker, ScenePanel};
 use crate::geometry::displace::MAX_DISPLACED_TRIANGLES;
-use crate::gui::widgets::{number_drag_range, number_tip};
+use crate::gui::widgets::number_tip;
 use crate::math::Rgb;
 use crate::names::Named;
 use crate::scene::{
@@ -364,7 +364,7 @@ impl ScenePanel {
             },
             Map::Bump => {
                 if let Some(b) = &mut obj.bump {
-                    changed |= number_drag_range(
+                    changed |= number_tip(
                         ui,
                         "bump scale",
                         "The height of a texture value of 1, in the object's own units: \
@@ -379,7 +379,7 @@ impl ScenePanel {
             }
             Map::Normal => {
                 if let Some(n) = &mut obj.normal {
-                    changed |= number_drag_range(
+                    changed |= number_tip(
                         ui,
                         "normal strength",
                         "Multiplies the map's tangential part (red and green): 0 flattens \

@@ -3,7 +3,7 @@
 
 use super::{ImagePicker, browse_button};
 use crate::gui::files::BrowseFor;
-use crate::gui::widgets::{colour, enum_combo, number, number_drag_range, uv_transform};
+use crate::gui::widgets::{colour, enum_combo, number, number_tip, uv_transform};
 use crate::names::Named;
 use crate::scene::{
     ChannelDesc, ColorDesc, MaterialDesc, ParamMut, ParamRef, ScalarDesc, TextureDesc, TextureKind,
@@ -132,7 +132,7 @@ fn scalar_ui(
     ui.horizontal(|ui| {
         if let ScalarDesc::Value(v) = s {
             let (max, speed) = range_of(label);
-            changed |= number_drag_range(
+            changed |= number_tip(
                 ui,
                 label,
                 &format!("Dragged from 0 to {max}; a larger value from the preset is kept"),

@@ -40,6 +40,7 @@ pub fn footprint(
     wu: Wrap,
     wv: Wrap,
 ) -> Rgb {
+    let uv = Wrap::reduce_uv(wu, wv, uv);
     let size = Vec2::new(image.width() as f32, image.height() as f32);
     let (la, lb) = ((duvdx * size).length(), (duvdy * size).length());
     if !(la.is_finite() && lb.is_finite() && uv.is_finite()) {

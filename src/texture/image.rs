@@ -496,6 +496,7 @@ impl ImageData {
     #[must_use]
     #[inline]
     pub fn bilinear(&self, uv: Vec2, wu: Wrap, wv: Wrap) -> Rgb {
+        let uv = Wrap::reduce_uv(wu, wv, uv);
         let x = uv.x * self.width as f32 - 0.5;
         let y = uv.y * self.height as f32 - 0.5;
         if !(x.is_finite() && y.is_finite()) {
@@ -527,6 +528,7 @@ impl ImageData {
     #[must_use]
     #[inline]
     pub fn bicubic(&self, uv: Vec2, wu: Wrap, wv: Wrap) -> Rgb {
+        let uv = Wrap::reduce_uv(wu, wv, uv);
         let x = uv.x * self.width as f32 - 0.5;
         let y = uv.y * self.height as f32 - 0.5;
         if !(x.is_finite() && y.is_finite()) {

@@ -121,6 +121,7 @@ impl MipPyramid {
         wu: Wrap,
         wv: Wrap,
     ) -> Rgb {
+        let uv = Wrap::reduce_uv(wu, wv, uv);
         let base = self.level(0);
         let size = Vec2::new(base.width() as f32, base.height() as f32);
         // Work in base texels so non-square images get round texels.

@@ -272,6 +272,47 @@ impl Wrap {
         }
     }
 
+    /// `t` moved by whole periods of the wrap into a small range that reads the same texels,
+    /// so every filter's texel arithmetic stays in range whatever the size of (u, v).
+    ///
+    /// [0, 1] is returned as it is. Outside, `Repeat` takes the fractional part and `Mirror`
+    /// the remainder modulo 2; both are exact in floating point (an f32 beyond 2^23 is a whole
+    /// number, so its place in the tile is exactly 0). `Clamp` and `Black` keep t within
+    /// [`Wrap::REDUCED_MARGIN`] of the square: further out they read the edge texels, or
+    /// nothing, either way, even for the widest footprint a filter is given
+    /// ([`crate::mapping::MAX_FOOTPRINT`]). NaN is returned as it is (the filters' fallback
+    /// handles it).
+    #[must_use]
+    #[inline]
+    pub fn reduce(self, t: f32) -> f32 {
+        if (0.0..=1.0).contains(&t) || t.is_nan() {
+            return t;
+        }
+        match self {
+            Self::Repeat => {
+                let f = t - t.floor();
+                if f.is_finite() { f } else { 0.0 }
+            }
+            Self::Mirror => {
+                let f = t.rem_euclid(2.0);
+                if f.is_finite() { f } else { 0.0 }
+            }
+            Self::Clamp | Self::Black => t.clamp(-Self::REDUCED_MARGIN, 1.0 + Self::REDUCED_MARGIN),
+        }
+    }
+
+    /// How far outside [0, 1] [`Wrap::reduce`] leaves a clamped or black coordinate: more than
+    /// a footprint can reach ([`crate::mapping::MAX_FOOTPRINT`] on each of two edges, widened
+    /// by EWA's scale).
+    pub const REDUCED_MARGIN: f32 = 8.0;
+
+    /// (u, v) reduced along each axis by its own wrap ([`Wrap::reduce`]).
+    #[must_use]
+    #[inline]
+    pub fn reduce_uv(wu: Self, wv: Self, uv: Vec2) -> Vec2 {
+        Vec2::new(wu.reduce(uv.x), wv.reduce(uv.y))
+    }
+
     /// An integer texel index brought into [0, n), or `None` outside under [`Wrap::Black`].
     #[must_use]
     #[inline]

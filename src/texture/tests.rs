@@ -284,3 +284,88 @@ fn interpolating_filters_at_the_closed_ends_take_the_neighbour_from_the_wrap() {
     let cubic = |u: f32, w: Wrap| img.bicubic(Vec2::new(u, 0.25), w, Wrap::Clamp);
     assert_eq!(cubic(1.0, Wrap::Repeat), cubic(0.0, Wrap::Repeat));
 }
+
+/// Issue 26: a (u, v) of any finite size reads a valid texel under every filter and wrap (a
+/// 1e17 offset used to overflow the texel arithmetic and index past the image), and under
+/// `Repeat` and `Mirror` it reads exactly the texels of its place in the tile.
+#[test]
+fn huge_coordinates_wrap_exactly_under_every_filter() {
+    // 16 x 8, so the mip pyramid has levels and the tiles are partly filled.
+    let img = ImageData::from_fn(16, 8, "busy", |c, r| {
+        Rgb(
+            c as f32 / 15.0,
+            r as f32 / 7.0,
+            ((c * 7 + r * 3) % 5) as f32 / 4.0,
+        )
+    });
+    let image = std::sync::Arc::new(img);
+    let mip = std::sync::Arc::new(MipPyramid::build(image.clone()));
+    let d = (Vec2::new(0.05, 0.01), Vec2::new(-0.01, 0.03));
+    let huge = [
+        1e16_f32,
+        2e16,
+        1e17,
+        -1e17,
+        1e20,
+        3e38,
+        f32::MAX,
+        -f32::MAX,
+        16_777_217.0,
+    ];
+    for &filter in Filter::VARIANTS {
+        for &wrap in Wrap::VARIANTS {
+            let tex = ImageTexture {
+                image: image.clone(),
+                mapping: Mapping::Rectangular,
+                filter,
+                lookup: Lookup::Centred,
+                wrap,
+                scale: 1.0,
+                mip: filter.needs_mip().then(|| mip.clone()),
+                max_anisotropy: DEFAULT_MAX_ANISOTROPY,
+                transform: None,
+            };
+            for &u in &huge {
+                for v in [0.3, u] {
+                    let tc = TexCoord {
+                        uv: Vec2::new(u, v),
+                        duvdx: d.0,
+                        duvdy: d.1,
+                    };
+                    let c = tex.sample(tc);
+                    assert!(
+                        c.0.is_finite() && c.1.is_finite() && c.2.is_finite(),
+                        "{filter} {wrap} at ({u}, {v}): {c:?}"
+                    );
+                    // Where the coordinate lies in the tile, worked out here: every f32 this
+                    // large is a whole, even number, so under `Repeat` and `Mirror` it is
+                    // exactly 0; under `Clamp` and `Black` it is far outside, as 2 or -1
+                    // already is for this footprint.
+                    let place = |t: f32| match wrap {
+                        _ if t == 0.3 => t,
+                        Wrap::Repeat | Wrap::Mirror => 0.0,
+                        Wrap::Clamp | Wrap::Black => {
+                            if t > 0.0 {
+                                2.0
+                            } else {
+                                -1.0
+                            }
+                        }
+                    };
+                    let expected = tex.sample(TexCoord {
+                        uv: Vec2::new(place(u), place(v)),
+                        ..tc
+                    });
+                    assert_eq!(c, expected, "{filter} {wrap} at ({u}, {v})");
+                }
+            }
+        }
+    }
+    // Reduction keeps [0, 1] as it is and moves by whole periods outside.
+    assert_eq!(Wrap::Repeat.reduce(1.0), 1.0);
+    assert_eq!(Wrap::Repeat.reduce(3.25), 0.25);
+    assert_eq!(Wrap::Repeat.reduce(-0.75), 0.25);
+    assert_eq!(Wrap::Mirror.reduce(3.25), 1.25);
+    assert_eq!(Wrap::Clamp.reduce(-1e30), -Wrap::REDUCED_MARGIN);
+    assert_eq!(Wrap::Black.reduce(1e30), 1.0 + Wrap::REDUCED_MARGIN);
+}

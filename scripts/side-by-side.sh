@@ -8,6 +8,7 @@
 #
 #   scripts/side-by-side.sh                # 3 rounds, 5 timed renders per configuration
 #   ROUNDS=5 REPEATS=7 scripts/side-by-side.sh
+#   MI_SAMPLERS="stratified-nojitter" scripts/side-by-side.sh   # one Mitsuba sampler only
 #
 # Environment: PEERS_DIR (default ../shared/peers beside the repository), VENV (default
 # target/peers-venv: created with mitsuba, numpy and pillow from PyPI when absent), WORK (default
@@ -24,6 +25,10 @@ ROUNDS=${ROUNDS:-3}
 REPEATS=${REPEATS:-5}
 THREADS=${THREADS:-2}
 MI_SPP=${MI_SPP:-1,4,9,16,25,36,64}
+# Every Mitsuba sampler that could be its fastest to a target: jittered strata, the cell centres
+# (`stratified-nojitter`, the same points as texplore's `regular`), independent and
+# multi-jittered. The table compares texplore against the fastest of them for each target.
+MI_SAMPLERS=${MI_SAMPLERS:-stratified stratified-nojitter independent multijitter}
 TX_SPP=${TX_SPP:-1,4,9,16,25,36,64}
 TX_MODES=${TX_MODES:-bilinear/jittered,bilinear/regular}
 # Modes that need few samples: their own (short) spp list.
@@ -70,9 +75,13 @@ PY
 rm -f "$WORK"/round-*.json
 rm -rf "$WORK"/tx-round-*
 for r in $(seq 1 "$ROUNDS"); do
-    echo "round $r of $ROUNDS: Mitsuba" >&2
-    (cd "$WORK" && THREADS=$THREADS "$VENV/bin/python" mi_bench.py bench llvm_ad_rgb bilinear stratified "$MI_SPP" "$REPEATS" >/dev/null)
-    mv "$WORK/res_llvm_ad_rgb_bilinear_stratified_t$THREADS.json" "$WORK/round-$r-mitsuba.json"
+    for sampler in $MI_SAMPLERS; do
+        echo "round $r of $ROUNDS: Mitsuba, $sampler" >&2
+        # mi_bench.py renders each spp once untimed before timing it, so no kernel compiles
+        # inside the timing.
+        (cd "$WORK" && THREADS=$THREADS "$VENV/bin/python" mi_bench.py bench llvm_ad_rgb bilinear "$sampler" "$MI_SPP" "$REPEATS" >/dev/null)
+        mv "$WORK/res_llvm_ad_rgb_bilinear_${sampler}_t$THREADS.json" "$WORK/round-$r-mitsuba-$sampler.json"
+    done
     echo "round $r of $ROUNDS: texplore" >&2
     for set in "$TX_MODES:$TX_SPP" "$TX_FAST_MODES:$TX_FAST_SPP"; do
         modes=${set%%:*}

@@ -6,7 +6,8 @@ usage: side_by_side_table.py WORK ROUNDS
 Per configuration: the median over rounds of each round's best time (the fastest of its timed
 renders, as the peers' harness reports it), the RMSE against Mitsuba's 16384-spp reference
 (linear, over all W x H x 3 values), samples per second; then the time to reach RMSE 0.009 and
-0.003 (the fastest configuration at or below it) and the ratios texplore / Mitsuba.
+0.003 (the fastest configuration at or below it, over every sampler of each renderer) and the
+ratios texplore / Mitsuba; the per-spp ratio is against Mitsuba's fastest sampler at that spp.
 Standard library only.
 """
 import csv
@@ -18,12 +19,13 @@ import sys
 work, rounds = sys.argv[1], int(sys.argv[2])
 rows = {}  # (renderer, config) -> {"times": [...], "rmse": [...], "samples": n}
 for r in range(1, rounds + 1):
-    mi = json.load(open(f"{work}/round-{r}-mitsuba.json"))
-    for row in mi["rows"]:
-        key = ("Mitsuba 3 llvm", f"stratified {row['spp']} spp", row["spp"])
-        e = rows.setdefault(key, {"times": [], "rmse": [], "samples": 640 * 480 * row["spp"]})
-        e["times"].append(row["best"])
-        e["rmse"].append(row["rmse"])
+    for path in sorted(glob.glob(f"{work}/round-{r}-mitsuba-*.json")):
+        mi = json.load(open(path))
+        for row in mi["rows"]:
+            key = ("Mitsuba 3 llvm", f"{mi['sampler']} {row['spp']} spp", row["spp"])
+            e = rows.setdefault(key, {"times": [], "rmse": [], "samples": 640 * 480 * row["spp"]})
+            e["times"].append(row["best"])
+            e["rmse"].append(row["rmse"])
     for path in sorted(glob.glob(f"{work}/tx-round-{r}-*/report.csv")):
         for row in csv.DictReader(open(path)):
             spp = int(row["spp"])
@@ -36,9 +38,13 @@ def med(v):
     return statistics.median(v)
 
 print(f"Medians over {rounds} alternating rounds (each round: the best of its timed renders).\n")
-print("| renderer | configuration | time | RMSE | M samples/s | time / Mitsuba's at this spp |")
+print("| renderer | configuration | time | RMSE | M samples/s | time / Mitsuba's fastest at this spp |")
 print("|---|---|--:|--:|--:|--:|")
-mi_time = {k[2]: med(v["times"]) for k, v in rows.items() if k[0].startswith("Mitsuba")}
+# Mitsuba's fastest sampler at each spp: every ratio is against its best configuration.
+mi_time = {}
+for k, v in rows.items():
+    if k[0].startswith("Mitsuba"):
+        mi_time[k[2]] = min(mi_time.get(k[2], float("inf")), med(v["times"]))
 for key in sorted(rows, key=lambda k: (k[0] != "Mitsuba 3 llvm", k[1].split()[0], k[2])):
     v = rows[key]
     t = med(v["times"])

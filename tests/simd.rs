@@ -143,9 +143,11 @@ fn packet_renders_are_the_same_for_1_and_2_threads() {
 }
 
 /// A scene whose packets mix hits of a packet-shaded sphere, hits of a mirror the packet path
-/// hands back to the scalar path, and misses; with two lights, one casting shadows across
-/// objects, a Phong highlight, a rotated and scaled plane under a (u, v) transform, and a disk
-/// and rectangle.
+/// hands back to the scalar path, and misses; with every material term the packet path shades
+/// (Matte's ka, kd and cd; Phong's ks, cs, exp and a constant glow ce; Emissive's ls and ce)
+/// and every light kind with and without shadows (a directional light, a shadowing point light
+/// across objects, a point light without shadows), a rotated and scaled plane under a (u, v)
+/// transform, and a disk and rectangle.
 #[test]
 fn packets_with_hits_misses_and_scalar_lanes_match_the_scalar_path() {
     let text = r"(
@@ -156,14 +158,17 @@ fn packets_with_hits_misses_and_scalar_lanes_match_the_scalar_path() {
         lights: [
             Directional(direction: (1, 2, 1), ls: 2.0),
             Point(position: (-2, 3, 2), ls: 1.5, shadows: true),
+            Point(position: (2.5, 0.5, 3), ls: 0.7, shadows: false),
+            Directional(direction: (-1, 0.5, 2), ls: 0.4, shadows: false),
         ],
         objects: [
             (shape: Sphere, transform: (translate: (-0.8, 0, 0), scale: (0.7, 0.7, 0.7)),
-             material: Phong(cd: Checker(mapping: Spherical), ks: 0.5, exp: 20)),
+             material: Phong(ka: 0.8, kd: 0.7, cd: Checker(mapping: Spherical), ks: 0.5,
+                             cs: Constant((1, 0.8, 0.6)), exp: 20, ce: Constant((0.3, 0.1, 0.05)))),
             (shape: Sphere, transform: (translate: (0.9, 0.1, 0), scale: (0.6, 0.6, 0.6)),
              material: Reflective(cd: Constant((0.2, 0.2, 0.2)), kr: 0.8)),
             (shape: Plane, transform: (translate: (0, -0.8, 0), rotate: (0, 25, 0)),
-             material: Matte(cd: Checker(mapping: Rectangular, uv: (scale: (4, 3), rotate: 30, offset: (0.25, 0))))),
+             material: Matte(ka: 0.6, kd: 0.9, cd: Checker(mapping: Rectangular, uv: (scale: (4, 3), rotate: 30, offset: (0.25, 0))))),
             (shape: Disk, transform: (translate: (0, 0.2, -1.5), rotate: (80, 0, 0)),
              material: Emissive(ce: Constant((1, 0.5, 0.2)), ls: 1.5)),
             (shape: Rectangle, transform: (translate: (1.5, 0.5, -1), scale: (0.4, 1, 0.4), rotate: (70, -20, 0)),

@@ -114,6 +114,52 @@ pub fn read_input(path: &Path, max_bytes: u64) -> Result<Vec<u8>> {
     read_opened(open_input(path)?, path, max_bytes)
 }
 
+/// [`read_input`] for files of texplore's own under a predictable name (the reference cache):
+/// a symbolic link at `path` is refused, never followed (`O_NOFOLLOW` on Unix; elsewhere a link
+/// seen before opening is refused), so a link planted there cannot make texplore read a file
+/// of the user's, or `/dev/zero`, as its own.
+///
+/// # Errors
+/// As [`read_input`], or `FILE: a symbolic link (not followed)`.
+pub fn read_own_input(path: &Path, max_bytes: u64) -> Result<Vec<u8>> {
+    let link = || {
+        Error::io(
+            path,
+            std::io::Error::new(
+                std::io::ErrorKind::InvalidInput,
+                "a symbolic link (not followed)",
+            ),
+        )
+    };
+    if std::fs::symlink_metadata(path).is_ok_and(|m| m.file_type().is_symlink()) {
+        return Err(link());
+    }
+    let mut options = std::fs::OpenOptions::new();
+    options.read(true);
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::OpenOptionsExt;
+        options.custom_flags(libc::O_NONBLOCK | libc::O_NOFOLLOW);
+    }
+    let file = options.open(path).map_err(|e| {
+        // A link planted between the check above and the open: ELOOP under O_NOFOLLOW.
+        #[cfg(unix)]
+        if e.raw_os_error() == Some(libc::ELOOP) {
+            return link();
+        }
+        Error::io(path, e)
+    })?;
+    let meta = file.metadata().map_err(|e| Error::io(path, e))?;
+    if !meta.is_file() {
+        let why = format!("not a regular file ({})", kind(&meta));
+        return Err(Error::io(
+            path,
+            std::io::Error::new(std::io::ErrorKind::InvalidInput, why),
+        ));
+    }
+    read_opened(file, path, max_bytes)
+}
+
 /// Reads the regular file `path` as UTF-8 text (a leading byte-order mark removed), refusing it
 /// above `max_bytes`.
 ///

@@ -18,6 +18,11 @@
 //!
 //! [`check_output`] runs the same checks plus the extension, without writing: commands call it
 //! before any work, so a bad `-o` fails in milliseconds.
+//!
+//! [`write_own_file`] is the writer for files of texplore's own under predictable names (the
+//! reference cache): there a symbolic link is never followed. Whatever link or special file a
+//! name holds is replaced by the rename (the link's target is untouched); a directory is
+//! refused.
 
 use crate::error::{Error, Result};
 use std::fs::{Metadata, Permissions};
@@ -91,6 +96,44 @@ fn same_file(_a: &Metadata, a_path: &Path, _b: &Metadata, b_path: &Path) -> bool
     match (std::fs::canonicalize(a_path), std::fs::canonicalize(b_path)) {
         (Ok(a), Ok(b)) => a == b,
         _ => false,
+    }
+}
+
+/// Whether the writer follows a symbolic link at the output (a user's `-o`) or replaces the
+/// link itself (texplore's own files).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Links {
+    Follow,
+    Replace,
+}
+
+/// The target of a file of texplore's own: `path` itself, never a link's target. A directory
+/// is refused (the rename could not replace it); a link or any other special file is replaced.
+fn resolve_own(path: &Path) -> Result<Target> {
+    if path.as_os_str().is_empty() {
+        return Err(refuse(path, "the file name is empty"));
+    }
+    match std::fs::symlink_metadata(path) {
+        Ok(m) if m.is_dir() => Err(refuse(path, "it is a folder, not a regular file")),
+        Ok(m) if m.is_file() => Ok(Target {
+            path: path.to_path_buf(),
+            existing: Some(m.permissions()),
+        }),
+        Ok(_) => Ok(Target {
+            path: path.to_path_buf(),
+            existing: None,
+        }),
+        Err(e) if e.kind() == io::ErrorKind::NotFound => match std::fs::metadata(folder(path)) {
+            Ok(d) if d.is_dir() => Ok(Target {
+                path: path.to_path_buf(),
+                existing: None,
+            }),
+            _ => Err(refuse(
+                path,
+                format!("the folder {} does not exist", folder(path).display()),
+            )),
+        },
+        Err(e) => Err(refuse(path, io_reason(&e))),
     }
 }
 
@@ -236,7 +279,28 @@ pub fn write_atomically<F>(path: &Path, inputs: &[&Path], write: F) -> Result<()
 where
     F: FnOnce(&mut dyn WriteSeek) -> io::Result<()>,
 {
-    let target = resolve(path, inputs)?;
+    write_with(path, inputs, Links::Follow, write)
+}
+
+/// Writes a file of texplore's own under a predictable name (the reference cache) atomically,
+/// as [`write_atomically`] does, but never through a symbolic link: a link (or FIFO, socket,
+/// device) at `path` is replaced by the new file, its target left untouched.
+///
+/// # Errors
+/// "cannot write FILE: reason": `path` is a folder, its folder does not exist, or the OS
+/// refused the temporary file, the sync or the rename.
+pub fn write_own_file(path: &Path, bytes: &[u8]) -> Result<()> {
+    write_with(path, &[], Links::Replace, |w| w.write_all(bytes))
+}
+
+fn write_with<F>(path: &Path, inputs: &[&Path], links: Links, write: F) -> Result<()>
+where
+    F: FnOnce(&mut dyn WriteSeek) -> io::Result<()>,
+{
+    let target = match links {
+        Links::Follow => resolve(path, inputs)?,
+        Links::Replace => resolve_own(path)?,
+    };
     let dir = folder(&target.path);
     let name = target
         .path
@@ -466,6 +530,34 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert_eq!(e, "cannot write a.gif: unknown extension '.gif' (use .png)");
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn own_files_replace_a_link_and_never_write_through_it() {
+        let dir = tempfile::tempdir().unwrap();
+        let users = dir.path().join("users.txt");
+        std::fs::write(&users, "the user's").unwrap();
+        let own = dir.path().join("cache.exr");
+        std::os::unix::fs::symlink(&users, &own).unwrap();
+        write_own_file(&own, b"texplore's").unwrap();
+        assert_eq!(std::fs::read(&users).unwrap(), b"the user's");
+        assert!(std::fs::symlink_metadata(&own).unwrap().is_file());
+        assert_eq!(std::fs::read(&own).unwrap(), b"texplore's");
+        // A dangling link is replaced too; a folder is refused and left alone.
+        let dangling = dir.path().join("key.txt");
+        std::os::unix::fs::symlink(dir.path().join("nowhere"), &dangling).unwrap();
+        write_own_file(&dangling, b"k").unwrap();
+        assert!(!dir.path().join("nowhere").exists());
+        let folder = dir.path().join("sub.exr");
+        std::fs::create_dir(&folder).unwrap();
+        let e = write_own_file(&folder, b"x").unwrap_err().to_string();
+        assert!(e.contains("a folder"), "{e}");
+        assert!(folder.is_dir());
+        assert_eq!(
+            names(dir.path()),
+            ["cache.exr", "key.txt", "sub.exr", "users.txt"]
+        );
     }
 
     #[cfg(unix)]

@@ -177,6 +177,16 @@ pub fn run(a: &ReportArgs) -> Result<()> {
                 .unwrap_or_else(|| default_cache_dir(&a.output.join(".refs"))),
         )
     };
+    if let Some(dir) = &cache_dir
+        && let Ok(m) = std::fs::metadata(dir)
+        && !m.is_dir()
+    {
+        bail!(
+            "cannot use the reference cache {}: it is not a folder (--cache names a folder; \
+             --no-cache renders the reference without storing it)",
+            dir.display()
+        );
+    }
     let config = ReportConfig {
         modes,
         spp: a.spp.clone(),
@@ -241,6 +251,15 @@ pub fn run(a: &ReportArgs) -> Result<()> {
         ),
     );
     let written = write_outputs(&a.output, &reports, &header)?;
+    for rep in &reports {
+        if let Some(why) = &rep.reference_not_stored {
+            eprintln!(
+                "warning: {}: the reference was not stored in the cache ({why}); the report \
+                 used it all the same",
+                rep.scene
+            );
+        }
+    }
     if !a.quiet {
         for rep in &reports {
             eprintln!(
@@ -272,11 +291,20 @@ pub fn run(a: &ReportArgs) -> Result<()> {
 
 /// Each preset's scene name: its file stem, or where two presets share a stem, the folder
 /// and the stem (`a-earth`, `b-earth`), numbered if those still repeat (the same file twice).
-/// The name names the scene's rows and its folder of plots, so no two may be equal.
+/// The name names the scene's rows and its folder of plots, so no two may be equal, and none
+/// may be one of the report's own files or hidden (`report.csv.ron` makes the folder
+/// `scene-report.csv`).
 fn scene_names(presets: &[PathBuf]) -> Vec<String> {
     let stem = |p: &Path| {
-        p.file_stem()
-            .map_or_else(|| "scene".to_string(), |s| s.to_string_lossy().into_owned())
+        let s = p
+            .file_stem()
+            .map_or_else(|| "scene".to_string(), |s| s.to_string_lossy().into_owned());
+        let lower = s.to_lowercase();
+        if lower == "report.csv" || lower == "report.md" || s.starts_with('.') || s.is_empty() {
+            format!("scene-{s}")
+        } else {
+            s
+        }
     };
     let stems: Vec<String> = presets.iter().map(|p| stem(p)).collect();
     let named: Vec<String> = presets
@@ -323,6 +351,10 @@ mod tests {
         assert_eq!(
             scene_names(&[p("a/earth.ron"), p("a/earth.ron")]),
             ["a-earth-1", "a-earth-2"]
+        );
+        assert_eq!(
+            scene_names(&[p("report.csv.ron"), p("REPORT.md.ron"), p(".refs.ron")]),
+            ["scene-report.csv", "scene-REPORT.md", "scene-.refs"]
         );
     }
 }

@@ -386,6 +386,9 @@ pub struct SceneReport {
     /// Why a cached reference for this key was not used and the reference was rendered again
     /// ("FILE: checksum mismatch ..."); `None` when the cache held none or it was used.
     pub reference_problem: Option<String>,
+    /// Why the reference rendered now could not be kept in the cache (the report goes on
+    /// without it); `None` when it was stored, came from the cache, or caching is off.
+    pub reference_not_stored: Option<String>,
     /// Time spent rendering the reference (zero when it came from the cache).
     pub reference_time: Duration,
     /// Error maps kept for heat maps.
@@ -459,6 +462,7 @@ pub fn run_scene(
         Some(Err(problem)) => (None, Some(problem)),
         None => (None, None),
     };
+    let mut reference_not_stored = None;
     let (reference_linear, reference_cached) = if let Some(file) = &r.file {
         (reference::load_linear(file, width, height)?, false)
     } else if let Some(img) = stored {
@@ -466,8 +470,12 @@ pub fn run_scene(
     } else {
         let ref_scene = build_scene(&ref_desc, preset_path, &mut assets)?;
         let img = render_reference(&ref_scene, r.spp, &mut tally, cancel)?;
-        if let Some(c) = &cached {
-            c.store(&key, width, height, &img)?;
+        // A cache that cannot keep it (a damaged entry that is a folder, a full disk) costs
+        // only the next run's render: the report goes on, and says so.
+        if let Some(c) = &cached
+            && let Err(e) = c.store(&key, width, height, &img)
+        {
+            reference_not_stored = Some(e.to_string());
         }
         (img, false)
     };
@@ -511,8 +519,13 @@ pub fn run_scene(
         rows,
         reference: r.clone(),
         reference_cached,
-        reference_file: r.file.clone().or_else(|| cached.map(|c| c.exr)),
+        reference_file: r.file.clone().or_else(|| {
+            cached
+                .filter(|_| reference_not_stored.is_none())
+                .map(|c| c.exr)
+        }),
         reference_problem,
+        reference_not_stored,
         reference_time,
         error_maps,
     })

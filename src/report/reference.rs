@@ -141,8 +141,10 @@ impl CachedReference {
         height: u32,
     ) -> Result<Option<Vec<Rgb>>, String> {
         let max_key = key.text.len() as u64 + 256;
-        let stored = match crate::input::read_input_text(&self.key_file, max_key) {
-            Ok(t) => t,
+        // The cache's names are predictable: a link planted at one is refused, not followed.
+        let stored = match crate::input::read_own_input(&self.key_file, max_key) {
+            Ok(bytes) => String::from_utf8(bytes)
+                .map_err(|_| format!("{}: not UTF-8 text", self.key_file.display()))?,
             Err(crate::Error::Io { io, .. }) if io.kind() == std::io::ErrorKind::NotFound => {
                 return Ok(None);
             }
@@ -159,7 +161,8 @@ impl CachedReference {
             return Ok(None);
         }
         let max_exr = 4096 + 16 * u64::from(width) * u64::from(height);
-        let bytes = crate::input::read_input(&self.exr, max_exr).map_err(|e| e.to_string())?;
+        let bytes =
+            crate::input::read_own_input(&self.exr, max_exr).map_err(|e| e.to_string())?;
         let (len, hash) = (bytes.len() as u64, fnv1a64(&bytes));
         if (len, hash) != checksum {
             return Err(format!(
@@ -181,11 +184,15 @@ impl CachedReference {
                 img.height()
             ));
         }
+        // Checked as `--reference` checks its file: a matching checksum says only that the
+        // bytes are the ones stored.
+        check_radiance(&img).map_err(|why| format!("{}: {why}", self.exr.display()))?;
         Ok(Some(img.pixels().map(|p| Rgb::from_array(p.0)).collect()))
     }
 
-    /// Stores an image atomically through [`crate::output::write_atomically`]: the EXR first,
-    /// then the key with the EXR's length and checksum on its last line.
+    /// Stores an image atomically through [`crate::output::write_own_file`] (a symbolic link
+    /// planted at a cache name is replaced, never written through): the EXR first, then the key
+    /// with the EXR's length and checksum on its last line.
     ///
     /// # Errors
     /// The directory or files cannot be written.
@@ -206,7 +213,7 @@ impl CachedReference {
             .write_to(&mut exr, image::ImageFormat::OpenExr)
             .map_err(|e| ReportError::io(&self.exr, std::io::Error::other(e)))?;
         let exr = exr.into_inner();
-        crate::output::write_bytes(&self.exr, &[], &exr)?;
+        crate::output::write_own_file(&self.exr, &exr)?;
         // The key last: a reference is only used once its key matches and the EXR's bytes
         // match the checksum.
         let key_file = format!(
@@ -215,7 +222,7 @@ impl CachedReference {
             exr.len(),
             fnv1a64(&exr)
         );
-        crate::output::write_bytes(&self.key_file, &[], key_file.as_bytes())?;
+        crate::output::write_own_file(&self.key_file, key_file.as_bytes())?;
         Ok(())
     }
 }
@@ -267,19 +274,29 @@ pub fn load_linear(path: &Path, width: u32, height: u32) -> Result<Vec<Rgb>, Rep
             img.height()
         )));
     }
-    if let Some((i, v)) = img
+    check_radiance(&img).map_err(bad)?;
+    Ok(img.pixels().map(|p| Rgb::from_array(p.0)).collect())
+}
+
+/// Every value of a reference is a radiance: finite and not negative.
+///
+/// # Errors
+/// "pixel (x, y) holds VALUE, not a radiance" for the first that is not.
+fn check_radiance(img: &image::Rgb32FImage) -> Result<(), String> {
+    let width = img.width() as usize;
+    match img
         .as_raw()
         .iter()
         .enumerate()
         .find(|(_, v)| !(v.is_finite() && **v >= 0.0))
     {
-        return Err(bad(format!(
+        Some((i, v)) => Err(format!(
             "pixel ({}, {}) holds {v}, not a radiance",
-            (i / 3) % width as usize,
-            (i / 3) / width as usize
-        )));
+            (i / 3) % width,
+            (i / 3) / width
+        )),
+        None => Ok(()),
     }
-    Ok(img.pixels().map(|p| Rgb::from_array(p.0)).collect())
 }
 
 #[cfg(test)]

@@ -459,6 +459,7 @@ mod tests {
             reference_cached: true,
             reference_file: None,
             reference_problem: None,
+            reference_not_stored: None,
             reference_time: Duration::ZERO,
             error_maps: vec![],
         };

@@ -104,7 +104,10 @@ fn links_planted_at_the_cache_names_are_neither_written_nor_read_through() {
     let o = report(&earth(), &out, &cache);
     assert!(o.status.success(), "{}", stderr(&o));
     assert_eq!(std::fs::read_to_string(&thesis).unwrap(), "chapter one");
-    assert_eq!(std::fs::read_to_string(&photo).unwrap(), "not really an exr");
+    assert_eq!(
+        std::fs::read_to_string(&photo).unwrap(),
+        "not really an exr"
+    );
     // The links were replaced by the cache's own regular files, and the numbers are right.
     for name in [&exr, &key] {
         let m = std::fs::symlink_metadata(cache.join(name)).unwrap();
@@ -124,7 +127,11 @@ fn links_planted_at_the_cache_names_are_neither_written_nor_read_through() {
         "the refused entry is named: {}",
         stderr(&o)
     );
-    assert!(std::fs::symlink_metadata(cache.join(&exr)).unwrap().is_file());
+    assert!(
+        std::fs::symlink_metadata(cache.join(&exr))
+            .unwrap()
+            .is_file()
+    );
     assert_eq!(rmse(&tmp.path().join("out2")), expected);
 }
 

@@ -573,3 +573,32 @@ fn snapshot_check_with_no_presets_fails_saying_so() {
     );
     refused(&out, "empty: no presets (*.ron) here, nothing to check");
 }
+
+#[test]
+fn snapshot_check_with_an_unknown_name_fails_naming_it_before_any_render() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let presets = root.join("presets");
+    let presets = presets.to_str().unwrap();
+    let start = Instant::now();
+    let out = texplore(
+        root,
+        &[
+            "snapshot",
+            "check",
+            "earth",
+            "nosuch-preset",
+            "--presets",
+            presets,
+        ],
+    );
+    refused(&out, "no preset named nosuch-preset in");
+    assert!(
+        String::from_utf8_lossy(&out.stderr).contains("earth"),
+        "lists the presets there"
+    );
+    assert!(
+        String::from_utf8_lossy(&out.stdout).is_empty(),
+        "nothing was checked"
+    );
+    assert!(start.elapsed() < Duration::from_secs(20));
+}

@@ -204,3 +204,33 @@ fn every_character_of_every_lesson_draws_in_the_window() {
         "characters the window cannot draw: {missing:?}"
     );
 }
+
+#[test]
+fn lesson_list_escapes_control_characters_in_titles() {
+    let dir = tempfile::tempdir().unwrap();
+    let lessons = dir.path().join("lessons");
+    std::fs::create_dir(&lessons).unwrap();
+    let good = std::fs::read_to_string(root().join("lessons/05-cylindrical-mapping.toml"))
+        .unwrap()
+        .replace("../presets/", &format!("{}/presets/", root().display()));
+    let title_line = good
+        .lines()
+        .find(|l| l.starts_with("title"))
+        .expect("a title line");
+    // An escape sequence that would clear the screen, and a bell, in TOML's own escapes.
+    let hostile = good.replace(
+        title_line,
+        r#"title = "Clear\u001b[2J\u001b[Hscreen\u0007""#,
+    );
+    std::fs::write(lessons.join("01-hostile.toml"), hostile).unwrap();
+    let out = texplore_in(dir.path(), &["lesson", "--list"]);
+    let stdout = success(&out);
+    assert!(
+        !stdout.contains('\u{1b}') && !stdout.contains('\u{7}'),
+        "{stdout:?}"
+    );
+    assert!(
+        stdout.contains(r"Clear\u{1b}[2J\u{1b}[Hscreen\u{7}"),
+        "{stdout}"
+    );
+}

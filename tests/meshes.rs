@@ -227,7 +227,10 @@ fn bad_plys_name_the_file_and_element() {
         (format!("{head}0 0 0\n1 x 0\n"), &["vertex 1", "expected a number, found 'x'"]),
         (head.replace("vertex 4", "vertex 4000000000"), &["header line 3", "4000000000 vertices is more than"]),
         (format!("{head}{verts}3 0 1 2\n2 0 2\n"), &["face 1", "at least 3"]),
-        (format!("{head}{verts}3 0 1 2\n200000 0 2\n"), &["face 1", "200000 items"]),
+        (format!("{}{verts}3 0 1 2\n200000 0 2\n", head.replace("list uchar", "list uint")), &["face 1", "200000 items"]),
+        // A count beyond the header's `uchar`: refused, not read as a 300-gon.
+        (format!("{head}{verts}3 0 1 2\n300 0 1 2\n"), &["face 1", "300 does not fit the header's uchar (0 to 255)"]),
+        (format!("{}{verts}3 0 1 2\n3 0 1 70000\n", head.replace("uchar int", "uchar ushort")), &["face 1", "70000 does not fit the header's ushort"]),
         ("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nend_header\n0 0\n".to_string(), &["header line 3", "no 'z'"]),
         ("PLY\n".to_string(), &["header line 1", "not a PLY"]),
         ("ply\nformat ascii 1.0\nelement vertex 1\nproperty quaternion x\n".to_string(), &["header line 4", "quaternion"]),

@@ -31,14 +31,20 @@ pub fn run(a: &LessonArgs) -> Result<Option<Lesson>> {
         eprintln!("error: {e}");
     }
     if a.list {
-        let width = loaded
+        // A lesson file is text from anywhere: its name and title are printed with control
+        // characters escaped, so a title cannot clear or recolour the terminal.
+        let lessons: Vec<(String, String)> = loaded
             .lessons
             .iter()
-            .map(|l| l.name.len())
+            .map(|l| (printable(&l.name), printable(&l.title)))
+            .collect();
+        let width = lessons
+            .iter()
+            .map(|(n, _)| n.chars().count())
             .max()
             .unwrap_or(0);
-        for l in &loaded.lessons {
-            println!("{:width$}  {}", l.name, l.title);
+        for (name, title) in &lessons {
+            println!("{name:width$}  {title}");
         }
         if loaded.lessons.is_empty() && loaded.errors.is_empty() {
             eprintln!("{}: no lessons (*.toml) here", a.dir.display());
@@ -58,4 +64,18 @@ pub fn run(a: &LessonArgs) -> Result<Option<Lesson>> {
         Ok(l) => Ok(Some(l.clone())),
         Err(m) => bail!("{}: {m}", a.dir.display()),
     }
+}
+
+/// `text` with every control character (escape codes, carriage returns, bells) written as its
+/// Rust escape (`\u{1b}`), the rest as it is.
+fn printable(text: &str) -> String {
+    text.chars()
+        .map(|c| {
+            if c.is_control() {
+                c.escape_default().to_string()
+            } else {
+                c.to_string()
+            }
+        })
+        .collect()
 }

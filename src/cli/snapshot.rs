@@ -41,17 +41,28 @@ pub fn run(a: &SnapshotArgs) -> Result<()> {
         );
     }
     if !a.names.is_empty() {
-        presets.retain(|p| {
-            p.file_stem()
-                .is_some_and(|s| a.names.iter().any(|n| s == n.as_str()))
-        });
-        if presets.is_empty() {
+        // Every name must be a preset: a typo never passes as a smaller, green check.
+        let stem = |p: &PathBuf| p.file_stem().map(|s| s.to_string_lossy().into_owned());
+        let unknown: Vec<&str> = a
+            .names
+            .iter()
+            .filter(|n| {
+                !presets
+                    .iter()
+                    .any(|p| stem(p).as_deref() == Some(n.as_str()))
+            })
+            .map(String::as_str)
+            .collect();
+        if !unknown.is_empty() {
+            let known: Vec<String> = presets.iter().filter_map(stem).collect();
             bail!(
-                "no preset named {} in {}",
-                a.names.join(", "),
-                a.presets.display()
+                "no preset named {} in {} (there are: {})",
+                unknown.join(", "),
+                a.presets.display(),
+                known.join(", ")
             );
         }
+        presets.retain(|p| stem(p).is_some_and(|s| a.names.contains(&s)));
     }
     let mut cache = AssetCache::new();
     let mut failed = 0;

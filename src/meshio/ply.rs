@@ -88,6 +88,34 @@ impl Scalar {
     const fn is_int(self) -> bool {
         !matches!(self, Self::F32 | Self::F64)
     }
+
+    /// The values an integer type holds (a binary file cannot hold others; an ASCII one can
+    /// write them, and is refused).
+    const fn int_range(self) -> (i64, i64) {
+        match self {
+            Self::I8 => (i8::MIN as i64, i8::MAX as i64),
+            Self::U8 => (0, u8::MAX as i64),
+            Self::I16 => (i16::MIN as i64, i16::MAX as i64),
+            Self::U16 => (0, u16::MAX as i64),
+            Self::I32 => (i32::MIN as i64, i32::MAX as i64),
+            Self::U32 => (0, u32::MAX as i64),
+            Self::F32 | Self::F64 => (i64::MIN, i64::MAX),
+        }
+    }
+
+    /// The type's name as a header writes it.
+    const fn name(self) -> &'static str {
+        match self {
+            Self::I8 => "char",
+            Self::U8 => "uchar",
+            Self::I16 => "short",
+            Self::U16 => "ushort",
+            Self::I32 => "int",
+            Self::U32 => "uint",
+            Self::F32 => "float",
+            Self::F64 => "double",
+        }
+    }
 }
 
 #[derive(Clone, Debug)]
@@ -656,9 +684,17 @@ impl Body for AsciiBody {
         let (s, e) = self.token(r)?;
         let tok = &self.line[s..e];
         if ty.is_int() {
-            tok.parse::<i64>()
-                .map(|v| v as f64)
-                .map_err(|_| format!("expected an integer, found '{tok}'"))
+            let v = tok
+                .parse::<i64>()
+                .map_err(|_| format!("expected an integer, found '{tok}'"))?;
+            let (lo, hi) = ty.int_range();
+            if !(lo..=hi).contains(&v) {
+                return Err(format!(
+                    "{v} does not fit the header's {} ({lo} to {hi})",
+                    ty.name()
+                ));
+            }
+            Ok(v as f64)
         } else {
             tok.parse::<f64>()
                 .map_err(|_| format!("expected a number, found '{tok}'"))

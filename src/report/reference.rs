@@ -161,8 +161,7 @@ impl CachedReference {
             return Ok(None);
         }
         let max_exr = 4096 + 16 * u64::from(width) * u64::from(height);
-        let bytes =
-            crate::input::read_own_input(&self.exr, max_exr).map_err(|e| e.to_string())?;
+        let bytes = crate::input::read_own_input(&self.exr, max_exr).map_err(|e| e.to_string())?;
         let (len, hash) = (bytes.len() as u64, fnv1a64(&bytes));
         if (len, hash) != checksum {
             return Err(format!(

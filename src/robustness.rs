@@ -1,5 +1,5 @@
 //! Harnesses that feed arbitrary bytes to every parser a user's file reaches, shared by the
-//! cargo-fuzz targets in `fuzz/` and the bounded fuzz test in `tests/fuzz.rs`.
+//! cargo-fuzz targets in `fuzz/` and the bounded fuzz test in `tests/headless/fuzz.rs`.
 //!
 //! Each harness returns the library's result for the input and panics only when an invariant a
 //! user relies on is broken: a parser panicked, an error does not name the file, a loaded image

@@ -1,9 +1,8 @@
-//! Helpers the window's tests share (`tests/gui*.rs`): a small Earth preset, the harness that
-//! opens the real app on it, and waiting for its render. A window test declares
-//! `#[path = "common/gui.rs"] mod gui_common;` (kept out of `common/mod.rs` so the other test
-//! crates do not build the window).
+//! Helpers the window's tests share (`tests/window/`): a small Earth preset, the harness that
+//! opens the real app on it, and waiting for its render. Kept out of `common/mod.rs`, so the
+//! headless tests do not build the window; `tests/window/main.rs` declares the module once.
 
-// Each test file is its own crate and uses a subset of these.
+// Each test module uses a subset of these.
 #![allow(dead_code)]
 
 use egui::accesskit::Role;

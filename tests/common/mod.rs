@@ -1,7 +1,7 @@
-//! Helpers the integration tests share: running the binary, and scenes built from a preset with
-//! overrides. A test file that uses them declares `mod common;`.
+//! Helpers the headless tests share (`tests/headless/`): running the binary, and scenes built
+//! from a preset with overrides; `tests/headless/main.rs` declares the module once.
 
-// Each test file is its own crate and uses a subset of these.
+// Each test module uses a subset of these.
 #![allow(dead_code)]
 
 use std::path::Path;

@@ -7,7 +7,7 @@
 //! [`pulp::Arch::dispatch`]'s `#[target_feature]` function, they compile to AVX-512, AVX2 or SSE2
 //! code for the CPU found at run time. Each follows its scalar twin operation for operation (the
 //! same roundings in the same order; Rust never fuses a multiply and an add on its own), so a
-//! lane gives the scalar path's number bit for bit: the tests in `tests/simd.rs` and below
+//! lane gives the scalar path's number bit for bit: the tests in `tests/headless/simd.rs` and below
 //! compare them on hard inputs.
 
 // Lane loops index several arrays by the lane (`for i in 0..LANES`), the form the vectoriser

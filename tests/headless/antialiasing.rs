@@ -6,9 +6,7 @@
 //! channel, against references rendered with bilinear filtering, box pixels and 256 jittered
 //! samples per pixel, at low resolution so each test runs in seconds.
 
-mod common;
-
-use common::{build_with, failure, render_on, root, sized, success, texplore};
+use crate::common::{build_with, failure, render_on, root, sized, success, texplore};
 use std::path::{Path, PathBuf};
 use strum::VariantArray;
 use texplore::mapping::MAX_FOOTPRINT;

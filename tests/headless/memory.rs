@@ -4,8 +4,6 @@
 //! (`RLIMIT_AS`), so a copy too many makes the child fail and the test with it.
 #![cfg(unix)]
 
-mod common;
-
 use std::io::Write;
 use std::path::Path;
 use std::process::{Command, Output, Stdio};
@@ -256,7 +254,7 @@ fn crc32(bytes: &[u8]) -> u32 {
 
 /// The first `bytes` of the repository's asset `name`, written to `dir` as `out`.
 fn truncated_asset(dir: &Path, name: &str, bytes: usize, out: &str) {
-    let data = std::fs::read(common::root().join("assets").join(name)).unwrap();
+    let data = std::fs::read(crate::common::root().join("assets").join(name)).unwrap();
     assert!(data.len() > bytes);
     std::fs::write(dir.join(out), &data[..bytes]).unwrap();
 }
@@ -307,10 +305,14 @@ fn the_first_3000_bytes_of_the_earth_jpeg_are_refused() {
 
 #[test]
 fn the_whole_earth_jpeg_loads_with_its_colours() {
-    let img = load_image(&common::root().join("assets/earth_2048x1024.jpg"), true).unwrap();
+    let img = load_image(
+        &crate::common::root().join("assets/earth_2048x1024.jpg"),
+        true,
+    )
+    .unwrap();
     assert_eq!((img.width(), img.height()), (2048, 1024));
     // The decoder `image` uses gives the same texels (the JPEG is decoded by the same library).
-    let reference = image::open(common::root().join("assets/earth_2048x1024.jpg"))
+    let reference = image::open(crate::common::root().join("assets/earth_2048x1024.jpg"))
         .unwrap()
         .to_rgb8();
     for (x, y) in [(0, 0), (1024, 512), (2047, 1023), (300, 700), (1500, 100)] {
@@ -326,7 +328,7 @@ fn the_whole_earth_jpeg_loads_with_its_colours() {
 #[test]
 fn a_truncated_png_is_refused() {
     let dir = tempfile::tempdir().unwrap();
-    let full = std::fs::read(common::root().join("assets/coffee_600x400.png")).unwrap();
+    let full = std::fs::read(crate::common::root().join("assets/coffee_600x400.png")).unwrap();
     truncated_asset(
         dir.path(),
         "coffee_600x400.png",

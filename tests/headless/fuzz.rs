@@ -7,9 +7,7 @@
 //! (see the README's "Robustness" section). Inputs that once broke a parser live in
 //! `tests/fuzz_regressions/` and are replayed on every run.
 
-mod common;
-
-use common::{root, success, texplore};
+use crate::common::{root, success, texplore};
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
 use std::path::Path;

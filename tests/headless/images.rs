@@ -1,9 +1,7 @@
 //! Every supported image format loads with the right texels, and bad image files give one
 //! clear error naming the file; what a render shows, saves and is measured on are the same bytes.
 
-mod common;
-
-use common::{build_with, root, sized};
+use crate::common::{build_with, root, sized};
 use std::fmt::Write as _;
 use std::path::Path;
 use texplore::Error;

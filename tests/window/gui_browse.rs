@@ -3,13 +3,10 @@
 //! Esc, the recent list, where a screenshot goes and the message saying so, the assets list
 //! after *Save as*, and the description *Save as* offers to edit.
 
-#[path = "common/gui.rs"]
-mod gui_common;
-
+use crate::gui_common::{harness, harness_with, settle, small_earth};
 use egui::accesskit::Role;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable as _;
-use gui_common::{harness, harness_with, settle, small_earth};
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 use texplore::gui::{AppOptions, BrowseFor, Browser, ExplorerApp};

@@ -1,14 +1,11 @@
 //! Undo and redo, the title's unsaved marker, the shortcuts list and what the window remembers
 //! between runs, driven headless with `egui_kittest` as a user would (menus, keys, drags).
 
-#[path = "common/gui.rs"]
-mod gui_common;
-
+use crate::gui_common::{choose, desc, harness, image_bytes, settle, small_earth};
 use egui::accesskit::Role;
 use egui::{Key, Modifiers};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable as _;
-use gui_common::{choose, desc, harness, image_bytes, settle, small_earth};
 use std::collections::HashMap;
 use texplore::gui::{AppOptions, ExplorerApp, Prefs};
 use texplore::mapping::Mapping;

@@ -1,8 +1,6 @@
 //! The command line as a user runs it.
 
-mod common;
-
-use common::{failure, success, texplore, texplore_json as json};
+use crate::common::{failure, success, texplore, texplore_json as json};
 
 #[test]
 fn map_prints_the_lecture_values_as_json() {

@@ -2,9 +2,7 @@
 //! preset and visibly changes the render; `texplore lesson --list` lists them and a bad name or
 //! a broken lesson file is an error naming it.
 
-mod common;
-
-use common::{failure, root, success, texplore, texplore_in};
+use crate::common::{failure, root, success, texplore, texplore_in};
 use texplore::lesson::{Lesson, find, load_dir};
 use texplore::scene::{AssetCache, SceneDesc, load_preset};
 use texplore::snapshot::render_snapshot;

@@ -4,9 +4,7 @@
 //! from the bump map's exactly where the heights are large, and bad presets are refused with the
 //! file, the object and the field named.
 
-mod common;
-
-use common::{build_with, failure, filtered, render_on, root, sized, texplore_in};
+use crate::common::{build_with, failure, filtered, render_on, root, sized, texplore_in};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use strum::VariantArray;

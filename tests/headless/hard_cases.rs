@@ -1,9 +1,7 @@
 //! Numerical hard cases: the singular points and extreme magnitudes where the lecture's code (and
 //! other renderers) produce NaN, divide by zero, lose precision or speckle with shadow acne.
 
-mod common;
-
-use common::{build_with, filtered, parse_json, root, sized, texplore};
+use crate::common::{build_with, filtered, parse_json, root, sized, texplore};
 use proptest::prelude::*;
 use std::path::Path;
 use strum::VariantArray;

@@ -2,9 +2,7 @@
 //! against an external linear reference, and the peer scene (`presets/peer-sphere.ron`) whose
 //! error falls as the samples per pixel grow, for every count.
 
-mod common;
-
-use common::{build_with, failure, render_on, root, success, texplore};
+use crate::common::{build_with, failure, render_on, root, success, texplore};
 use std::path::Path;
 use texplore::math::{Rgb, linear_to_srgb, quantize8};
 use texplore::sampler::PixelSampler;

@@ -2,9 +2,7 @@
 //! every PLY encoding and spelling loads the same mesh, polygons triangulate, rays through
 //! shared edges never slip through, and bad files name the file and the element.
 
-mod common;
-
-use common::{failure, parse_json, render_on, root, texplore};
+use crate::common::{failure, parse_json, render_on, root, texplore};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use strum::VariantArray;

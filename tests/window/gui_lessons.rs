@@ -1,4 +1,4 @@
-//! The Lessons panel on the real app (egui_kittest, as in `tests/gui.rs`): started on a lesson
+//! The Lessons panel on the real app (egui_kittest, as in `tests/window/gui.rs`): started on a lesson
 //! as `texplore lesson` starts it, every lesson opens its preset, every experiment button puts
 //! the lesson's edit into the scene and Undo takes it back, Show answer reveals the answer, and
 //! Next lesson walks the lecture in order; a lesson file dropped into the folder appears after

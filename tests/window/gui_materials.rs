@@ -3,16 +3,13 @@
 //! preset's fields and in the pixels, bump and normal maps exclude each other, every edit is
 //! one undo step, and a missing image leaves the scene as it was.
 
-#[path = "common/gui.rs"]
-mod gui_common;
-
+use crate::gui_common::{
+    choose, desc, harness, harness_with, image_bytes, select, settle, small_earth, undo,
+};
 use egui::accesskit::Role;
 use egui::{Key, Modifiers};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable as _;
-use gui_common::{
-    choose, desc, harness, harness_with, image_bytes, select, settle, small_earth, undo,
-};
 use std::path::{Path, PathBuf};
 use texplore::gui::{AppOptions, BrowseFor, Browser, ExplorerApp};
 use texplore::inspect::Inspection;

@@ -2,9 +2,7 @@
 //! reverse lookup and the iso-lines, each checked against what `Scene::inspect` reports pixel
 //! by pixel.
 
-mod common;
-
-use common::{build_with, root};
+use crate::common::{build_with, root};
 use std::collections::BTreeSet;
 use std::sync::atomic::AtomicBool;
 use texplore::coverage::{
@@ -255,7 +253,7 @@ fn the_north_pole_is_marked_where_the_spherical_map_reaches_v_1() {
     let scene = build_with(
         &desc,
         &path,
-        common::sized(41, 41, 1),
+        crate::common::sized(41, 41, 1),
         &mut AssetCache::new(),
     );
     let iso = iso_lines(&field(&scene), 8);

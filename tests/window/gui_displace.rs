@@ -4,12 +4,9 @@
 //! (when it ends), too many levels shows the builder's error and keeps the scene, each edit is
 //! one undo step, and a generic shape offers no displacement.
 
-#[path = "common/gui.rs"]
-mod gui_common;
-
+use crate::gui_common::{choose, desc, harness, image_bytes, select, settle, small_earth, undo};
 use egui::accesskit::Role;
 use egui_kittest::kittest::Queryable as _;
-use gui_common::{choose, desc, harness, image_bytes, select, settle, small_earth, undo};
 use std::path::{Path, PathBuf};
 use texplore::math::Vec2;
 use texplore::names::Named;

@@ -1,13 +1,10 @@
 //! The viewport, the A/B divider and the speed panel's legend, driven headless with
 //! `egui_kittest` as a user would (pointer, wheel, menus) and checked on what the window shows.
 
-#[path = "common/gui.rs"]
-mod gui_common;
-
+use crate::gui_common::{WINDOW, small_earth};
 use egui::accesskit::Role;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable as _;
-use gui_common::{WINDOW, small_earth};
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 use texplore::gui::{AppOptions, ExplorerApp};

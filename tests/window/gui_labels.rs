@@ -3,13 +3,10 @@
 //! debug views' colour key, the camera's field of view kept across projections, the edge-on
 //! hint, and panels that keep their width.
 
-#[path = "common/gui.rs"]
-mod gui_common;
-
+use crate::gui_common::{choose, harness, settle, small_earth};
 use egui::accesskit::Role;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable as _;
-use gui_common::{choose, harness, settle, small_earth};
 use texplore::gui::ExplorerApp;
 use texplore::names::Named;
 use texplore::scene::{LECTURE_ORDER, ProjectionDesc, ProjectionKind, ShapeDesc};

@@ -1,13 +1,10 @@
 //! The window, headless: `egui_kittest` drives the real app and renders it with wgpu (Mesa's
 //! lavapipe on a machine without a GPU). Small renders keep these quick.
 
-#[path = "common/gui.rs"]
-mod gui_common;
-
+use crate::gui_common::{WINDOW, harness, settle, small_earth};
 use egui::accesskit::Role;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable as _;
-use gui_common::{WINDOW, harness, settle, small_earth};
 use strum::VariantArray;
 use texplore::gui::ExplorerApp;
 use texplore::mapping::Mapping;

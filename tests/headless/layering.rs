@@ -437,7 +437,7 @@ fn no_module_imports_a_higher_layer() {
     let unplaced: Vec<_> = modules.iter().filter(|m| layer_of(m).is_none()).collect();
     assert!(
         unplaced.is_empty(),
-        "modules with no place in tests/layering.rs's LAYERS (add them, and to ARCHITECTURE.md): {unplaced:?}"
+        "modules with no place in tests/headless/layering.rs's LAYERS (add them, and to ARCHITECTURE.md): {unplaced:?}"
     );
     let bad = violations(&edges);
     assert!(

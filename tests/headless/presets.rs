@@ -1,9 +1,7 @@
 //! Every preset loads, builds and renders without NaN; renders are deterministic whatever the
 //! thread count; a bad preset names the file and the position where parsing stopped.
 
-mod common;
-
-use common::{build_with, render_on, root, sized};
+use crate::common::{build_with, render_on, root, sized};
 use std::path::{Path, PathBuf};
 use texplore::Error;
 use texplore::render::Film;

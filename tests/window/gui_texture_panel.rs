@@ -1,13 +1,10 @@
 //! The texture panel and the iso-lines, driven headless with `egui_kittest` as a user would
 //! (View menu, pointer, checkbox) and checked on what the window shows: labels and pixels.
 
-#[path = "common/gui.rs"]
-mod gui_common;
-
+use crate::gui_common::{harness, small_earth};
 use egui::accesskit::Role;
 use egui_kittest::Harness;
 use egui_kittest::kittest::{NodeT as _, Queryable as _};
-use gui_common::{harness, small_earth};
 use std::time::{Duration, Instant};
 use texplore::gui::ExplorerApp;
 

@@ -1,15 +1,12 @@
-//! The window's file paths, headless (egui_kittest on the real app, as in `tests/gui.rs`): the
+//! The window's file paths, headless (egui_kittest on the real app, as in `tests/window/gui.rs`): the
 //! path fields show the scene's own paths after "Save as" and after opening a screenshot,
 //! Shape -> Mesh asks for the file before it changes the shape, and switching a texture away
 //! from Image and back keeps the image.
 
-#[path = "common/gui.rs"]
-mod gui_common;
-
+use crate::gui_common::{choose, harness, settle};
 use egui::accesskit::Role;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable as _;
-use gui_common::{choose, harness, settle};
 use std::path::{Path, PathBuf};
 use texplore::gui::ExplorerApp;
 use texplore::names::Named;

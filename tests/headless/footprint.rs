@@ -2,9 +2,7 @@
 //! supersampled, box-filtered image. Its bias against a supersampled reference, on small
 //! versions of the peer scene, the Earth and the checker plane.
 
-mod common;
-
-use common::{build_with, render_on, root};
+use crate::common::{build_with, render_on, root};
 use texplore::math::Rgb;
 use texplore::sampler::PixelSampler;
 use texplore::scene::{AssetCache, Overrides, load_preset};

@@ -1,0 +1,30 @@
+//! The headless tests, one crate (one binary to link): the library, the CLI and the renders,
+//! no window. Each module was a test file of its own; `cargo test --test headless NAME::`
+//! runs one of them.
+
+#[path = "../common/mod.rs"]
+mod common;
+
+mod antialiasing;
+mod cli;
+mod closed_ends;
+mod displacement;
+mod footprint;
+mod fuzz;
+mod hard_cases;
+mod hostile;
+mod hostile_cache;
+mod hostile_read;
+mod hostile_values;
+mod images;
+mod layering;
+mod lessons;
+mod materials;
+mod memory;
+mod meshes;
+mod peer;
+mod presets;
+mod report;
+mod simd;
+mod snapshots;
+mod texture_panel;

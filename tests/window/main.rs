@@ -1,0 +1,18 @@
+//! The window's tests, one crate: `egui_kittest` drives the real app and draws it with wgpu
+//! (Mesa's lavapipe on a machine without a GPU). `cargo test --test window NAME::` runs one
+//! module. Needs the `gui` feature (on by default).
+#![cfg(feature = "gui")]
+
+#[path = "../common/gui.rs"]
+mod gui_common;
+
+mod gui;
+mod gui_browse;
+mod gui_displace;
+mod gui_edit;
+mod gui_files;
+mod gui_labels;
+mod gui_lessons;
+mod gui_materials;
+mod gui_texture_panel;
+mod gui_view;

@@ -14,6 +14,7 @@
 //! What texplore does not do: displace per pixel or per ray (no micropolygons, no adaptive
 //! tessellation), or displace the analytic shapes (a bump map gives their look).
 
+pub use super::mesh::Displacement;
 use super::mesh::MeshData;
 use crate::math::{Quat, Vec3};
 use std::collections::HashMap;
@@ -21,48 +22,6 @@ use std::collections::HashMap;
 /// Most triangles a displaced mesh may have after subdivision: 2^22 (4 M); building 3.8 M
 /// took 0.75 GB at its peak (measured), so a preset cannot ask for gigabytes.
 pub const MAX_DISPLACED_TRIANGLES: usize = 1 << 22;
-
-/// How a mesh was displaced, for the inspector.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Displacement {
-    /// The height texture in a few words (an image's file name).
-    pub height: String,
-    /// How far a height of 1 moved the surface, in the mesh's units.
-    pub scale: f32,
-    /// Subdivision levels.
-    pub levels: u32,
-    /// Triangles in the file, before subdivision.
-    pub file_triangles: usize,
-    /// Triangles after subdivision.
-    pub triangles: usize,
-}
-
-impl Displacement {
-    /// In short lines (the inspector's panel is narrow): the height texture and scale, the
-    /// levels, the triangles.
-    #[must_use]
-    pub fn lines(&self) -> Vec<String> {
-        vec![
-            format!("displaced at load by {},", self.height),
-            format!(
-                "scale {}, {} subdivision level{}:",
-                self.scale,
-                self.levels,
-                if self.levels == 1 { "" } else { "s" }
-            ),
-            format!(
-                "{} triangles from the file's {}",
-                self.triangles, self.file_triangles
-            ),
-        ]
-    }
-}
-
-impl std::fmt::Display for Displacement {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "{}", self.lines().join(" "))
-    }
-}
 
 /// The triangles `triangles` make after `levels` subdivisions (4^levels each), saturating.
 #[must_use]

@@ -1,7 +1,8 @@
-//! Meshes in presets: loading through the [`AssetCache`](super::AssetCache), the material a
-//! mesh file names, and the check that `Uv` is only asked of meshes that carry (u, v).
+//! Meshes in presets: the material a mesh file names, and the check that `Uv` is only asked of
+//! meshes that carry (u, v).
 
-use super::desc::{MaterialDesc, TextureDesc};
+use super::super::material::MaterialDesc;
+use super::super::texture::TextureDesc;
 use crate::geometry::Mesh;
 use crate::mapping::Mapping;
 use std::borrow::Cow;

@@ -1,0 +1,478 @@
+//! Textures: the description ([`TextureDesc`]), the kinds with their defaults, and the check and
+//! build of the runtime [`Texture`] (images through the [`AssetCache`]).
+
+use super::assets::AssetCache;
+use super::values::{finite_non_negative, one, yes};
+use crate::error::{Error, Result};
+use crate::mapping::{Mapping, UvAffine, UvTransform};
+use crate::math::Rgb;
+use crate::texture::{
+    Checker, DEFAULT_MAX_ANISOTROPY, Filter, ImageTexture, Lookup, MAX_ANISOTROPY_LIMIT, Texture,
+    Wrap,
+};
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+
+/// Where a material's colour comes from. Colours and texel values are linear RGB.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub enum TextureDesc {
+    /// One linear RGB colour everywhere: `Constant((0.7, 0.7, 0.7))`.
+    Constant(Rgb),
+    /// An image file through a mapping.
+    Image {
+        /// Path, relative to the preset file.
+        path: String,
+        /// How hit points become (u, v).
+        #[serde(default)]
+        mapping: Mapping,
+        /// How texels are combined.
+        #[serde(default)]
+        filter: Filter,
+        /// Which texel the nearest filter picks.
+        #[serde(default)]
+        lookup: Lookup,
+        /// What (u, v) outside [0, 1] reads; default `Repeat`.
+        #[serde(default)]
+        wrap: Wrap,
+        /// Multiplier on the texel values.
+        #[serde(default = "one")]
+        scale: f32,
+        /// Whether 8- and 16-bit files are sRGB-encoded (almost always).
+        #[serde(default = "yes")]
+        srgb: bool,
+        /// The longest footprint the EWA filter follows (major / minor axis, 1 to 64).
+        #[serde(default = "default_max_anisotropy")]
+        max_anisotropy: f32,
+        /// (u, v) scale, rotation and offset after the mapping; default none.
+        #[serde(default, skip_serializing_if = "UvTransform::is_identity")]
+        uv: UvTransform,
+    },
+    /// A checkerboard in (u, v).
+    Checker {
+        /// How hit points become (u, v).
+        #[serde(default)]
+        mapping: Mapping,
+        /// Squares along u and along v over [0, 1].
+        #[serde(default = "default_squares")]
+        squares: (f32, f32),
+        /// The colour of the square at the (u, v) origin, then the other's; default light grey 0.8
+        /// and near-black 0.05.
+        #[serde(default = "default_checker_colors")]
+        colors: (Rgb, Rgb),
+        /// `Trilinear` or `Ewa`: box-filtered over the pixel's footprint in closed form;
+        /// otherwise point-sampled.
+        #[serde(default)]
+        filter: Filter,
+        /// (u, v) scale, rotation and offset after the mapping; default none.
+        #[serde(default, skip_serializing_if = "UvTransform::is_identity")]
+        uv: UvTransform,
+    },
+    /// The image (`map_Kd`) or colour (`Kd`) of the material a mesh file names (an OBJ's .mtl),
+    /// read through the mesh's (u, v) by default. Only on `Mesh` shapes.
+    MeshMaterial {
+        /// How hit points become (u, v).
+        #[serde(default = "uv_mapping")]
+        mapping: Mapping,
+        /// How texels are combined.
+        #[serde(default)]
+        filter: Filter,
+        /// Which texel the nearest filter picks.
+        #[serde(default)]
+        lookup: Lookup,
+        /// What (u, v) outside [0, 1] reads; default `Repeat`.
+        #[serde(default)]
+        wrap: Wrap,
+        /// Longest-to-shortest axis ratio the EWA filter honours (see the `Image` texture).
+        #[serde(default = "default_max_anisotropy")]
+        max_anisotropy: f32,
+        /// (u, v) scale, rotation and offset after the mapping; default none.
+        #[serde(default, skip_serializing_if = "UvTransform::is_identity")]
+        uv: UvTransform,
+    },
+    /// The labelled UV test grid (cells A1 to H8).
+    UvGrid {
+        /// How hit points become (u, v).
+        #[serde(default)]
+        mapping: Mapping,
+        /// How texels are combined.
+        #[serde(default)]
+        filter: Filter,
+        /// What (u, v) outside [0, 1] reads; default `Repeat`.
+        #[serde(default)]
+        wrap: Wrap,
+        /// The longest footprint the EWA filter follows (major / minor axis, 1 to 64).
+        #[serde(default = "default_max_anisotropy")]
+        max_anisotropy: f32,
+        /// (u, v) scale, rotation and offset after the mapping; default none.
+        #[serde(default, skip_serializing_if = "UvTransform::is_identity")]
+        uv: UvTransform,
+    },
+}
+
+fn uv_mapping() -> Mapping {
+    Mapping::Uv
+}
+
+fn default_max_anisotropy() -> f32 {
+    DEFAULT_MAX_ANISOTROPY
+}
+
+fn default_squares() -> (f32, f32) {
+    (8.0, 8.0)
+}
+
+fn default_checker_colors() -> (Rgb, Rgb) {
+    (Rgb::grey(0.8), Rgb::grey(0.05))
+}
+
+impl TextureDesc {
+    /// The mapping, for textures that have one.
+    #[must_use]
+    pub fn mapping(&self) -> Option<Mapping> {
+        match self {
+            Self::Constant(_) => None,
+            Self::Image { mapping, .. }
+            | Self::Checker { mapping, .. }
+            | Self::MeshMaterial { mapping, .. }
+            | Self::UvGrid { mapping, .. } => Some(*mapping),
+        }
+    }
+
+    /// Sets the filter of a texture that has one (images, mesh materials, the UV grid, the
+    /// checker).
+    pub fn set_filter(&mut self, f: Filter) {
+        match self {
+            Self::Constant(_) => {}
+            Self::Image { filter, .. }
+            | Self::Checker { filter, .. }
+            | Self::MeshMaterial { filter, .. }
+            | Self::UvGrid { filter, .. } => *filter = f,
+        }
+    }
+
+    /// The (u, v) transform, for textures that have one.
+    #[must_use]
+    pub fn uv_transform(&self) -> Option<UvTransform> {
+        match self {
+            Self::Constant(_) => None,
+            Self::Image { uv, .. }
+            | Self::Checker { uv, .. }
+            | Self::MeshMaterial { uv, .. }
+            | Self::UvGrid { uv, .. } => Some(*uv),
+        }
+    }
+
+    /// The (u, v) transform, mutably.
+    pub fn uv_transform_mut(&mut self) -> Option<&mut UvTransform> {
+        match self {
+            Self::Constant(_) => None,
+            Self::Image { uv, .. }
+            | Self::Checker { uv, .. }
+            | Self::MeshMaterial { uv, .. }
+            | Self::UvGrid { uv, .. } => Some(uv),
+        }
+    }
+
+    /// Sets the mapping of a texture that has one.
+    pub fn set_mapping(&mut self, m: Mapping) {
+        match self {
+            Self::Constant(_) => {}
+            Self::Image { mapping, .. }
+            | Self::Checker { mapping, .. }
+            | Self::MeshMaterial { mapping, .. }
+            | Self::UvGrid { mapping, .. } => *mapping = m,
+        }
+    }
+}
+
+/// The kinds of [`TextureDesc`], as the texture menu names them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(strum::VariantArray, strum::IntoStaticStr, strum::Display)]
+#[derive(strum::EnumString, strum::EnumMessage)]
+pub enum TextureKind {
+    /// [`TextureDesc::Constant`].
+    #[strum(message = "One colour everywhere.")]
+    Constant,
+    /// [`TextureDesc::Image`].
+    #[strum(message = "An image file read through a mapping.")]
+    Image,
+    /// [`TextureDesc::Checker`].
+    #[strum(message = "A procedural checkerboard in (u, v).")]
+    Checker,
+    /// [`TextureDesc::UvGrid`].
+    #[strum(
+        serialize = "UV grid",
+        message = "The labelled UV test grid: cells A1 (u = v = 0) to H8."
+    )]
+    UvGrid,
+    /// [`TextureDesc::MeshMaterial`].
+    #[strum(
+        serialize = "Mesh material",
+        message = "The image or colour the mesh file's material names (OBJ .mtl); meshes only."
+    )]
+    MeshMaterial,
+}
+
+impl crate::names::Named for TextureKind {
+    const WHAT: &'static str = "texture";
+}
+
+impl TextureKind {
+    /// The texture with a preset's defaults for every field it may leave out; an image starts
+    /// with no path.
+    #[must_use]
+    pub fn default_desc(self) -> TextureDesc {
+        match self {
+            Self::Constant => TextureDesc::Constant(Rgb::grey(0.7)),
+            Self::Image => TextureDesc::Image {
+                path: String::new(),
+                mapping: Mapping::default(),
+                filter: Filter::default(),
+                lookup: Lookup::default(),
+                wrap: Wrap::default(),
+                scale: one(),
+                srgb: yes(),
+                max_anisotropy: default_max_anisotropy(),
+                uv: UvTransform::IDENTITY,
+            },
+            Self::Checker => TextureDesc::Checker {
+                mapping: Mapping::default(),
+                squares: default_squares(),
+                colors: default_checker_colors(),
+                filter: Filter::default(),
+                uv: UvTransform::IDENTITY,
+            },
+            Self::UvGrid => TextureDesc::UvGrid {
+                mapping: Mapping::default(),
+                filter: Filter::default(),
+                wrap: Wrap::default(),
+                max_anisotropy: default_max_anisotropy(),
+                uv: UvTransform::IDENTITY,
+            },
+            Self::MeshMaterial => TextureDesc::MeshMaterial {
+                mapping: uv_mapping(),
+                filter: Filter::default(),
+                lookup: Lookup::default(),
+                wrap: Wrap::default(),
+                max_anisotropy: default_max_anisotropy(),
+                uv: UvTransform::IDENTITY,
+            },
+        }
+    }
+}
+
+impl TextureDesc {
+    /// Which kind of texture this is.
+    #[must_use]
+    pub const fn kind(&self) -> TextureKind {
+        match self {
+            Self::Constant(_) => TextureKind::Constant,
+            Self::Image { .. } => TextureKind::Image,
+            Self::Checker { .. } => TextureKind::Checker,
+            Self::UvGrid { .. } => TextureKind::UvGrid,
+            Self::MeshMaterial { .. } => TextureKind::MeshMaterial,
+        }
+    }
+
+    /// A texture of another kind with its defaults, keeping this one's mapping (but a mesh
+    /// material starts from the mesh's own (u, v)).
+    #[must_use]
+    pub fn converted(&self, kind: TextureKind) -> Self {
+        let mut t = kind.default_desc();
+        if let (Some(mapping), false) = (self.mapping(), kind == TextureKind::MeshMaterial) {
+            t.set_mapping(mapping);
+        }
+        if let (Some(uv), Some(to)) = (self.uv_transform(), t.uv_transform_mut()) {
+            *to = uv;
+        }
+        t
+    }
+}
+
+/// A texture of parameter `what`, its messages prefixed with the parameter's name
+/// (`ks.Image.scale: ...`).
+pub(super) fn param_texture(
+    what: &str,
+    t: &TextureDesc,
+    base: &Path,
+    cache: &mut AssetCache,
+) -> Result<Texture> {
+    texture(t, base, cache).map_err(|e| match e {
+        Error::Invalid { path, message } => Error::Invalid {
+            path,
+            message: format!("{what}.{message}"),
+        },
+        other => other,
+    })
+}
+
+/// The alpha channel of an `Image` texture, read through its mapping, filter, wrap and
+/// (u, v) transform like its colour would be.
+pub(super) fn alpha_texture(
+    t: &TextureDesc,
+    base: &Path,
+    cache: &mut AssetCache,
+) -> Result<Texture> {
+    let TextureDesc::Image {
+        path,
+        mapping,
+        filter,
+        lookup,
+        wrap,
+        max_anisotropy,
+        uv,
+        ..
+    } = t
+    else {
+        return Err(Error::invalid(
+            base,
+            format!("channel Alpha needs an Image texture, not {}", t.kind()),
+        ));
+    };
+    check_anisotropy("Image", *max_anisotropy).map_err(|m| Error::invalid(base, m))?;
+    let transform = uv_transform("Image", uv).map_err(|m| Error::invalid(base, m))?;
+    let image = cache.alpha(&base.join(path))?;
+    let mip = filter.needs_mip().then(|| cache.mip(&image));
+    Ok(Texture::Image(ImageTexture {
+        image,
+        mapping: *mapping,
+        filter: *filter,
+        lookup: *lookup,
+        wrap: *wrap,
+        scale: 1.0,
+        mip,
+        max_anisotropy: *max_anisotropy,
+        transform,
+    }))
+}
+
+pub(super) fn texture(t: &TextureDesc, base: &Path, cache: &mut AssetCache) -> Result<Texture> {
+    let invalid = |m: String| Error::invalid(base, m);
+    Ok(match t {
+        TextureDesc::Constant(c) => {
+            finite_non_negative("Constant", &c.to_array()).map_err(invalid)?;
+            Texture::Constant(*c)
+        }
+        TextureDesc::Image {
+            path,
+            mapping,
+            filter,
+            lookup,
+            wrap,
+            scale,
+            srgb,
+            max_anisotropy,
+            uv,
+        } => {
+            finite_non_negative("Image.scale", &[*scale]).map_err(invalid)?;
+            let transform = uv_transform("Image", uv).map_err(invalid)?;
+            check_anisotropy("Image", *max_anisotropy).map_err(invalid)?;
+            let image = cache.image(&base.join(path), *srgb)?;
+            let mip = filter.needs_mip().then(|| cache.mip(&image));
+            Texture::Image(ImageTexture {
+                image,
+                mapping: *mapping,
+                filter: *filter,
+                lookup: *lookup,
+                wrap: *wrap,
+                scale: *scale,
+                mip,
+                max_anisotropy: *max_anisotropy,
+                transform,
+            })
+        }
+        TextureDesc::Checker {
+            mapping,
+            squares,
+            colors,
+            filter,
+            uv,
+        } => {
+            let transform = uv_transform("Checker", uv).map_err(invalid)?;
+            let ok = |s: f32| s.is_finite() && s > 0.0 && s <= 1e6;
+            if !ok(squares.0) || !ok(squares.1) {
+                return Err(invalid(format!(
+                    "Checker.squares: {squares:?} must be positive and at most 1e6"
+                )));
+            }
+            finite_non_negative(
+                "Checker.colors",
+                &[colors.0.to_array(), colors.1.to_array()].concat(),
+            )
+            .map_err(invalid)?;
+            Texture::Checker(Checker {
+                mapping: *mapping,
+                squares: *squares,
+                colors: *colors,
+                filter: *filter,
+                transform,
+            })
+        }
+        TextureDesc::MeshMaterial { .. } => {
+            return Err(invalid(
+                "MeshMaterial: only a Mesh shape names a material".into(),
+            ));
+        }
+        TextureDesc::UvGrid {
+            mapping,
+            filter,
+            wrap,
+            max_anisotropy,
+            uv,
+        } => {
+            check_anisotropy("UvGrid", *max_anisotropy).map_err(invalid)?;
+            let transform = uv_transform("UvGrid", uv).map_err(invalid)?;
+            let image = cache.uv_grid();
+            let mip = filter.needs_mip().then(|| cache.mip(&image));
+            Texture::Image(ImageTexture {
+                image,
+                mapping: *mapping,
+                filter: *filter,
+                lookup: Lookup::Centred,
+                wrap: *wrap,
+                scale: 1.0,
+                mip,
+                max_anisotropy: *max_anisotropy,
+                transform,
+            })
+        }
+    })
+}
+
+/// The runtime (u, v) transform (`None` for the identity); the scale must be finite and at
+/// least 1e-6 in size on both axes, the rest finite.
+fn uv_transform(what: &str, t: &UvTransform) -> std::result::Result<Option<UvAffine>, String> {
+    let ok = |s: f32| s.is_finite() && s.abs() >= 1e-6 && s.abs() <= 1e6;
+    if !ok(t.scale.x) || !ok(t.scale.y) {
+        return Err(format!(
+            "{what}.uv.scale: {} must be non-zero, between 1e-6 and 1e6 in size",
+            t.scale
+        ));
+    }
+    if !t.rotate.is_finite() || !t.offset.is_finite() {
+        return Err(format!("{what}.uv: rotate and offset must be finite"));
+    }
+    Ok(t.affine())
+}
+
+fn check_anisotropy(what: &str, a: f32) -> std::result::Result<(), String> {
+    if (1.0..=MAX_ANISOTROPY_LIMIT).contains(&a) {
+        Ok(())
+    } else {
+        Err(format!(
+            "{what}.max_anisotropy: {a} is out of range (1 to {MAX_ANISOTROPY_LIMIT})"
+        ))
+    }
+}
+
+/// A texture in a few words, for the inspector: an image's file name, else its kind.
+pub(super) fn texture_words(t: &TextureDesc) -> String {
+    match t {
+        TextureDesc::Image { path, .. } => Path::new(path)
+            .file_name()
+            .map_or_else(|| path.clone(), |n| n.to_string_lossy().into_owned()),
+        TextureDesc::Constant(c) => format!("a constant {:?}", c.to_array()),
+        other => format!("a {} texture", other.kind()),
+    }
+}

@@ -1,0 +1,584 @@
+//! The immutable runtime [`Scene`] the renderer traces: intersection, the hit resolved in world
+//! space, its texture context, and the lecture's shading with shadows, clip maps, bump and normal
+//! maps and mirrors.
+
+use super::settings::RenderSettings;
+use crate::camera::Camera;
+use crate::geometry::{LocalHit, Object, Shape};
+use crate::mapping::Mapping;
+use crate::material::{Bump, Light, Material, NormalMap, Scalar, ShadePoint};
+use crate::math::{Ray, RayDifferential, Rgb, Vec3A, max_abs};
+use crate::texture::{TextureContext, View};
+
+/// Shadow-ray origins are pushed off the surface along its geometric normal by this fraction of
+/// the magnitude of the coordinates involved (hit point and the object's translation): about a
+/// hundred f32 ulps of the numbers the hit point was computed from. Hit points are reprojected
+/// onto the exact surface in object space, so the only error left is that of the transform,
+/// which scales the same way: the offset is scale-invariant (the same scene scaled by 1e-3 or
+/// 1e3 shadows the same) and clears self-intersection ("shadow acne").
+pub const SHADOW_OFFSET_RELATIVE: f32 = 1e-5;
+
+/// An immutable, ready-to-trace scene.
+#[derive(Clone, Debug)]
+pub struct Scene {
+    /// The objects with their world transforms, in preset order; [`SurfaceHit::object`]
+    /// indexes this.
+    pub objects: Vec<Object>,
+    /// Materials, indexed by `Object::material`.
+    pub materials: Vec<Material>,
+    /// Directional and point lights.
+    pub lights: Vec<Light>,
+    /// Ambient radiance, linear (`ambient.ls * ambient.color` of the preset).
+    pub ambient: Rgb,
+    /// Makes the primary rays, for a film of `settings.width` x `settings.height` pixels.
+    pub camera: Camera,
+    /// Resolution, sampling, exposure and view, checked against their ranges.
+    pub settings: RenderSettings,
+    /// Whether any texture needs ray differentials (computed only then).
+    pub needs_differentials: bool,
+    /// Per object (as `objects`), its clip map: where the surface exists (alpha), if it has one.
+    pub clips: Vec<Option<Scalar>>,
+    /// Whether any object has a clip map; without one every ray takes the solid-surface path.
+    pub has_clips: bool,
+    /// Per object (as `objects`), its bump map, if it has one.
+    pub bumps: Vec<Option<Bump>>,
+    /// Per object (as `objects`), its normal map, if it has one (never beside a bump map).
+    pub normal_maps: Vec<Option<NormalMap>>,
+    /// Whether any object has a bump or normal map; without one no hit looks them up.
+    pub has_perturbations: bool,
+}
+
+/// The most clip-mapped surfaces one ray (or shadow ray) passes through before it stops: what
+/// lies behind more than this many partly transparent layers is taken as black (or, for a
+/// shadow ray, as blocked).
+pub const MAX_CLIP_LAYERS: u32 = 16;
+
+/// A hit resolved in world space, with what the shading step needs.
+#[derive(Clone, Copy, Debug)]
+pub struct SurfaceHit {
+    /// Index of the object hit.
+    pub object: usize,
+    /// The hit in object space.
+    pub local: LocalHit,
+    /// World-space hit point.
+    pub p: Vec3A,
+    /// World-space geometric normal, facing the incoming ray.
+    pub ng: Vec3A,
+    /// World-space shading normal, on the same side as `ng`.
+    pub ns: Vec3A,
+    /// Unit vector toward the viewer.
+    pub wo: Vec3A,
+    /// Whether the ray met the outside of the surface (its outward normal faced the ray); a
+    /// sphere or capped cylinder hit from inside has this false.
+    pub front_face: bool,
+}
+
+impl Scene {
+    /// The nearest object hit by `ray` within (0, `t_max`).
+    #[must_use]
+    #[inline]
+    pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<(usize, LocalHit)> {
+        let mut best = None;
+        let mut t_best = t_max;
+        for (i, obj) in self.objects.iter().enumerate() {
+            if let Some(h) = obj.intersect(ray, t_best) {
+                t_best = h.t;
+                best = Some((i, h));
+            }
+        }
+        best
+    }
+
+    /// Whether anything that casts shadows lies on `ray` within (0, `t_max`).
+    #[must_use]
+    #[inline]
+    pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
+        self.objects
+            .iter()
+            .any(|o| o.casts_shadows && o.occludes(ray, t_max))
+    }
+
+    /// Whether anything that casts shadows, other than object `skip`, lies on `ray` within
+    /// (0, `t_max`).
+    #[must_use]
+    #[inline]
+    pub fn occluded_except(&self, ray: &Ray, t_max: f32, skip: usize) -> bool {
+        self.objects
+            .iter()
+            .enumerate()
+            .any(|(i, o)| i != skip && o.casts_shadows && o.intersect(ray, t_max).is_some())
+    }
+
+    /// Finds the nearest hit and resolves it in world space.
+    #[must_use]
+    #[inline]
+    pub fn hit(&self, ray: &Ray) -> Option<SurfaceHit> {
+        let (object, local) = self.intersect(ray, f32::INFINITY)?;
+        Some(self.resolve(object, local, ray))
+    }
+
+    /// An object-space hit of `object` by `ray` resolved in world space.
+    #[must_use]
+    #[inline]
+    pub fn resolve(&self, object: usize, local: LocalHit, ray: &Ray) -> SurfaceHit {
+        let obj = &self.objects[object];
+        let p = obj.point_to_world(local.p);
+        let mut ng = obj.normal_to_world(local.n);
+        let mut ns = if local.ns == local.n {
+            ng
+        } else {
+            obj.normal_to_world(local.ns)
+        };
+        let wo = (-ray.dir).normalize_or(Vec3A::Z);
+        // Two-sided surfaces: shade the side the ray came from.
+        let back_face = ng.dot(wo) < 0.0;
+        if back_face {
+            ng = -ng;
+            ns = -ns;
+        }
+        SurfaceHit {
+            object,
+            local,
+            p,
+            ng,
+            ns,
+            wo,
+            front_face: !back_face,
+        }
+    }
+
+    /// The texture context of a hit: object-space point and, when a filter needs them, the
+    /// object-space offsets to the neighbouring pixels' hits.
+    #[must_use]
+    #[inline(always)]
+    pub fn texture_context(
+        &self,
+        hit: &SurfaceHit,
+        diff: Option<&RayDifferential>,
+    ) -> TextureContext {
+        let obj = &self.objects[hit.object];
+        let (dpdx, dpdy) = match diff {
+            Some(d) if self.needs_differentials => {
+                let d = if obj.identity {
+                    *d
+                } else {
+                    d.transformed(&obj.object_from_world)
+                };
+                d.footprint_on_plane(hit.local.p, hit.local.n)
+            }
+            _ => (Vec3A::ZERO, Vec3A::ZERO),
+        };
+        self.texture_context_at(hit, dpdx, dpdy)
+    }
+
+    /// The texture context of a hit given the object-space offsets `dpdx`, `dpdy` to the
+    /// neighbouring pixels' hits (zero: no footprint). A mesh's dp/du and dp/dv are computed
+    /// here, and only when there is a footprint to map through them.
+    #[must_use]
+    #[inline]
+    pub fn texture_context_at(&self, hit: &SurfaceHit, dpdx: Vec3A, dpdy: Vec3A) -> TextureContext {
+        let obj = &self.objects[hit.object];
+        let footprint = dpdx != Vec3A::ZERO || dpdy != Vec3A::ZERO;
+        let dpduv = match (&obj.shape, hit.local.dpduv) {
+            (Shape::Mesh(m), None) if footprint => m.mesh.uv_derivatives(hit.local.prim),
+            (_, d) => d,
+        };
+        let mut ctx = TextureContext {
+            p: hit.local.p,
+            dpdx,
+            dpdy,
+            shape_uv: hit.local.uv.map(|uv| (uv, dpduv)),
+            natural: natural_mapping(&obj.shape),
+        };
+        if let Shape::Mesh(m) = &obj.shape {
+            // Generated mappings see the model fitted into the generic objects' [-1, 1]^3.
+            let (p, s) = m.mesh.to_mapping_frame(ctx.p);
+            ctx.p = p;
+            ctx.dpdx *= s;
+            ctx.dpdy *= s;
+            ctx.shape_uv = ctx
+                .shape_uv
+                .map(|(uv, d)| (uv, d.map(|(du, dv)| (du * s, dv * s))));
+        }
+        ctx
+    }
+
+    /// Radiance along a camera ray: the lecture's shading (ambient + direct light with shadows,
+    /// or emission), no global illumination. Never NaN or infinite.
+    #[must_use]
+    #[inline]
+    pub fn trace(&self, ray: &Ray, diff: Option<&RayDifferential>) -> Rgb {
+        self.trace_keyed(ray, diff).0
+    }
+
+    /// Like [`Scene::trace`], with an edge key for adaptive sampling: neighbouring pixels
+    /// whose keys differ straddle an object or shadow edge. The key holds the object hit
+    /// (0 for the background) in the low 16 bits, one bit per light whose shadow ray was
+    /// blocked above them, and in bit 31 whether the texture there was filtered over the pixel's
+    /// footprint (so its contrast is already antialiased).
+    #[must_use]
+    #[inline]
+    pub fn trace_keyed(&self, ray: &Ray, diff: Option<&RayDifferential>) -> (Rgb, u32) {
+        let Some(hit) = self.hit(ray) else {
+            return (self.settings.background, 0);
+        };
+        let (l, key) = self.shade_or_clip(ray, &hit, diff, 0, 0);
+        (if l.is_finite() { l } else { Rgb::BLACK }, key)
+    }
+
+    /// Shades a resolved hit.
+    #[must_use]
+    #[inline]
+    pub fn shade(&self, hit: &SurfaceHit, diff: Option<&RayDifferential>) -> Rgb {
+        self.shade_keyed(hit, diff).0
+    }
+
+    /// Shades a resolved hit and returns its edge key (see [`Scene::trace_keyed`]).
+    #[must_use]
+    #[inline]
+    pub fn shade_keyed(&self, hit: &SurfaceHit, diff: Option<&RayDifferential>) -> (Rgb, u32) {
+        self.shade_at_depth(hit, diff, 0)
+    }
+
+    /// Radiance along a ray that has already been mirrored `depth` times (0 for a camera ray).
+    fn trace_at_depth(&self, ray: &Ray, diff: Option<&RayDifferential>, depth: u32) -> Rgb {
+        self.radiance_keyed(ray, diff, depth, 0).0
+    }
+
+    /// Radiance and edge key along a ray mirrored `depth` times that has passed `layer`
+    /// clip-mapped surfaces. A clip-mapped hit with alpha `a` below 1 blends its shading with
+    /// what lies behind it: `a L_surface + (1 - a) L_behind` (with a filtered alpha, a soft
+    /// edge at one sample per pixel).
+    #[inline(never)]
+    fn radiance_keyed(
+        &self,
+        ray: &Ray,
+        diff: Option<&RayDifferential>,
+        depth: u32,
+        layer: u32,
+    ) -> (Rgb, u32) {
+        let Some(hit) = self.hit(ray) else {
+            return (self.settings.background, 0);
+        };
+        self.shade_or_clip(ray, &hit, diff, depth, layer)
+    }
+
+    /// Shades `hit`, blending in what lies behind it where it has a clip map below 1.
+    #[inline]
+    fn shade_or_clip(
+        &self,
+        ray: &Ray,
+        hit: &SurfaceHit,
+        diff: Option<&RayDifferential>,
+        depth: u32,
+        layer: u32,
+    ) -> (Rgb, u32) {
+        if self.has_clips
+            && let Some(clip) = &self.clips[hit.object]
+        {
+            return self.clipped(ray, hit, clip, diff, depth, layer);
+        }
+        self.shade_at_depth(hit, diff, depth)
+    }
+
+    /// [`Scene::shade_or_clip`] for a clip-mapped hit (kept out of line: the solid path, which
+    /// every scene without clip maps takes, stays small).
+    #[cold]
+    #[inline(never)]
+    fn clipped(
+        &self,
+        ray: &Ray,
+        hit: &SurfaceHit,
+        clip: &Scalar,
+        diff: Option<&RayDifferential>,
+        depth: u32,
+        layer: u32,
+    ) -> (Rgb, u32) {
+        let a = clip.eval(&self.texture_context(hit, diff)).clamp(0.0, 1.0);
+        if a >= 1.0 {
+            return self.shade_at_depth(hit, diff, depth);
+        }
+        let behind = if layer + 1 < MAX_CLIP_LAYERS {
+            let origin = hit.p + ray.dir.normalize_or_zero() * self.offset_at(hit);
+            self.radiance_keyed(&Ray::new(origin, ray.dir), diff, depth, layer + 1)
+        } else {
+            (Rgb::BLACK, 0)
+        };
+        if a <= 0.0 {
+            return behind;
+        }
+        let (l, key) = self.shade_at_depth(hit, diff, depth);
+        (l * a + behind.0 * (1.0 - a), key)
+    }
+
+    /// The shading normal of `hit` after its object's bump or normal map, or `None` if it has
+    /// neither (the common case: one flag tested, no per-object lookup).
+    #[inline]
+    fn perturbed_normal_at(&self, hit: &SurfaceHit, ctx: &TextureContext) -> Option<Vec3A> {
+        if !self.has_perturbations {
+            return None;
+        }
+        match (&self.bumps[hit.object], &self.normal_maps[hit.object]) {
+            (Some(b), _) => Some(self.bumped_normal(hit, b, ctx)),
+            (None, Some(m)) => Some(self.normal_mapped(hit, m, ctx)),
+            (None, None) => None,
+        }
+    }
+
+    /// The world shading normal of `hit` tilted by bump map `b`: on the viewer's side of the
+    /// surface, and, if the tilt would turn it away from the viewer (which would shade black),
+    /// bent back until it faces the viewer just enough (pbrt's fix for shading normals).
+    #[must_use]
+    #[inline(never)]
+    pub fn bumped_normal(&self, hit: &SurfaceHit, b: &Bump, ctx: &TextureContext) -> Vec3A {
+        self.perturbed_normal(hit, |n| b.perturb(ctx, n))
+    }
+
+    /// The world shading normal of `hit` read from normal map `m`, on the viewer's side as
+    /// [`Scene::bumped_normal`]'s.
+    #[must_use]
+    #[inline(never)]
+    pub fn normal_mapped(&self, hit: &SurfaceHit, m: &NormalMap, ctx: &TextureContext) -> Vec3A {
+        self.perturbed_normal(hit, |n| m.perturb(ctx, n))
+    }
+
+    /// The world shading normal of `hit` after `perturb` turns its object-space normal: on the
+    /// viewer's side, bent back towards the viewer if it would face away.
+    fn perturbed_normal(&self, hit: &SurfaceHit, perturb: impl Fn(Vec3A) -> Vec3A) -> Vec3A {
+        let obj = &self.objects[hit.object];
+        let n_local = if hit.local.ns == hit.local.n {
+            hit.local.n
+        } else {
+            hit.local.ns
+        };
+        let tilted = perturb(n_local);
+        if tilted == n_local {
+            return hit.ns;
+        }
+        let side = if hit.front_face { 1.0 } else { -1.0 };
+        let mut ns = (obj.normal_to_world(tilted) * side).normalize_or(hit.ns);
+        let facing = ns.dot(hit.wo);
+        if facing < 1e-3 {
+            ns = (ns + (1e-3 - facing) * hit.wo).normalize_or(hit.ns);
+        }
+        if ns.is_finite() { ns } else { hit.ns }
+    }
+
+    /// How far rays leave a hit point: [`SHADOW_OFFSET_RELATIVE`] of the coordinates' size.
+    #[inline]
+    fn offset_at(&self, hit: &SurfaceHit) -> f32 {
+        let obj = &self.objects[hit.object];
+        SHADOW_OFFSET_RELATIVE
+            * (max_abs(hit.p) + max_abs(obj.world_from_object.translation)).max(f32::MIN_POSITIVE)
+    }
+
+    /// The share of light that passes along a shadow ray within (0, `t_max`), ignoring object
+    /// `skip`: 0 behind a solid occluder, `1 - alpha` through each clip-mapped surface met
+    /// (its alpha point-sampled where the ray crosses it), so a cut-out casts a cut-out shadow.
+    #[must_use]
+    pub fn transmittance(&self, ray: &Ray, t_max: f32, skip: usize) -> f32 {
+        let mut tr = 1.0;
+        for (i, o) in self.objects.iter().enumerate() {
+            if i == skip || !o.casts_shadows {
+                continue;
+            }
+            let Some(clip) = &self.clips[i] else {
+                if o.intersect(ray, t_max).is_some() {
+                    return 0.0;
+                }
+                continue;
+            };
+            let mut r = *ray;
+            let mut t_left = t_max;
+            for _ in 0..MAX_CLIP_LAYERS {
+                let Some(h) = o.intersect(&r, t_left) else {
+                    break;
+                };
+                let hit = self.resolve(i, h, &r);
+                let ctx = self.texture_context_at(&hit, Vec3A::ZERO, Vec3A::ZERO);
+                tr *= 1.0 - clip.eval(&ctx).clamp(0.0, 1.0);
+                if tr <= 0.0 {
+                    return 0.0;
+                }
+                let origin = hit.p + r.dir.normalize_or_zero() * self.offset_at(&hit);
+                let len = r.dir.length();
+                if len <= 0.0 {
+                    break;
+                }
+                t_left -= (origin - r.origin).length() / len;
+                if t_left <= 0.0 {
+                    break;
+                }
+                r = Ray::new(origin, r.dir);
+            }
+        }
+        tr
+    }
+
+    /// Shades a hit reached after `depth` mirror bounces; a mirror adds the radiance along its
+    /// reflected ray while `depth` is below `settings.reflection_depth`.
+    #[inline]
+    fn shade_at_depth(
+        &self,
+        hit: &SurfaceHit,
+        diff: Option<&RayDifferential>,
+        depth: u32,
+    ) -> (Rgb, u32) {
+        let obj = &self.objects[hit.object];
+        let material = &self.materials[obj.material];
+        let ctx = self.texture_context(hit, diff);
+        let bumped;
+        let hit = match self.perturbed_normal_at(hit, &ctx) {
+            Some(ns) => {
+                bumped = SurfaceHit { ns, ..*hit };
+                &bumped
+            }
+            None => hit,
+        };
+        let view = self.settings.view;
+        let filtered = diff.is_some() && material.texture().needs_differentials();
+        let mut key = (hit.object as u32 + 1) & 0xffff | u32::from(filtered) << 31;
+        if matches!(view, View::Uv | View::MipLevel) {
+            return (material.texture().debug_color(&ctx, view, Rgb::BLACK), key);
+        }
+        let sp = material.shade_point(&ctx, self.ambient);
+        if !material.is_lit() {
+            return (material.texture().debug_color(&ctx, view, sp.base), key);
+        }
+        let mut l = sp.base;
+        let offset = SHADOW_OFFSET_RELATIVE
+            * (max_abs(hit.p) + max_abs(obj.world_from_object.translation)).max(f32::MIN_POSITIVE);
+        // A shadow ray leaves the surface on the side it was hit from (ng . wi > 0). A flat
+        // shape cannot be met again that way, nor a closed convex one hit from outside: skip
+        // the object itself (for the Earth, the whole shadow test). An open cylinder, or a
+        // sphere seen from inside, can still shadow itself.
+        let self_shadows = match obj.shape {
+            Shape::Plane | Shape::Rectangle | Shape::Disk => false,
+            // Hit from inside when the facing normal is the inward one.
+            Shape::Sphere | Shape::Cylinder { capped: true } => !hit.front_face,
+            // An open cylinder and a mesh (concave in general) can shadow themselves.
+            Shape::Cylinder { capped: false } | Shape::Mesh(_) => true,
+        };
+        let skip = if self_shadows { usize::MAX } else { hit.object };
+        // Summed n . wi of the lights that reach the point, for a glow (only then).
+        let glows = sp.glow.is_some();
+        let mut lit = 0.0;
+        for (i, light) in self.lights.iter().enumerate() {
+            let (wi, dist, li, shadows) = light.incident(hit.p);
+            if hit.ns.dot(wi) <= 0.0 || hit.ng.dot(wi) <= 0.0 {
+                continue;
+            }
+            if shadows {
+                let origin = hit.p + hit.ng * offset;
+                let t_max = if dist.is_finite() {
+                    dist - offset
+                } else {
+                    f32::INFINITY
+                };
+                if self.has_clips {
+                    let tr = self.transmittance(&Ray::new(origin, wi), t_max, skip);
+                    if tr <= 0.0 {
+                        key |= (1 << (16 + i.min(14))) as u32;
+                        continue;
+                    }
+                    l += sp.direct(hit.ns, hit.wo, wi, li) * tr;
+                    if glows {
+                        lit += hit.ns.dot(wi) * tr;
+                    }
+                    continue;
+                }
+                if self.occluded_except(&Ray::new(origin, wi), t_max, skip) {
+                    key |= (1 << (16 + i.min(14))) as u32;
+                    continue;
+                }
+            }
+            l += sp.direct(hit.ns, hit.wo, wi, li);
+            if glows {
+                lit += hit.ns.dot(wi);
+            }
+        }
+        if let Some(glow) = sp.glow {
+            l += glow * ShadePoint::glow_weight(lit);
+        }
+        if let Some(mirror) = sp.mirror
+            && depth < self.settings.reflection_depth
+        {
+            l += mirror * self.reflected(hit, diff, offset, depth);
+        }
+        let l = match view {
+            View::Shaded => l,
+            _ => material.texture().debug_color(&ctx, view, l),
+        };
+        (l, key)
+    }
+}
+
+impl Scene {
+    /// Radiance along the mirror direction at `hit` (the book's `Reflective`, a perfect
+    /// specular BRDF `kr cr / (n . wi)`, so the cosine cancels). When the hit carries ray
+    /// differentials they are mirrored too (pbrt's specular reflection differentials: the
+    /// offset rays leave from the neighbouring pixels' hits, mirrored about the normal there),
+    /// so a texture seen in a mirror is filtered over its true footprint.
+    #[cold]
+    #[inline(never)]
+    fn reflected(
+        &self,
+        hit: &SurfaceHit,
+        diff: Option<&RayDifferential>,
+        offset: f32,
+        depth: u32,
+    ) -> Rgb {
+        let (n, wo) = (hit.ns, hit.wo);
+        let cos = n.dot(wo);
+        let wi = (2.0 * cos * n - wo).normalize_or(hit.ng);
+        // Leave on the side the reflected ray goes to.
+        let side = if wi.dot(hit.ng) >= 0.0 { 1.0 } else { -1.0 };
+        let ray = Ray::new(hit.p + hit.ng * (offset * side), wi);
+        let mirrored = diff.map(|d| {
+            let (dpdx, dpdy) = d.footprint_on_plane(hit.p, hit.ng);
+            let mirror = |dp: Vec3A, dir: Vec3A| {
+                let dn = self.normal_change(hit, dp);
+                let dwo = -dir.normalize_or(-wo) - wo;
+                let ddn = dwo.dot(n) + wo.dot(dn);
+                let dir = wi - dwo + 2.0 * (cos * dn + ddn * n);
+                (hit.p + dp, if dir.is_finite() { dir } else { wi })
+            };
+            let (rx_origin, rx_dir) = mirror(dpdx, d.rx_dir);
+            let (ry_origin, ry_dir) = mirror(dpdy, d.ry_dir);
+            RayDifferential {
+                rx_origin,
+                rx_dir,
+                ry_origin,
+                ry_dir,
+            }
+        });
+        self.trace_at_depth(&ray, mirrored.as_ref(), depth + 1)
+    }
+
+    /// The change of the world shading normal from `hit` to the point `dp` away on its tangent
+    /// plane: exact for spheres and cylinder walls (whose normals follow the point), zero for
+    /// flat shapes and meshes (flat per triangle; smooth meshes are treated as flat here).
+    fn normal_change(&self, hit: &SurfaceHit, dp: Vec3A) -> Vec3A {
+        let obj = &self.objects[hit.object];
+        let q = hit.local.p + obj.object_from_world.transform_vector3a(dp);
+        let local = match obj.shape {
+            Shape::Sphere => q,
+            Shape::Cylinder { .. } if hit.local.n.y.abs() < 0.5 => Vec3A::new(q.x, 0.0, q.z),
+            _ => return Vec3A::ZERO,
+        };
+        let side = if hit.front_face { 1.0 } else { -1.0 };
+        let n = (obj.normal_to_world(local.normalize_or(hit.local.n)) * side).normalize_or(hit.ns);
+        let dn = n - hit.ns;
+        if dn.is_finite() { dn } else { Vec3A::ZERO }
+    }
+}
+
+/// The shape's own parameterisation, which [`Mapping::Uv`] falls back to.
+#[must_use]
+pub const fn natural_mapping(shape: &Shape) -> Mapping {
+    match shape {
+        Shape::Sphere | Shape::Mesh(_) => Mapping::Spherical,
+        Shape::Cylinder { .. } => Mapping::Cylindrical,
+        Shape::Plane | Shape::Rectangle | Shape::Disk => Mapping::Rectangular,
+    }
+}

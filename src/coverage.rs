@@ -19,7 +19,6 @@ use crate::texture::{Filter, ImageTexture, Texture};
 use rayon::prelude::*;
 use std::collections::BTreeMap;
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::{Arc, Mutex, PoisonError};
 
 /// Iso-line spacing by default: lines at u, v = k / 8.
 pub const DEFAULT_ISO_DIVISIONS: u32 = 8;
@@ -559,52 +558,6 @@ fn fraction(k: u32, n: u32) -> String {
         "1".into()
     } else {
         format!("{}/{}", k / a, n / a)
-    }
-}
-
-/// A computation on the render pool whose result the window polls: dropping it (or starting a
-/// newer one) cancels it.
-pub struct Background<T> {
-    cancel: Arc<AtomicBool>,
-    slot: Arc<Mutex<Option<T>>>,
-}
-
-impl<T: Send + 'static> Background<T> {
-    /// Runs `work` on the shared pool; `work` should return `None` soon after its flag is set.
-    ///
-    /// # Errors
-    /// No worker pool could be had.
-    pub fn spawn(
-        work: impl FnOnce(&AtomicBool) -> Option<T> + Send + 'static,
-    ) -> Result<Self, PoolError> {
-        let pool = thread_pool(0)?;
-        let cancel = Arc::new(AtomicBool::new(false));
-        let slot = Arc::new(Mutex::new(None));
-        let (c, s) = (cancel.clone(), slot.clone());
-        pool.spawn(move || {
-            // A panic here must not abort the process (rayon would): it leaves no result.
-            let out = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| work(&c)));
-            if let Ok(Some(v)) = out
-                && !c.load(Ordering::Relaxed)
-            {
-                *s.lock().unwrap_or_else(PoisonError::into_inner) = Some(v);
-            }
-        });
-        Ok(Self { cancel, slot })
-    }
-
-    /// The result, once (`None` while running, after it was taken, or if it was cancelled).
-    pub fn take(&self) -> Option<T> {
-        self.slot
-            .lock()
-            .unwrap_or_else(PoisonError::into_inner)
-            .take()
-    }
-}
-
-impl<T> Drop for Background<T> {
-    fn drop(&mut self) {
-        self.cancel.store(true, Ordering::Relaxed);
     }
 }
 

@@ -1,19 +1,24 @@
 //! The application state and its frame-by-frame layout: menus, scene panel, inspector, viewport,
-//! status line. Each panel lives in its own file; this one owns the scene and the render jobs.
+//! status line. Each panel lives in its own file; the scene, its history and its builds are the
+//! [`Document`]'s, the render shown is the [`Viewer`]'s, and what the panels ask for is a
+//! [`Command`], carried out once the panels are drawn; then the scene is rebuilt, at most once
+//! a frame, whatever changed it.
 
+use super::command::Command;
 use super::compare::{AbSplit, SpeedPanel};
-use super::files::{Browser, FileAction, Files};
+use super::document::{Document, Recipe};
+use super::files::{Browser, Files};
 use super::help;
-use super::history::{self, Gesture, Gestures, History};
+use super::history::{Gesture, Gestures, History};
 use super::inspector::Inspector;
-use super::lessons::{LessonAction, LessonsPanel};
-use super::live::{Latency, LiveImage};
+use super::lessons::LessonsPanel;
 use super::scene_panel::ScenePanel;
 use super::texture_panel::TexturePanel;
-use super::viewport::{self, ViewEdit};
+use super::viewer::Viewer;
+use super::viewport;
 use crate::math::Vec2;
-use crate::render::{DisplayImage, Generation, RenderJob, RenderOptions};
-use crate::scene::{AssetCache, CameraDesc, Scene, SceneDesc, build_scene, read_preset_or_png};
+use crate::render::DisplayImage;
+use crate::scene::SceneDesc;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
@@ -55,24 +60,12 @@ impl Prefs {
     }
 }
 
-/// The explorer: the scene being edited, the render job showing it, and the panels.
+/// The explorer: the document being edited, the render showing it, and the panels.
 pub struct ExplorerApp {
-    /// The scene the panels edit, unsaved edits included; an edit that fails to build is rolled
-    /// back to the last description that built. `None` until a preset opens.
-    pub(super) desc: Option<SceneDesc>,
-    /// The last description that built (restored when an edit fails).
-    good_desc: Option<SceneDesc>,
-    /// The description as last opened or saved (for the unsaved-changes prompt).
-    pub(super) saved_desc: Option<SceneDesc>,
-    /// The camera as opened, for "reset view".
-    home_camera: Option<CameraDesc>,
-    /// The file the scene came from; asset paths are relative to it.
-    pub(super) path: PathBuf,
-    pub(super) cache: AssetCache,
-    generation: Generation,
-    job: Option<RenderJob>,
-    scene: Option<Arc<Scene>>,
-    live: LiveImage,
+    /// The scene, its history, its file and its builds.
+    pub(super) doc: Document,
+    /// The scene shown and its render.
+    pub(super) viewer: Viewer,
     /// Render at this fraction of the preset's resolution (a view setting, not saved).
     pub(super) resolution_scale: f32,
     pub(super) error: Option<String>,
@@ -85,12 +78,10 @@ pub struct ExplorerApp {
     pub(super) speed: SpeedPanel,
     pub(super) files: Files,
     pub(super) lessons: LessonsPanel,
-    /// Running mean of the time between frames while rendering (seconds).
+    /// Running mean of the time between frames while rendering or building (seconds).
     frame_time: f32,
     /// Running mean of the time `ui()` itself takes (seconds): the rest of a frame is painting.
     layout_time: f32,
-    /// Undo and redo over every change of `desc`, whichever panel made it.
-    history: History<SceneDesc>,
     gestures: Gestures,
     /// Whether a camera move alone counts as an unsaved change (off: orbiting does not make
     /// switching presets ask to save; *Save* still writes the camera).
@@ -99,18 +90,6 @@ pub struct ExplorerApp {
     pub(super) shortcuts_open: bool,
     /// The window title last sent, so it is sent only when it changes.
     title_sent: String,
-    /// `TEXPLORE_LATENCY=1`: where the time goes from an edit to its first preview.
-    latency: Latency,
-    /// The window's context once a frame has run: a new job asks it for a repaint as soon as
-    /// its first preview is published.
-    ctx: Option<egui::Context>,
-}
-
-/// An Edit-menu command.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum EditCommand {
-    Undo,
-    Redo,
 }
 
 impl ExplorerApp {
@@ -124,16 +103,8 @@ impl ExplorerApp {
     #[must_use]
     pub fn with_options(path: PathBuf, options: AppOptions) -> Self {
         let mut app = Self {
-            desc: None,
-            good_desc: None,
-            saved_desc: None,
-            home_camera: None,
-            path,
-            cache: AssetCache::new(),
-            generation: Generation::new(),
-            job: None,
-            scene: None,
-            live: LiveImage::new("render"),
+            doc: Document::new(path),
+            viewer: Viewer::default(),
             resolution_scale: 1.0,
             error: None,
             notice: None,
@@ -146,13 +117,10 @@ impl ExplorerApp {
             lessons: LessonsPanel::default(),
             frame_time: FRAME_INTERVAL.as_secs_f32(),
             layout_time: 0.0,
-            history: History::default(),
             gestures: Gestures::default(),
             camera_is_unsaved: false,
             shortcuts_open: false,
             title_sent: String::new(),
-            latency: Latency::from_env(),
-            ctx: None,
         };
         if let Some(lesson) = &options.lesson {
             let dir = lesson.file.parent().unwrap_or(Path::new("."));
@@ -162,7 +130,7 @@ impl ExplorerApp {
             // viewport was left a third of the window. View > Inspector brings it back.
             app.inspector.open = false;
         }
-        let path = app.path.clone();
+        let path = app.doc.path.clone();
         app.open_file(&path);
         app
     }
@@ -188,58 +156,23 @@ impl ExplorerApp {
     /// What [`eframe::App::save`] keeps.
     #[must_use]
     pub fn prefs(&self) -> Prefs {
+        let path = &self.doc.path;
         Prefs {
-            last_scene: Some(std::path::absolute(&self.path).unwrap_or_else(|_| self.path.clone())),
+            last_scene: Some(std::path::absolute(path).unwrap_or_else(|_| path.clone())),
             camera_is_unsaved: self.camera_is_unsaved,
-        }
-    }
-
-    /// Opens a preset or a texplore PNG, replacing the scene; on an error the current scene
-    /// stays and the message shows.
-    pub fn open_file(&mut self, path: &Path) {
-        let ok = self.open_file_inner(path);
-        self.lessons.opened(path, ok, self.desc.as_ref());
-    }
-
-    fn open_file_inner(&mut self, path: &Path) -> bool {
-        match read_preset_or_png(path) {
-            Ok(desc) => {
-                // Try the new scene; if it does not build (a missing image), keep the old one.
-                let old_desc = self.desc.replace(desc.clone());
-                let old_good = self.good_desc.take();
-                let old_path = std::mem::replace(&mut self.path, path.to_path_buf());
-                if self.restart() {
-                    self.home_camera = Some(desc.camera);
-                    self.saved_desc = Some(desc);
-                    self.scene_panel.scene_replaced();
-                    self.inspector.clear();
-                    self.files.add_recent(path);
-                    self.history.reset(self.desc.as_ref());
-                    true
-                } else {
-                    self.desc = old_desc;
-                    self.good_desc = old_good;
-                    self.path = old_path;
-                    false
-                }
-            }
-            Err(e) => {
-                self.error = Some(e.to_string());
-                false
-            }
         }
     }
 
     /// The scene with the window's edits, saved or not (`None` until a preset opens).
     #[must_use]
     pub fn desc(&self) -> Option<&SceneDesc> {
-        self.desc.as_ref()
+        self.doc.desc.as_ref()
     }
 
     /// The file the scene came from.
     #[must_use]
     pub fn path(&self) -> &Path {
-        &self.path
+        &self.doc.path
     }
 
     /// The confirmation shown in the status line, if any ("Screenshot saved to ...").
@@ -264,7 +197,7 @@ impl ExplorerApp {
     /// move alone not counting unless *Edit → Camera moves are unsaved changes* is on.
     #[must_use]
     pub fn is_dirty(&self) -> bool {
-        match (&self.desc, &self.saved_desc) {
+        match (&self.doc.desc, &self.doc.saved) {
             (Some(now), Some(saved)) if !self.camera_is_unsaved => {
                 let mut now = now.clone();
                 now.camera = saved.camera;
@@ -278,6 +211,7 @@ impl ExplorerApp {
     #[must_use]
     pub fn title(&self) -> String {
         let name = self
+            .doc
             .path
             .file_name()
             .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
@@ -285,15 +219,12 @@ impl ExplorerApp {
         format!("{mark}{name} — texplore")
     }
 
-    /// Edits the scene: `f` changes the description, and if anything changed the scene is
-    /// rebuilt and re-rendered (an edit that does not build is rolled back and its error
-    /// shown). The change is an undo step like any other. For panels that edit the scene.
+    /// Edits the scene: `f` changes the description; at the end of the next frame the scene is
+    /// rebuilt off the UI thread and rendered again (an edit that does not build is rolled back
+    /// and its error shown). The change is an undo step like any other.
     pub fn edit_scene(&mut self, f: impl FnOnce(&mut SceneDesc)) {
-        let Some(desc) = &mut self.desc else { return };
-        let before = desc.clone();
-        f(desc);
-        if *desc != before {
-            self.restart();
+        if let Some(desc) = &mut self.doc.desc {
+            f(desc);
         }
     }
 
@@ -306,89 +237,38 @@ impl ExplorerApp {
     /// What *Edit → Undo* would undo ("mapping of Earth", "camera"...), if anything.
     #[must_use]
     pub fn undo_label(&self) -> Option<&str> {
-        self.history.undo_label()
+        self.doc.history.undo_label()
     }
 
     /// What *Edit → Redo* would redo, if anything.
     #[must_use]
     pub fn redo_label(&self) -> Option<&str> {
-        self.history.redo_label()
-    }
-
-    /// Records this frame's change of the scene, if any, as an undo step (or as part of the
-    /// step of the gesture it continues).
-    fn record(&mut self, gesture: Option<Gesture>) {
-        self.history
-            .observe(self.desc.as_ref(), gesture, history::describe);
-    }
-
-    /// Undoes or redoes one step and re-renders.
-    fn run_edit(&mut self, command: EditCommand) {
-        self.record(None);
-        let Some(current) = self.desc.clone() else {
-            return;
-        };
-        let kept = self.history.clone();
-        let restored = match command {
-            EditCommand::Undo => self.history.undo(&current),
-            EditCommand::Redo => self.history.redo(&current),
-        };
-        let Some(restored) = restored else { return };
-        let objects_before = current.objects.len();
-        // The object that came back or went away is the one to look at.
-        let changed_object = restored
-            .objects
-            .iter()
-            .zip(&current.objects)
-            .position(|(a, b)| a != b)
-            .unwrap_or(restored.objects.len().min(objects_before));
-        let count_changed = restored.objects.len() != objects_before;
-        self.desc = Some(restored);
-        if self.restart() {
-            if count_changed {
-                self.scene_panel.selected = changed_object;
-            }
-            let n = self.desc.as_ref().map_or(0, |d| d.objects.len());
-            self.scene_panel.selected = self.scene_panel.selected.min(n.saturating_sub(1));
-        } else {
-            // The step does not build any more (a file it used is gone): `restart` put the
-            // scene back and shows why; the history stays as it was.
-            self.history = kept;
-        }
+        self.doc.history.redo_label()
     }
 
     /// The latest image of the render (preview or accumulated).
     #[must_use]
     pub fn image(&self) -> Option<Arc<DisplayImage>> {
-        self.job.as_ref().and_then(RenderJob::image).map(|(i, _)| i)
+        self.viewer.image()
     }
 
-    /// Blocks until the current render has finished, stopped or failed, or `deadline` has
-    /// passed (for tests and scripted screenshots).
+    /// Whether a scene build is running (the status line says so).
+    #[must_use]
+    pub fn building(&self) -> bool {
+        self.doc.building()
+    }
+
+    /// Blocks until the scene build running (if any) has ended, then until the current render
+    /// has finished, stopped or failed, or `deadline` has passed (for tests and scripted
+    /// screenshots). A build that ended is taken in by the next frame: step the window while
+    /// [`ExplorerApp::building`].
     ///
     /// # Errors
-    /// The render failed, or it was still running at the deadline.
+    /// The render failed, or the build or the render was still running at the deadline.
     pub fn wait_for_render(&self, deadline: std::time::Duration) -> Result<(), String> {
         let start = std::time::Instant::now();
-        while let Some(job) = &self.job {
-            if let Some(failure) = job.failure() {
-                return Err(failure);
-            }
-            let p = job.progress();
-            if p.finished || p.cancelled {
-                break;
-            }
-            if start.elapsed() > deadline {
-                return Err(format!(
-                    "the render was still running after {:.1} s ({} of {} spp)",
-                    deadline.as_secs_f64(),
-                    p.spp_done,
-                    p.spp_target
-                ));
-            }
-            std::thread::sleep(std::time::Duration::from_millis(5));
-        }
-        Ok(())
+        self.doc.wait(deadline)?;
+        self.viewer.wait(deadline.saturating_sub(start.elapsed()))
     }
 
     /// Saves the current image as a PNG with the scene embedded.
@@ -396,181 +276,37 @@ impl ExplorerApp {
     /// # Errors
     /// Nothing rendered yet, or the file cannot be written.
     pub fn save_screenshot(&self, png: &Path) -> crate::Result<()> {
-        let (Some(desc), Some(image)) = (&self.desc, self.image()) else {
+        let (Some(desc), Some(image)) = (&self.doc.desc, self.image()) else {
             return Err(crate::Error::invalid(png, "nothing has been rendered yet"));
         };
-        let dir = self
-            .path
-            .parent()
-            .filter(|p| !p.as_os_str().is_empty())
-            .unwrap_or(Path::new("."));
-        crate::scene::save_render_png(png, &image, desc, dir)
+        crate::scene::save_render_png(png, &image, desc, self.doc.folder())
     }
 
-    /// The description rendered: the edited one at the view's resolution scale.
-    fn render_desc(&self, desc: &SceneDesc) -> SceneDesc {
+    /// What the renders need of `desc`: the description at the view's resolution scale and,
+    /// with the A/B split shown, the split's descriptions.
+    pub(super) fn recipe(&self, desc: &SceneDesc) -> Recipe {
         let mut d = desc.clone();
         let s = self.resolution_scale;
         d.render.width = ((d.render.width as f32 * s).round() as u32).max(1);
         d.render.height = ((d.render.height as f32 * s).round() as u32).max(1);
-        d
-    }
-
-    /// Rebuilds the scene from the description and starts a new progressive render; on an
-    /// error the previous scene and render stay, the description goes back to the last one that
-    /// built, and the message is shown.
-    pub(super) fn restart(&mut self) -> bool {
-        let Some(desc) = self.desc.clone() else {
-            return false;
-        };
-        let rdesc = self.render_desc(&desc);
-        match build_scene(&rdesc, &self.path, &mut self.cache) {
-            Ok(scene) => {
-                self.generation.bump();
-                let scene = Arc::new(scene);
-                // Dropping a job cancels it without waiting for its task.
-                self.job = None;
-                let mut started = Ok(());
-                if self.ab.enabled {
-                    self.ab
-                        .restart(&rdesc, &self.path, &mut self.cache, &self.generation);
-                } else {
-                    self.ab.stop();
-                    match RenderJob::start(
-                        scene.clone(),
-                        RenderOptions::default(),
-                        &self.generation,
-                    ) {
-                        Ok(job) => {
-                            let published = self.latency.restarted();
-                            if let Some(ctx) = self.ctx.clone() {
-                                // The first preview takes a few milliseconds: paint it at once
-                                // rather than at the next poll (later passes are polled at
-                                // FRAME_INTERVAL, so the UI never repaints faster than that).
-                                let woken = std::sync::atomic::AtomicBool::new(false);
-                                job.on_publish(move || {
-                                    published.get_or_init(std::time::Instant::now);
-                                    if !woken.swap(true, std::sync::atomic::Ordering::Relaxed) {
-                                        ctx.request_repaint();
-                                    }
-                                });
-                            }
-                            self.job = Some(job);
-                        }
-                        Err(e) => started = Err(e.to_string()),
-                    }
-                }
-                self.live.reset();
-                self.scene = Some(scene);
-                self.good_desc = Some(desc);
-                self.error = started.err();
-                self.inspector.refresh(self.scene.as_deref());
-                true
-            }
-            Err(e) => {
-                self.error = Some(e.to_string());
-                if let Some(good) = &self.good_desc {
-                    self.desc = Some(good.clone());
-                }
-                false
-            }
+        Recipe {
+            split: self.ab.enabled.then(|| self.ab.descs(&d)),
+            render: d,
         }
     }
 
-    fn apply_view_edit(&mut self, edit: ViewEdit) {
-        let Some(desc) = &mut self.desc else { return };
-        let c = &mut desc.camera;
-        match edit {
-            ViewEdit::Orbit(d) => {
-                c.eye = crate::camera::orbit(c.eye, c.look_at, c.up, -d.x * 0.01, d.y * 0.01);
-            }
-            ViewEdit::Pan(d) => {
-                let shift = crate::camera::pan_offset(c.eye, c.look_at, c.up, -d.x, d.y);
-                c.eye += shift;
-                c.look_at += shift;
-            }
-            ViewEdit::Zoom(f) => {
-                c.eye = viewport::zoomed_eye(self.scene.as_deref(), c.eye, c.look_at, f);
-            }
-            ViewEdit::Reset => {
-                if let Some(home) = self.home_camera {
-                    *c = home;
-                }
-            }
-        }
-        self.restart();
-    }
-
-    /// The status line; returns whether the user dismissed the error.
-    fn status_line(&self, ui: &mut egui::Ui) -> bool {
-        ui.horizontal(|ui| {
-            if let Some(err) = &self.error {
-                let dismiss = ui
-                    .button("Dismiss")
-                    .on_hover_text("Dismiss the message")
-                    .clicked();
-                ui.colored_label(egui::Color32::LIGHT_RED, err);
-                return dismiss;
-            }
-            if let Some((notice, _)) = &self.notice {
-                ui.colored_label(egui::Color32::LIGHT_GREEN, notice);
-                ui.separator();
-            }
-            if self.ab.enabled {
-                ui.label(self.ab.status());
-                return false;
-            }
-            let (Some(job), Some(scene)) = (&self.job, &self.scene) else {
-                return false;
-            };
-            let p = job.progress();
-            let s = scene.settings;
-            let state = if p.finished {
-                "done".to_owned()
-            } else if let Some(b) = p.preview_block {
-                format!("preview {b}x{b}")
-            } else {
-                "refining".to_owned()
-            };
-            ui.label(format!(
-                "{}x{} · pass {} of {} ({} spp) · {state}",
-                s.width, s.height, p.spp_done, p.spp_target, p.spp_done
-            ));
-            ui.separator();
-            ui.label(format!(
-                "{:.1} ms/pass · {:.2} M rays/s · {:.2} s",
-                p.last_pass.as_secs_f64() * 1e3,
-                p.rays_per_second / 1e6,
-                p.elapsed.as_secs_f64()
-            ));
-            // The UI's own frame rate while it renders (idle, it only redraws on input).
-            if !p.finished {
-                ui.separator();
-                ui.label(format!(
-                    "UI {:.0} fps ({:.1} ms to lay out a frame)",
-                    1.0 / self.frame_time.max(1e-3),
-                    self.layout_time * 1e3
-                ))
-                .on_hover_text("Frames per second of the window while it renders");
-            }
-            false
-        })
-        .inner
-    }
-}
-
-impl Drop for ExplorerApp {
-    fn drop(&mut self) {
-        self.generation.bump();
+    /// Shows `text` in the status line for a few seconds.
+    pub(super) fn notify(&mut self, text: String) {
+        self.notice = Some((text, std::time::Instant::now()));
     }
 }
 
 impl eframe::App for ExplorerApp {
     fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
         let started = std::time::Instant::now();
-        self.latency.frame_started();
+        self.viewer.latency.frame_started();
         self.frame(ui);
-        self.latency.frame_laid_out();
+        self.viewer.latency.frame_laid_out();
         let t = started.elapsed().as_secs_f32();
         self.layout_time += (t - self.layout_time) * 0.2;
     }
@@ -581,42 +317,39 @@ impl eframe::App for ExplorerApp {
 }
 
 impl ExplorerApp {
-    /// The Lessons panel (when open) and what its buttons ask: open a lesson's preset (through
-    /// the unsaved-changes prompt unless forced), apply an experiment's scene, or show an error.
-    fn lessons_panel(&mut self, ui: &mut egui::Ui, ctx: &egui::Context) {
-        if self.lessons.open {
-            let dirty = self.is_dirty();
-            let action = egui::Panel::right("lessons")
-                .default_size(380.0)
-                .resizable(true)
-                .show(ui, |ui| self.lessons.ui(ui, self.desc.as_ref(), dirty))
-                .inner;
-            match action {
-                Some(LessonAction::Open {
-                    preset,
-                    force: true,
-                }) => self.open_file(&preset),
-                Some(LessonAction::Open { preset, .. }) => {
-                    self.files.request_open(preset);
-                    ctx.request_repaint();
-                }
-                Some(LessonAction::Apply(d)) => {
-                    self.desc = Some(d);
-                    self.restart();
-                }
-                Some(LessonAction::Error(e)) => self.error = Some(e),
-                None => {}
-            }
+    /// One frame: the build that landed comes in, the panels draw and push their commands, the
+    /// commands run, and the scene is rebuilt if anything changed it.
+    fn frame(&mut self, ui: &mut egui::Ui) {
+        let ctx = ui.ctx().clone();
+        self.viewer.ctx.get_or_insert_with(|| ctx.clone());
+        let gesture = self.gesture(&ctx);
+        self.collect_build();
+        let mut commands = self.edit_shortcuts(&ctx);
+        self.menu_bar(ui, &mut commands);
+        help::shortcuts_window(&ctx, &mut self.shortcuts_open);
+        self.file_dialogs(&ctx, &mut commands);
+        self.status_bar(ui, &ctx);
+        self.scene_panel_ui(ui);
+        self.lessons_panel(ui, &mut commands);
+        self.side_panels(ui, &ctx);
+        self.viewport(ui, &ctx, &mut commands);
+        for c in commands {
+            self.run(&ctx, c);
+        }
+        if let Some(desc) = &self.doc.desc {
+            let recipe = self.recipe(desc);
+            self.doc.rebuild(recipe, gesture);
+        }
+        let title = self.title();
+        if title != self.title_sent {
+            ctx.send_viewport_cmd(egui::ViewportCommand::Title(title.clone()));
+            self.title_sent = title;
         }
     }
 
-    fn frame(&mut self, ui: &mut egui::Ui) {
-        let ctx = ui.ctx().clone();
-        if self.ctx.is_none() {
-            self.ctx = Some(ctx.clone());
-        }
-        // Which gesture this frame's changes belong to (one undo step per drag or wheel run).
-        let gesture = ctx.input(|i| {
+    /// Which gesture this frame's changes belong to (one undo step per drag or wheel run).
+    fn gesture(&mut self, ctx: &egui::Context) -> Option<Gesture> {
+        ctx.input(|i| {
             self.gestures.update(
                 std::time::Instant::now(),
                 i.pointer.any_pressed(),
@@ -627,27 +360,26 @@ impl ExplorerApp {
                         .iter()
                         .any(|e| matches!(e, egui::Event::MouseWheel { .. })),
             )
-        });
-        let mut command = self.edit_shortcuts(&ctx);
+        })
+    }
 
-        // Files: menus, dialogs, drops, the unsaved-changes prompt.
-        let ab_before = self.ab.enabled;
-        self.menu_bar(ui, &mut command);
-        if let Some(c) = command {
-            self.run_edit(c);
-        }
-        help::shortcuts_window(&ctx, &mut self.shortcuts_open);
-        let mut actions: Vec<FileAction> = Vec::new();
-        actions.extend(self.files.dropped(&ctx));
-        let description = self.desc.as_ref().map_or("", |d| d.description.as_str());
-        actions.extend(self.files.dialogs(&ctx, self.is_dirty(), description));
-        if self.files.close_requested(&ctx, self.is_dirty()) {
+    /// Files: drops, the path dialogs, the unsaved-changes prompt, closing the window.
+    fn file_dialogs(&mut self, ctx: &egui::Context, commands: &mut Vec<Command>) {
+        commands.extend(self.files.dropped(ctx));
+        let description = self
+            .doc
+            .desc
+            .as_ref()
+            .map_or("", |d| d.description.as_str());
+        let dirty = self.is_dirty();
+        commands.extend(self.files.dialogs(ctx, dirty, description));
+        if self.files.close_requested(ctx, dirty) {
             ctx.send_viewport_cmd(egui::ViewportCommand::CancelClose);
         }
-        for a in actions {
-            self.run_action(&ctx, a);
-        }
+    }
 
+    /// The status line at the bottom (the notice expires after a few seconds).
+    fn status_bar(&mut self, ui: &mut egui::Ui, ctx: &egui::Context) {
         if let Some((_, at)) = &self.notice {
             let left = NOTICE_TIME.saturating_sub(at.elapsed());
             if left.is_zero() {
@@ -662,8 +394,13 @@ impl ExplorerApp {
         if dismiss {
             self.error = None;
         }
+    }
 
-        let changed = egui::Panel::left("scene")
+    /// The scene panel on the left: it edits the description in place (disabled while another
+    /// scene is opening).
+    fn scene_panel_ui(&mut self, ui: &mut egui::Ui) {
+        let opening = self.doc.opening();
+        egui::Panel::left("scene")
             .default_size(320.0)
             .resizable(true)
             .show(ui, |ui| {
@@ -672,33 +409,41 @@ impl ExplorerApp {
                 egui::ScrollArea::both()
                     .auto_shrink([false, false])
                     .show(ui, |ui| {
-                        let Self {
-                            desc,
-                            scene_panel,
-                            resolution_scale,
-                            path,
-                            ..
-                        } = self;
-                        if let Some(desc) = desc {
-                            scene_panel.ui(ui, desc, resolution_scale, path)
-                        } else {
-                            ui.label("No scene: open a preset from the Presets menu.");
-                            false
-                        }
-                    })
-                    .inner
-            })
-            .inner;
-        if changed {
-            self.restart();
-        }
-        if self.ab.enabled != ab_before {
-            self.restart();
-        }
+                        ui.add_enabled_ui(!opening, |ui| {
+                            let Self {
+                                doc,
+                                scene_panel,
+                                resolution_scale,
+                                ..
+                            } = self;
+                            if let Some(desc) = &mut doc.desc {
+                                // Whether it changed anything is seen at the end of the frame.
+                                let _ = scene_panel.ui(ui, desc, resolution_scale, &doc.path);
+                            } else {
+                                ui.label("No scene: open a preset from the Presets menu.");
+                            }
+                        });
+                    });
+            });
+    }
 
-        self.lessons_panel(ui, &ctx);
+    /// The Lessons panel (when open): its buttons push commands (open a lesson's preset,
+    /// apply an experiment's scene, show an error).
+    fn lessons_panel(&mut self, ui: &mut egui::Ui, commands: &mut Vec<Command>) {
+        if self.lessons.open {
+            let dirty = self.is_dirty();
+            let command = egui::Panel::right("lessons")
+                .default_size(380.0)
+                .resizable(true)
+                .show(ui, |ui| self.lessons.ui(ui, self.doc.desc.as_ref(), dirty))
+                .inner;
+            commands.extend(command);
+        }
+    }
 
-        self.texture_panel.update(&ctx, self.scene.as_ref());
+    /// The inspector and the texture panel on the right, and the speed window.
+    fn side_panels(&mut self, ui: &mut egui::Ui, ctx: &egui::Context) {
+        self.texture_panel.update(ctx, self.viewer.scene_arc());
         if self.inspector.open {
             egui::Panel::right("inspector")
                 .default_size(440.0)
@@ -711,76 +456,55 @@ impl ExplorerApp {
                         .show(ui, |ui| self.inspector.ui(ui));
                 });
         }
-
         if self.texture_panel.open {
             egui::Panel::right("texture-panel")
                 .default_size(380.0)
                 .resizable(true)
                 .show(ui, |ui| self.texture_panel.ui(ui, self.inspector.shown()));
         }
+        self.speed
+            .window(ctx, self.doc.desc.as_ref(), &self.doc.path);
+    }
 
-        self.speed.window(&ctx, self.desc.as_ref(), &self.path);
-
-        // The viewport.
-        let mut busy = false;
-        if let Some(job) = &self.job {
-            if self.live.update(&ctx, job) {
-                self.latency.uploaded();
-            }
-            busy |= !job.progress().finished && !job.progress().cancelled;
-        }
-        busy |= self.ab.poll(&ctx);
+    /// The viewport: the render (or the A/B split), its pointer's camera commands, the
+    /// inspector following the pointer.
+    fn viewport(&mut self, ui: &mut egui::Ui, ctx: &egui::Context, commands: &mut Vec<Command>) {
+        let busy = self.viewer.poll(ctx) | self.ab.poll(ctx) | self.doc.building();
         if busy {
             let dt = ctx.input(|i| i.unstable_dt).min(1.0);
             self.frame_time += (dt - self.frame_time) * 0.2;
-            // Poll the render at the target frame rate, not as fast as possible: a software
-            // rasteriser (lavapipe) would otherwise take a core from the render threads.
+            // Poll the render and the build at the target frame rate, not as fast as possible:
+            // a software rasteriser (lavapipe) would otherwise take a core from the workers.
             ctx.request_repaint_after(FRAME_INTERVAL);
         }
         let size = self
-            .scene
-            .as_ref()
+            .viewer
+            .scene()
             .map(|s| Vec2::new(s.settings.width as f32, s.settings.height as f32));
         let out = egui::CentralPanel::default()
             .show(ui, |ui| {
-                let hint = self.desc.as_ref().and_then(viewport::edge_on_hint);
-                let view = self.desc.as_mut().map(|d| &mut d.render.view);
+                let hint = self.doc.desc.as_ref().and_then(viewport::edge_on_hint);
+                let view = self.doc.desc.as_mut().map(|d| &mut d.render.view);
                 if self.ab.enabled {
                     viewport::show_split(ui, &mut self.ab, size, view, hint.as_deref())
                 } else {
-                    viewport::show(ui, self.live.texture(), size, view, hint.as_deref())
+                    let texture = self.viewer.live.texture();
+                    viewport::show(ui, texture, size, view, hint.as_deref())
                 }
             })
             .inner;
-        if let Some(edit) = out.edit {
-            self.apply_view_edit(edit);
-        }
-        if out.view_changed {
-            self.restart();
-        }
-        if self.ab.take_restart() {
-            self.restart();
-        }
-        if let Some(scene) = &self.scene {
+        commands.extend(out.edit);
+        if let Some(scene) = self.viewer.scene() {
             self.inspector.pointer(scene, out.hover, out.click);
-        }
-
-        // Whatever changed the scene this frame (any panel, the camera, a file action) is one
-        // undo step, or part of the gesture's step.
-        self.record(gesture);
-        let title = self.title();
-        if title != self.title_sent {
-            ctx.send_viewport_cmd(egui::ViewportCommand::Title(title.clone()));
-            self.title_sent = title;
         }
     }
 
-    /// The menu bar: File, Edit, Presets, View, Help; an Edit command chosen goes to `command`.
-    fn menu_bar(&mut self, ui: &mut egui::Ui, command: &mut Option<EditCommand>) {
+    /// The menu bar: File, Edit, Presets, View, Help; an Edit command chosen goes to `commands`.
+    fn menu_bar(&mut self, ui: &mut egui::Ui, commands: &mut Vec<Command>) {
         egui::Panel::top("menu").show(ui, |ui| {
             let Self {
                 files,
-                history,
+                doc,
                 camera_is_unsaved,
                 shortcuts_open,
                 inspector,
@@ -788,12 +512,11 @@ impl ExplorerApp {
                 lessons,
                 ab,
                 speed,
-                path,
                 ..
             } = self;
             files.menu_bar(
                 ui,
-                path,
+                &doc.path,
                 [
                     (&mut inspector.open, "Inspector"),
                     (&mut texture_panel.open, "Texture panel"),
@@ -801,11 +524,7 @@ impl ExplorerApp {
                     (&mut speed.open, "Speed and error"),
                     (&mut lessons.open, "Lessons"),
                 ],
-                |ui| {
-                    if let Some(c) = edit_menu(ui, history, camera_is_unsaved) {
-                        *command = Some(c);
-                    }
-                },
+                |ui| commands.extend(edit_menu(ui, &doc.history, camera_is_unsaved)),
                 |ui| {
                     if ui
                         .add(
@@ -824,9 +543,9 @@ impl ExplorerApp {
 
     /// Ctrl+Z undoes, Ctrl+Shift+Z and Ctrl+Y redo, F1 opens the shortcuts; not while a text
     /// field has the keyboard (it has its own undo).
-    fn edit_shortcuts(&mut self, ctx: &egui::Context) -> Option<EditCommand> {
+    fn edit_shortcuts(&mut self, ctx: &egui::Context) -> Vec<Command> {
         if ctx.egui_wants_keyboard_input() {
-            return None;
+            return Vec::new();
         }
         ctx.input_mut(|i| {
             if i.consume_shortcut(&help::SHORTCUTS_KEY) {
@@ -834,15 +553,51 @@ impl ExplorerApp {
             }
             // Shift first: Ctrl+Z would also match Ctrl+Shift+Z.
             if i.consume_shortcut(&help::REDO) || i.consume_shortcut(&help::REDO_Y) {
-                Some(EditCommand::Redo)
+                vec![Command::Redo]
             } else if i.consume_shortcut(&help::UNDO) {
-                Some(EditCommand::Undo)
+                vec![Command::Undo]
             } else {
-                None
+                Vec::new()
             }
         })
     }
+
+    /// The status line; returns whether the user dismissed the error.
+    fn status_line(&self, ui: &mut egui::Ui) -> bool {
+        ui.horizontal(|ui| {
+            if let Some(err) = &self.error {
+                let dismiss = ui
+                    .button("Dismiss")
+                    .on_hover_text("Dismiss the message")
+                    .clicked();
+                ui.colored_label(egui::Color32::LIGHT_RED, err);
+                return dismiss;
+            }
+            if self.doc.building() {
+                ui.spinner();
+                ui.label(BUILDING).on_hover_text(
+                    "The scene is being built on the render threads (images loaded, meshes \
+                     displaced); the window stays usable, and the new image follows",
+                );
+                ui.separator();
+            }
+            if let Some((notice, _)) = &self.notice {
+                ui.colored_label(egui::Color32::LIGHT_GREEN, notice);
+                ui.separator();
+            }
+            if self.ab.enabled {
+                ui.label(self.ab.status());
+            } else {
+                self.viewer.status(ui, self.frame_time, self.layout_time);
+            }
+            false
+        })
+        .inner
+    }
 }
+
+/// What the status line says while a scene builds.
+pub const BUILDING: &str = "Building the scene…";
 
 /// The Edit menu: undo and redo, each saying what it would do, and whether camera moves count
 /// as unsaved changes.
@@ -850,11 +605,11 @@ fn edit_menu(
     ui: &mut egui::Ui,
     history: &History<SceneDesc>,
     camera_is_unsaved: &mut bool,
-) -> Option<EditCommand> {
+) -> Option<Command> {
     let mut command = None;
     for (c, verb, label, key) in [
-        (EditCommand::Undo, "Undo", history.undo_label(), help::UNDO),
-        (EditCommand::Redo, "Redo", history.redo_label(), help::REDO),
+        (Command::Undo, "Undo", history.undo_label(), help::UNDO),
+        (Command::Redo, "Redo", history.redo_label(), help::REDO),
     ] {
         let text = label.map_or_else(|| verb.to_owned(), |l| format!("{verb} {l}"));
         if ui
@@ -878,7 +633,7 @@ fn edit_menu(
 }
 
 /// `p` made absolute for a message (as typed if that fails).
-fn absolute_display(p: &Path) -> String {
+pub(super) fn absolute_display(p: &Path) -> String {
     std::path::absolute(p)
         .unwrap_or_else(|_| p.to_path_buf())
         .display()
@@ -887,76 +642,3 @@ fn absolute_display(p: &Path) -> String {
 
 /// How long a confirmation stays in the status line.
 const NOTICE_TIME: std::time::Duration = std::time::Duration::from_secs(8);
-
-impl ExplorerApp {
-    fn notify(&mut self, text: String) {
-        self.notice = Some((text, std::time::Instant::now()));
-    }
-
-    fn run_action(&mut self, ctx: &egui::Context, action: FileAction) {
-        match action {
-            FileAction::Open(p) => self.open_file(&p),
-            FileAction::Save(p) => {
-                if let Some(desc) = &mut self.desc {
-                    if p.extension().is_some_and(|e| e.eq_ignore_ascii_case("png")) {
-                        self.error = Some(format!(
-                            "{}: a preset is saved as .ron; use Save screenshot for a PNG",
-                            p.display()
-                        ));
-                        return;
-                    }
-                    // Asset paths are relative to the preset: rewrite them for the new folder.
-                    let mut out = desc.clone();
-                    let from = self.path.parent().unwrap_or(Path::new("."));
-                    let to = p.parent().unwrap_or(Path::new("."));
-                    crate::scene::rebase_assets(&mut out, from, to);
-                    match crate::scene::save_preset(&out, &p) {
-                        Ok(()) => {
-                            // The steps to undo hold paths relative to the old folder too.
-                            self.history
-                                .rewrite(|d| crate::scene::rebase_assets(d, from, to));
-                            *desc = out.clone();
-                            self.saved_desc = Some(out);
-                            self.path.clone_from(&p);
-                            self.files.add_recent(&p);
-                            self.error = None;
-                            self.notify(format!("Saved {}", absolute_display(&p)));
-                        }
-                        Err(e) => self.error = Some(e.to_string()),
-                    }
-                }
-            }
-            FileAction::Screenshot(p) => match self.save_screenshot(&p) {
-                Ok(()) => {
-                    self.error = None;
-                    self.notify(format!("Screenshot saved to {}", absolute_display(&p)));
-                }
-                Err(e) => self.error = Some(e.to_string()),
-            },
-            FileAction::Describe(d) => {
-                // Only the text changes: nothing to render again.
-                if let Some(desc) = &mut self.desc {
-                    desc.description = d;
-                }
-            }
-            FileAction::UseImage(p) => {
-                if let Some(desc) = &mut self.desc {
-                    let dir = self.path.parent().unwrap_or(Path::new("."));
-                    let rel = crate::scene::relative_asset_path(&p, dir);
-                    self.scene_panel.use_image(desc, rel);
-                    self.restart();
-                }
-            }
-            FileAction::UseMesh(p) => {
-                if let Some(desc) = &mut self.desc {
-                    let dir = self.path.parent().unwrap_or(Path::new("."));
-                    let rel = crate::scene::relative_asset_path(&p, dir);
-                    self.scene_panel.use_mesh(desc, rel);
-                    self.restart();
-                }
-            }
-            FileAction::Error(e) => self.error = Some(e),
-            FileAction::Quit => ctx.send_viewport_cmd(egui::ViewportCommand::Close),
-        }
-    }
-}

@@ -7,7 +7,7 @@ use crate::render::{Generation, RenderJob, RenderOptions};
 use crate::report::metrics::{EncodedImage, rmse};
 use crate::report::{Mode, ProgressUpdate, ReferenceSettings, ReportConfig, Row, run_scene};
 use crate::sampler::PixelSampler;
-use crate::scene::{AssetCache, Scene, SceneDesc, build_scene};
+use crate::scene::{Scene, SceneDesc};
 use crate::texture::Filter;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -45,7 +45,6 @@ pub struct AbSplit {
     /// The display exposure of the reference, so errors are measured on what is displayed.
     exposure_scale: f32,
     generation: Generation,
-    restart_wanted: bool,
     message: Option<String>,
 }
 
@@ -65,40 +64,39 @@ impl Default for AbSplit {
             errors: [None, None],
             exposure_scale: 1.0,
             generation: Generation::new(),
-            restart_wanted: false,
             message: None,
         }
     }
 }
 
 impl AbSplit {
-    /// Builds both sides and the reference from `desc` and starts side A.
-    pub fn restart(
+    /// What the split renders of `desc`: side A, side B and the reference.
+    #[must_use]
+    pub fn descs(&self, desc: &SceneDesc) -> [SceneDesc; 3] {
+        [
+            self.modes[0].apply(desc, self.spp[0]),
+            self.modes[1].apply(desc, self.spp[1]),
+            reference().desc(desc, None, None),
+        ]
+    }
+
+    /// Starts side A of the scenes built from [`AbSplit::descs`] (B and the reference follow),
+    /// or shows why they did not build.
+    pub fn start_built(
         &mut self,
-        desc: &SceneDesc,
-        path: &Path,
-        cache: &mut AssetCache,
+        scenes: Result<[Arc<Scene>; 3], String>,
         generation: &Generation,
     ) {
         self.stop();
         self.generation = generation.clone();
-        let descs = [
-            self.modes[0].apply(desc, self.spp[0]),
-            self.modes[1].apply(desc, self.spp[1]),
-            reference().desc(desc, None, None),
-        ];
-        for (slot, d) in descs.iter().enumerate() {
-            match build_scene(d, path, cache) {
-                Ok(scene) => self.waiting[slot] = Some(Arc::new(scene)),
-                Err(e) => {
-                    self.message = Some(e.to_string());
-                    self.waiting = [None, None, None];
-                    return;
-                }
+        match scenes {
+            Ok(scenes) => {
+                self.waiting = scenes.map(Some);
+                self.message = None;
+                self.start(0);
             }
+            Err(e) => self.message = Some(e),
         }
-        self.message = None;
-        self.start(0);
     }
 
     fn start(&mut self, slot: usize) {
@@ -154,11 +152,6 @@ impl AbSplit {
             j.as_ref()
                 .is_some_and(|j| !j.progress().finished && !j.progress().cancelled)
         }) || self.waiting.iter().any(Option::is_some)
-    }
-
-    /// Whether the controls changed a mode since the last call.
-    pub fn take_restart(&mut self) -> bool {
-        std::mem::take(&mut self.restart_wanted)
     }
 
     /// The texture of side 0 (A) or 1 (B).
@@ -225,24 +218,20 @@ impl AbSplit {
         )
     }
 
-    /// The two modes' controls (sampler, spp, filter).
+    /// The two modes' controls (sampler, spp, filter); a change changes [`AbSplit::descs`], so
+    /// the split is built and rendered again.
     pub fn controls(&mut self, ui: &mut egui::Ui) {
         for side in 0..2 {
             let name = ["A", "B"][side];
             ui.horizontal(|ui| {
                 let (m, spp) = (&mut self.modes[side], &mut self.spp[side]);
-                let mut changed =
-                    super::widgets::enum_combo(ui, &format!("{name} sampler"), &mut m.sampler);
-                changed |= ui
-                    .horizontal(|ui| {
-                        let l = ui.label(format!("{name} spp"));
-                        ui.add(egui::DragValue::new(spp).range(1..=1024))
-                            .labelled_by(l.id)
-                            .changed()
-                    })
-                    .inner;
-                changed |= super::widgets::enum_combo(ui, &format!("{name} filter"), &mut m.filter);
-                self.restart_wanted |= changed;
+                super::widgets::enum_combo(ui, &format!("{name} sampler"), &mut m.sampler);
+                ui.horizontal(|ui| {
+                    let l = ui.label(format!("{name} spp"));
+                    ui.add(egui::DragValue::new(spp).range(1..=1024))
+                        .labelled_by(l.id);
+                });
+                super::widgets::enum_combo(ui, &format!("{name} filter"), &mut m.filter);
             });
         }
     }

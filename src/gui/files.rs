@@ -2,6 +2,7 @@
 //! field with quick picks and a *Browse…* button for the system's file dialog), recent files,
 //! dropped files, and the prompts that guard unsaved changes and existing files.
 
+use super::command::Command;
 use crate::scene::read_png_preset;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -96,27 +97,6 @@ const MAX_RECENT: usize = 10;
 /// Where the built-in presets live.
 const PRESET_DIR: &str = "presets";
 
-/// What the user asked the app to do with a file.
-#[derive(Clone, Debug, PartialEq)]
-pub enum FileAction {
-    /// Replace the scene with this preset or texplore PNG.
-    Open(PathBuf),
-    /// Save the scene as a RON preset here.
-    Save(PathBuf),
-    /// Save the image here as a PNG with the scene embedded.
-    Screenshot(PathBuf),
-    /// Put this image on the selected object.
-    UseImage(PathBuf),
-    /// Make the selected object this mesh (PLY or OBJ).
-    UseMesh(PathBuf),
-    /// Set the scene's description (typed in the *Save as* dialog).
-    Describe(String),
-    /// Show this message.
-    Error(String),
-    /// Close the window.
-    Quit,
-}
-
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum DialogKind {
     Open,
@@ -151,7 +131,7 @@ pub struct Files {
     presets: Option<Vec<(PathBuf, String)>>,
     requested: Option<Pending>,
     prompt: Option<Pending>,
-    overwrite: Option<FileAction>,
+    overwrite: Option<Command>,
     close_ok: bool,
     current: PathBuf,
 }
@@ -295,7 +275,7 @@ impl Files {
         if save {
             if current.extension().is_some_and(|e| e == "ron") {
                 // Never overwrite without asking: the replace prompt confirms.
-                self.overwrite = Some(FileAction::Save(current.to_path_buf()));
+                self.overwrite = Some(Command::Save(current.to_path_buf()));
             } else {
                 self.open_dialog(DialogKind::SaveAs, String::new());
             }
@@ -316,7 +296,7 @@ impl Files {
                 {
                     if is_ron {
                         // Never overwrite without asking: the replace prompt confirms.
-                        self.overwrite = Some(FileAction::Save(current.to_path_buf()));
+                        self.overwrite = Some(Command::Save(current.to_path_buf()));
                     } else {
                         self.open_dialog(DialogKind::SaveAs, String::new());
                     }
@@ -382,7 +362,7 @@ impl Files {
 
     /// Files dropped on the window: presets and texplore PNGs open; other images and meshes go
     /// on the selected object.
-    pub fn dropped(&mut self, ctx: &egui::Context) -> Vec<FileAction> {
+    pub fn dropped(&mut self, ctx: &egui::Context) -> Vec<Command> {
         let dropped = ctx.input(|i| i.raw.dropped_files.clone());
         let mut out = Vec::new();
         for f in dropped {
@@ -396,9 +376,9 @@ impl Files {
                 Some("png") if read_png_preset(&p).is_ok() => {
                     self.requested = Some(Pending::Open(p));
                 }
-                Some("ply" | "obj") => out.push(FileAction::UseMesh(p)),
-                _ if is_image(&p) => out.push(FileAction::UseImage(p)),
-                _ => out.push(FileAction::Error(format!(
+                Some("ply" | "obj") => out.push(Command::UseMesh(p)),
+                _ if is_image(&p) => out.push(Command::UseImage(p)),
+                _ => out.push(Command::Error(format!(
                     "{}: not a preset (.ron), a texplore PNG, an image or a mesh (.ply, .obj)",
                     p.display()
                 ))),
@@ -425,12 +405,7 @@ impl Files {
 
     /// The dialogs and prompts; returns what the user confirmed. `description` is the scene's,
     /// which *Save as* offers to edit.
-    pub fn dialogs(
-        &mut self,
-        ctx: &egui::Context,
-        dirty: bool,
-        description: &str,
-    ) -> Vec<FileAction> {
+    pub fn dialogs(&mut self, ctx: &egui::Context, dirty: bool, description: &str) -> Vec<Command> {
         let mut out = Vec::new();
         if let Some(req) = self.requested.take() {
             if dirty {
@@ -451,7 +426,7 @@ impl Files {
                             .on_hover_text(format!("Save to {}", self.current.display()))
                             .clicked()
                     {
-                        out.push(FileAction::Save(self.current.clone()));
+                        out.push(Command::Save(self.current.clone()));
                         out.push(self.confirm(pending.clone()));
                         self.prompt = None;
                     }
@@ -467,7 +442,7 @@ impl Files {
         }
         if let Some(action) = self.overwrite.clone() {
             let path = match &action {
-                FileAction::Save(p) | FileAction::Screenshot(p) => p.display().to_string(),
+                Command::Save(p) | Command::Screenshot(p) => p.display().to_string(),
                 _ => String::new(),
             };
             egui::Modal::new(egui::Id::unique("overwrite")).show(ctx, |ui| {
@@ -490,7 +465,7 @@ impl Files {
 
     /// The path dialog (Open, Save as, Save screenshot), while open; what it confirms goes to
     /// `out` (or to the replace prompt).
-    fn path_dialog(&mut self, ctx: &egui::Context, description: &str, out: &mut Vec<FileAction>) {
+    fn path_dialog(&mut self, ctx: &egui::Context, description: &str, out: &mut Vec<Command>) {
         if let Some(mut dialog) = self.dialog.take() {
             let kind = dialog.kind;
             let mut keep = true;
@@ -593,12 +568,12 @@ impl Files {
                             if let Some(d) = dialog.description.take()
                                 && d != description
                             {
-                                out.push(FileAction::Describe(d));
+                                out.push(Command::Describe(d));
                             }
                             let action = if kind == DialogKind::SaveAs {
-                                FileAction::Save(p.clone())
+                                Command::Save(p.clone())
                             } else {
-                                FileAction::Screenshot(p.clone())
+                                Command::Screenshot(p.clone())
                             };
                             if p.exists() {
                                 self.overwrite = Some(action);
@@ -616,12 +591,12 @@ impl Files {
         }
     }
 
-    fn confirm(&mut self, p: Pending) -> FileAction {
+    fn confirm(&mut self, p: Pending) -> Command {
         match p {
-            Pending::Open(path) => FileAction::Open(path),
+            Pending::Open(path) => Command::Open(path),
             Pending::Quit => {
                 self.close_ok = true;
-                FileAction::Quit
+                Command::Quit
             }
         }
     }

@@ -2,30 +2,14 @@
 //! experiments (each a button that edits the scene, with *Undo* back to the scene before it),
 //! their *Look for* sentences, the question with *Show answer*, and Previous / Next.
 //!
-//! The panel never touches the app: it returns a [`LessonAction`] (open a lesson's preset, put
+//! The panel never touches the app: it returns a [`Command`] (open a lesson's preset, put
 //! an edited description in place) that the app carries out the way it carries out every
 //! other panel's edit.
 
+use super::command::Command;
 use crate::lesson::{LESSON_DIR, Lesson, Lessons, load_dir};
 use crate::scene::SceneDesc;
 use std::path::{Path, PathBuf};
-
-/// What the panel asks the app to do.
-#[derive(Clone, Debug, PartialEq)]
-pub enum LessonAction {
-    /// Open this lesson's preset (through the unsaved-changes prompt unless `force`), then
-    /// make it the active lesson.
-    Open {
-        /// The preset.
-        preset: PathBuf,
-        /// Skip the prompt: the only changes are the lesson's own experiments.
-        force: bool,
-    },
-    /// Replace the scene with this description (an experiment, or an undo).
-    Apply(SceneDesc),
-    /// Show this message.
-    Error(String),
-}
 
 /// An experiment applied to the scene, and the scene before it.
 struct Applied {
@@ -137,13 +121,13 @@ impl LessonsPanel {
         self.show_answer = false;
     }
 
-    fn go_to(&mut self, i: usize, desc: Option<&SceneDesc>, dirty: bool) -> Option<LessonAction> {
+    fn go_to(&mut self, i: usize, desc: Option<&SceneDesc>, dirty: bool) -> Option<Command> {
         // The picker moves once the preset has opened (the prompt may be cancelled).
         let preset = self.loaded.as_ref()?.lessons.get(i)?.preset.clone();
         self.pending = Some(i);
         // The lesson's own experiments are not the learner's work: no prompt for them.
         let force = !dirty || (desc.is_some() && desc == self.lesson_desc.as_ref());
-        Some(LessonAction::Open { preset, force })
+        Some(Command::OpenLesson { preset, force })
     }
 
     /// The panel. `desc` is the app's scene, `dirty` whether it has unsaved changes.
@@ -152,7 +136,7 @@ impl LessonsPanel {
         ui: &mut egui::Ui,
         desc: Option<&SceneDesc>,
         dirty: bool,
-    ) -> Option<LessonAction> {
+    ) -> Option<Command> {
         let mut action = None;
         let count = self.lessons().lessons.len();
         ui.horizontal(|ui| {
@@ -268,7 +252,7 @@ impl LessonsPanel {
         ui: &mut egui::Ui,
         lesson: &Lesson,
         desc: Option<&SceneDesc>,
-        action: &mut Option<LessonAction>,
+        action: &mut Option<Command>,
     ) {
         for (k, x) in lesson.experiments.iter().enumerate() {
             let applied = self.applied.iter().any(|a| a.experiment == k);
@@ -296,10 +280,10 @@ impl LessonsPanel {
                                 });
                             }
                             self.lesson_desc = Some(new.clone());
-                            *action = Some(LessonAction::Apply(new));
+                            *action = Some(Command::Apply(new));
                         }
                         Err(e) => {
-                            *action = Some(LessonAction::Error(format!(
+                            *action = Some(Command::Error(format!(
                                 "{}: \"{}\": {e}",
                                 lesson.file.display(),
                                 x.label
@@ -318,7 +302,7 @@ impl LessonsPanel {
                     let before = self.applied[pos].before.clone();
                     self.applied.truncate(pos);
                     self.lesson_desc = Some(before.clone());
-                    *action = Some(LessonAction::Apply(before));
+                    *action = Some(Command::Apply(before));
                 }
             });
             ui.horizontal_wrapped(|ui| {

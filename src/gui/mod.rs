@@ -3,7 +3,9 @@
 //! displays what [`crate::inspect`] computes. One file per panel.
 
 mod app;
+mod command;
 mod compare;
+mod document;
 mod files;
 mod help;
 mod history;
@@ -13,6 +15,7 @@ mod live;
 mod overlay;
 mod scene_panel;
 mod texture_panel;
+mod viewer;
 mod viewport;
 mod widgets;
 

@@ -2,6 +2,7 @@
 //! drag), zoom (wheel), reset view; hovering and clicking report film positions to the
 //! inspector. In A/B mode, two images side by side with a draggable divider.
 
+use super::command::Command;
 use super::compare::AbSplit;
 use super::widgets::enum_combo;
 use crate::math::{Quat, Ray, Vec2, Vec3};
@@ -13,24 +14,11 @@ pub const IMAGE_LABEL: &str = "Rendered image";
 /// The accessible name of the A/B divider (a slider: its value is the fraction left of it).
 pub const DIVIDER_LABEL: &str = "A/B divider";
 
-/// A camera edit asked for by the pointer.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum ViewEdit {
-    /// Orbit by this drag (points).
-    Orbit(Vec2),
-    /// Pan by this drag, as a fraction of the image height.
-    Pan(Vec2),
-    /// Move toward the look-at point by this factor of the distance.
-    Zoom(f32),
-    /// Back to the camera the scene was opened with.
-    Reset,
-}
-
 /// What the pointer did in the viewport this frame.
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Debug, Default)]
 pub struct ViewOutput {
     /// The camera edit a drag or the wheel asked for, if any.
-    pub edit: Option<ViewEdit>,
+    pub edit: Option<Command>,
     /// Film position under the pointer, in image pixels from the top-left corner (y down).
     pub hover: Option<Vec2>,
     /// Film position clicked, in the same pixels as `hover`.
@@ -76,7 +64,7 @@ fn toolbar(ui: &mut egui::Ui, out: &mut ViewOutput, view: Option<&mut View>) {
             .on_hover_text("Back to the camera the scene was opened with")
             .clicked()
         {
-            out.edit = Some(ViewEdit::Reset);
+            out.edit = Some(Command::ResetView);
         }
     });
     // On its own line and wrapped: never cut off, and never asking the panels around the
@@ -243,16 +231,16 @@ fn interact(
                 || response.dragged_by(egui::PointerButton::Secondary)
                 || response.dragged_by(egui::PointerButton::Middle);
             out.edit = Some(if pan {
-                ViewEdit::Pan(Vec2::new(d.x, d.y) / rect.height())
+                Command::Pan(Vec2::new(d.x, d.y) / rect.height())
             } else {
-                ViewEdit::Orbit(Vec2::new(d.x, d.y))
+                Command::Orbit(Vec2::new(d.x, d.y))
             });
         }
     }
     if response.hovered() {
         let scroll = ui.input(|i| i.smooth_scroll_delta.y);
         if scroll != 0.0 {
-            out.edit = Some(ViewEdit::Zoom((-scroll * ZOOM_PER_POINT).exp()));
+            out.edit = Some(Command::Zoom((-scroll * ZOOM_PER_POINT).exp()));
         }
         out.hover = response.hover_pos().map(to_film);
     }

@@ -7,6 +7,7 @@ mod job;
 mod lanes;
 mod packet;
 mod pool;
+mod task;
 
 pub use adaptive::{CONTRAST_FACTOR, adaptive_mask, display_luminance};
 pub use film::{DisplayImage, Film, encode_srgb8};
@@ -14,6 +15,7 @@ pub use job::{Generation, Progress, RenderJob, RenderOptions};
 pub use lanes::LANES;
 pub use packet::{Ineligible, SimdMode, packet_eligibility, simd_level};
 pub use pool::{MAX_THREADS, PoolError, thread_pool};
+pub use task::Task;
 
 use crate::math::{Rgb, Vec2, hash3};
 use crate::sampler::{PixelFilter, permute};

@@ -48,17 +48,39 @@ pub fn harness_with(path: PathBuf, options: AppOptions) -> Harness<'static, Expl
     h
 }
 
-/// Lets the render finish (within two minutes, or the test fails) and the UI catch up with its
-/// last image.
+/// Lets the scene build land and the render finish (within two minutes, or the test fails) and
+/// the UI catch up with its last image. Scenes build off the UI thread: a frame takes in a
+/// build that ended, so the window is stepped while one runs.
 pub fn settle(h: &mut Harness<'_, ExplorerApp>) {
+    let deadline = std::time::Duration::from_mins(2);
+    let start = std::time::Instant::now();
     for _ in 0..3 {
         h.step();
+        while h.state().building() {
+            assert!(start.elapsed() < deadline, "the scene build ends");
+            h.state().wait_for_render(deadline).expect("the build ends");
+            h.step();
+        }
         h.state()
-            .wait_for_render(std::time::Duration::from_mins(2))
+            .wait_for_render(deadline)
             .expect("the render ends");
     }
     h.step();
     h.step();
+}
+
+/// Lets the scene build running (if any) land, without waiting for its render: for tests that
+/// look at the description, the file or the panels rather than the image.
+pub fn built(h: &mut Harness<'_, ExplorerApp>) {
+    let deadline = std::time::Duration::from_mins(2);
+    let start = std::time::Instant::now();
+    h.run_steps(3);
+    while h.state().building() {
+        assert!(start.elapsed() < deadline, "the scene build ends");
+        std::thread::sleep(std::time::Duration::from_millis(5));
+        h.step();
+    }
+    h.run_steps(2);
 }
 
 /// The scene the window holds.

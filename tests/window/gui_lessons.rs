@@ -4,6 +4,9 @@
 //! Next lesson walks the lecture in order; a lesson file dropped into the folder appears after
 //! Rescan.
 
+#[path = "common/gui.rs"]
+mod gui_common;
+
 use egui_kittest::Harness;
 use egui_kittest::kittest::{NodeT as _, Queryable as _};
 use std::path::Path;
@@ -28,7 +31,7 @@ fn start(lesson: Lesson) -> Harness<'static, ExplorerApp> {
                 },
             )
         });
-    h.run_steps(3);
+    gui_common::built(&mut h);
     h
 }
 
@@ -46,7 +49,8 @@ fn press(h: &mut Harness<'_, ExplorerApp>, label: &str) {
         last = Some(r);
     }
     h.get_by_label(label).click();
-    h.run_steps(3);
+    // The scene an experiment or a lesson's preset makes builds off the UI thread.
+    gui_common::built(h);
 }
 
 #[test]

@@ -1,0 +1,334 @@
+//! The document: the scene description the window edits and what belongs to it (the last
+//! description that built, the one last opened or saved, the undo history, the file and the
+//! asset cache), and the scene builds it asks for.
+//!
+//! Panels edit the description (directly, or through a [`super::command::Command`]); once per
+//! frame the app hands the document what the renders need ([`Document::rebuild`]), and when that
+//! differs from what was last asked, one build starts as a [`Task`] on the render pool, so the
+//! window stays responsive however long a build takes (a displaced mesh: seconds). A newer
+//! request supersedes an older one still running; the app collects the one that lands with
+//! [`Document::poll`]. A build that fails leaves the scene as it was: the description goes back
+//! to the last one that built.
+
+use super::history::{self, Gesture, History};
+use crate::render::Task;
+use crate::scene::{AssetCache, CameraDesc, Scene, SceneDesc, build_scene};
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex, PoisonError};
+
+/// What a build is for: what happens when it lands or fails.
+#[derive(Debug)]
+pub enum Purpose {
+    /// An edit of the open scene: on failure the description goes back to the last good one.
+    Edit,
+    /// Opening the file at this path: on success it replaces the scene (the document's file,
+    /// the saved description, the history); on failure nothing changes.
+    Open(PathBuf),
+    /// An undo or redo step: on failure the history goes back to this (the step is kept).
+    Step(Box<History<SceneDesc>>),
+}
+
+/// What one build makes: the scene rendered in the viewport and, with the A/B split on, the
+/// split's scenes.
+#[derive(Clone, PartialEq)]
+pub struct Recipe {
+    /// The description rendered (the edited one at the view's resolution scale).
+    pub render: SceneDesc,
+    /// The A/B split's descriptions (side A, side B, the reference), when it is shown.
+    pub split: Option<[SceneDesc; 3]>,
+}
+
+/// The scenes of a build.
+pub struct Built {
+    /// The viewport's scene.
+    pub scene: Arc<Scene>,
+    /// The split's scenes, or why they do not build.
+    pub split: Option<Result<[Arc<Scene>; 3], String>>,
+}
+
+/// A build that landed: what it was for and its scenes, or why it failed.
+pub struct Landed {
+    /// What the build was for.
+    pub purpose: Purpose,
+    /// Its scenes, or the error.
+    pub outcome: Result<Built, String>,
+}
+
+/// A build on the pool and what it was asked for.
+struct Pending {
+    purpose: Purpose,
+    desc: SceneDesc,
+    path: PathBuf,
+    /// The gesture of the frame that asked for it (its undo step merges with that gesture's).
+    gesture: Option<Gesture>,
+    recipe: Recipe,
+    task: Task<Result<Built, String>>,
+}
+
+/// The open scene and its builds.
+pub struct Document {
+    /// The scene the panels edit, unsaved edits included (`None` until a preset opens).
+    pub(super) desc: Option<SceneDesc>,
+    /// The last description that built (restored when an edit fails).
+    good: Option<SceneDesc>,
+    /// The description as last opened or saved (for the unsaved-changes prompt).
+    pub(super) saved: Option<SceneDesc>,
+    /// The camera as opened, for *Reset view*.
+    pub(super) home_camera: Option<CameraDesc>,
+    /// Undo and redo over every change of the description that built, whichever panel made it.
+    pub(super) history: History<SceneDesc>,
+    /// The file the scene came from; asset paths are relative to it.
+    pub(super) path: PathBuf,
+    /// Images and meshes loaded once, shared by every build (locked by the build running).
+    cache: Arc<Mutex<AssetCache>>,
+    /// What the last build was asked for, so an unchanged frame builds nothing.
+    asked: Option<Recipe>,
+    /// What the last build that landed was asked for (asked again after a failure).
+    built: Option<Recipe>,
+    pending: Option<Pending>,
+}
+
+impl Document {
+    /// An empty document for the file at `path` (opened with [`Document::open`]).
+    #[must_use]
+    pub fn new(path: PathBuf) -> Self {
+        Self {
+            desc: None,
+            good: None,
+            saved: None,
+            home_camera: None,
+            history: History::default(),
+            path,
+            cache: Arc::new(Mutex::new(AssetCache::new())),
+            asked: None,
+            built: None,
+            pending: None,
+        }
+    }
+
+    /// The asset paths' folder: the preset's.
+    #[must_use]
+    pub fn folder(&self) -> &Path {
+        self.path
+            .parent()
+            .filter(|p| !p.as_os_str().is_empty())
+            .unwrap_or(Path::new("."))
+    }
+
+    /// Whether a build is running.
+    #[must_use]
+    pub fn building(&self) -> bool {
+        self.pending.is_some()
+    }
+
+    /// Whether a file is being opened (its scene building): edits wait for it.
+    #[must_use]
+    pub fn opening(&self) -> bool {
+        matches!(
+            self.pending,
+            Some(Pending {
+                purpose: Purpose::Open(_),
+                ..
+            })
+        )
+    }
+
+    /// Starts building `desc` from the file at `path` (`recipe` what to build); the scene
+    /// replaces the open one when it lands.
+    pub fn open(&mut self, path: &Path, desc: SceneDesc, recipe: Recipe) {
+        self.start(Purpose::Open(path.to_path_buf()), desc, path, recipe, None);
+    }
+
+    /// Once a frame, after the panels: starts a build when `recipe` (what the renders need
+    /// now) differs from what was last asked. `gesture` is the frame's: the undo step of the
+    /// change merges with its gesture's.
+    pub fn rebuild(&mut self, recipe: Recipe, gesture: Option<Gesture>) {
+        if self.opening() || self.asked.as_ref() == Some(&recipe) {
+            return;
+        }
+        let Some(desc) = self.desc.clone() else {
+            return;
+        };
+        let purpose = match self.pending.take() {
+            // A step superseded by an edit of the step's result stays a step: if the edit
+            // fails, the history still matches the description restored.
+            Some(Pending {
+                purpose: Purpose::Step(kept),
+                ..
+            }) => Purpose::Step(kept),
+            _ => Purpose::Edit,
+        };
+        let path = self.path.clone();
+        self.start(purpose, desc, &path, recipe, gesture);
+    }
+
+    /// Starts an undo or redo step's build: the description is already restored, `kept` is the
+    /// history before the step.
+    pub fn step(&mut self, kept: History<SceneDesc>, recipe: Recipe) {
+        if let Some(desc) = self.desc.clone() {
+            let path = self.path.clone();
+            self.start(Purpose::Step(Box::new(kept)), desc, &path, recipe, None);
+        }
+    }
+
+    fn start(
+        &mut self,
+        purpose: Purpose,
+        desc: SceneDesc,
+        path: &Path,
+        recipe: Recipe,
+        gesture: Option<Gesture>,
+    ) {
+        self.asked = Some(recipe.clone());
+        let (cache, task_path, asked) = (self.cache.clone(), path.to_path_buf(), recipe.clone());
+        let work = move |cancel: &std::sync::atomic::AtomicBool| {
+            // A newer request may have superseded this one while it waited for the pool or
+            // for the cache (which the build before holds).
+            let stop = || cancel.load(std::sync::atomic::Ordering::Relaxed);
+            if stop() {
+                return None;
+            }
+            let mut cache = cache.lock().unwrap_or_else(PoisonError::into_inner);
+            if stop() {
+                return None;
+            }
+            Some(build(&asked, &task_path, &mut cache))
+        };
+        // Dropping the older task cancels it.
+        self.pending = None;
+        match Task::spawn(work) {
+            Ok(task) => {
+                self.pending = Some(Pending {
+                    purpose,
+                    desc,
+                    path: path.to_path_buf(),
+                    gesture,
+                    recipe,
+                    task,
+                });
+            }
+            Err(e) => {
+                let message = e.to_string();
+                self.settle(purpose, desc, path, gesture, recipe, &Err::<(), _>(message));
+            }
+        }
+    }
+
+    /// The build that landed since the last call, if any, with the document updated: on
+    /// success the description built is the good one (an opened file replaces the scene), on
+    /// failure the description goes back to the last good one.
+    pub fn poll(&mut self) -> Option<Landed> {
+        let p = self.pending.as_ref()?;
+        let outcome = match p.task.take() {
+            Some(outcome) => outcome,
+            None if p.task.is_running() => return None,
+            None => Err(p.task.failure().map_or_else(
+                || "the scene build stopped".to_owned(),
+                |what| format!("the scene build stopped: {what}"),
+            )),
+        };
+        let Pending {
+            purpose,
+            desc,
+            path,
+            gesture,
+            recipe,
+            ..
+        } = self.pending.take()?;
+        let purpose = self.settle(purpose, desc, &path, gesture, recipe, &outcome);
+        Some(Landed { purpose, outcome })
+    }
+
+    /// Updates the document for a build of `desc` that ended with `outcome`.
+    fn settle<T>(
+        &mut self,
+        purpose: Purpose,
+        desc: SceneDesc,
+        path: &Path,
+        gesture: Option<Gesture>,
+        recipe: Recipe,
+        outcome: &Result<T, String>,
+    ) -> Purpose {
+        if outcome.is_ok() {
+            self.built = Some(recipe);
+        } else {
+            // The scene stays the last one built: asking for it again builds nothing.
+            self.asked.clone_from(&self.built);
+        }
+        match (&purpose, outcome.is_ok()) {
+            (Purpose::Open(_), true) => {
+                self.path = path.to_path_buf();
+                self.home_camera = Some(desc.camera);
+                self.saved = Some(desc.clone());
+                self.history.reset(Some(&desc));
+                self.good = Some(desc.clone());
+                self.desc = Some(desc);
+            }
+            (Purpose::Open(_), false) => {}
+            (_, true) => {
+                self.history
+                    .observe(Some(&desc), gesture, history::describe);
+                self.good = Some(desc);
+            }
+            (Purpose::Edit | Purpose::Step(_), false) => {
+                if let Some(good) = &self.good {
+                    self.desc = Some(good.clone());
+                }
+            }
+        }
+        match purpose {
+            Purpose::Step(kept) if outcome.is_err() => {
+                self.history = *kept;
+                Purpose::Edit
+            }
+            other => other,
+        }
+    }
+
+    /// Records the description as it is now, built or not (before an undo or redo, so a change
+    /// still building is a step of its own).
+    pub fn record(&mut self) {
+        self.history
+            .observe(self.desc.as_ref(), None, history::describe);
+    }
+
+    /// Blocks until the build running has ended, or `deadline` has passed (for tests and
+    /// scripted screenshots); the app collects it on its next frame.
+    ///
+    /// # Errors
+    /// The build was still running at the deadline.
+    pub fn wait(&self, deadline: std::time::Duration) -> Result<(), String> {
+        let start = std::time::Instant::now();
+        while let Some(p) = &self.pending {
+            if !p.task.is_running() {
+                break;
+            }
+            if start.elapsed() > deadline {
+                return Err(format!(
+                    "the scene build was still running after {:.1} s",
+                    deadline.as_secs_f64()
+                ));
+            }
+            std::thread::sleep(std::time::Duration::from_millis(5));
+        }
+        Ok(())
+    }
+}
+
+/// Builds the scenes of `recipe` (on a pool thread).
+fn build(recipe: &Recipe, path: &Path, cache: &mut AssetCache) -> Result<Built, String> {
+    let scene = build_scene(&recipe.render, path, cache).map_err(|e| e.to_string())?;
+    let split = recipe.split.as_ref().map(|descs| {
+        let mut scenes = Vec::with_capacity(3);
+        for d in descs {
+            scenes.push(Arc::new(
+                build_scene(d, path, cache).map_err(|e| e.to_string())?,
+            ));
+        }
+        <[Arc<Scene>; 3]>::try_from(scenes).map_err(|_| "three scenes".to_owned())
+    });
+    Ok(Built {
+        scene: Arc::new(scene),
+        split,
+    })
+}

@@ -1,0 +1,155 @@
+//! A computation on the shared worker pool whose result a viewer polls: the window's scene
+//! builds, the texture panel's coverage passes and the speed panel's measurements. Dropping the
+//! task (or replacing it with a newer one) cancels it: the work sees its flag set and its result
+//! is thrown away. A panic inside the work is caught and reported (rayon would abort the
+//! process).
+
+use super::pool::{PoolError, thread_pool};
+use std::panic::AssertUnwindSafe;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
+
+/// Where a task is.
+#[derive(Debug)]
+enum State<T> {
+    Running,
+    Done(T),
+    /// The work returned nothing (it noticed its cancellation) or its result was taken.
+    Empty,
+    Panicked(String),
+}
+
+/// A computation running on the pool of [`thread_pool`]`(0)`.
+pub struct Task<T> {
+    cancel: Arc<AtomicBool>,
+    state: Arc<Mutex<State<T>>>,
+}
+
+impl<T> std::fmt::Debug for Task<T> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Task")
+            .field("running", &self.is_running())
+            .finish_non_exhaustive()
+    }
+}
+
+impl<T: Send + 'static> Task<T> {
+    /// Runs `work` on the shared pool; `work` should return `None` soon after its flag is set.
+    ///
+    /// # Errors
+    /// No worker pool could be had.
+    pub fn spawn(
+        work: impl FnOnce(&AtomicBool) -> Option<T> + Send + 'static,
+    ) -> Result<Self, PoolError> {
+        let pool = thread_pool(0)?;
+        let cancel = Arc::new(AtomicBool::new(false));
+        let state = Arc::new(Mutex::new(State::Running));
+        let (c, s) = (cancel.clone(), state.clone());
+        pool.spawn(move || {
+            let out = std::panic::catch_unwind(AssertUnwindSafe(|| work(&c)));
+            let mut s = s.lock().unwrap_or_else(PoisonError::into_inner);
+            *s = match out {
+                Ok(Some(v)) if !c.load(Ordering::Relaxed) => State::Done(v),
+                Ok(_) => State::Empty,
+                Err(panic) => State::Panicked(
+                    panic
+                        .downcast_ref::<&str>()
+                        .map(ToString::to_string)
+                        .or_else(|| panic.downcast_ref::<String>().cloned())
+                        .unwrap_or_else(|| "unknown panic".into()),
+                ),
+            };
+        });
+        Ok(Self { cancel, state })
+    }
+}
+
+impl<T> Task<T> {
+    fn lock(&self) -> MutexGuard<'_, State<T>> {
+        self.state.lock().unwrap_or_else(PoisonError::into_inner)
+    }
+
+    /// The result, once (`None` while running, after it was taken, if it was cancelled or if
+    /// the work panicked).
+    pub fn take(&self) -> Option<T> {
+        let mut s = self.lock();
+        match std::mem::replace(&mut *s, State::Empty) {
+            State::Done(v) => Some(v),
+            other => {
+                *s = other;
+                None
+            }
+        }
+    }
+
+    /// Whether the work has not returned yet.
+    #[must_use]
+    pub fn is_running(&self) -> bool {
+        matches!(*self.lock(), State::Running)
+    }
+
+    /// Why the work stopped without a result, when it panicked.
+    #[must_use]
+    pub fn failure(&self) -> Option<String> {
+        match &*self.lock() {
+            State::Panicked(what) => Some(what.clone()),
+            _ => None,
+        }
+    }
+
+    /// Asks the work to stop (as dropping the task does); its result will be thrown away.
+    pub fn cancel(&self) {
+        self.cancel.store(true, Ordering::Relaxed);
+    }
+}
+
+impl<T> Drop for Task<T> {
+    fn drop(&mut self) {
+        self.cancel();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::time::{Duration, Instant};
+
+    fn wait<T>(t: &Task<T>) {
+        let start = Instant::now();
+        while t.is_running() {
+            assert!(start.elapsed() < Duration::from_secs(30), "the task ends");
+            std::thread::sleep(Duration::from_millis(1));
+        }
+    }
+
+    #[test]
+    fn a_result_is_taken_once() {
+        let t = Task::spawn(|_| Some(42)).unwrap();
+        wait(&t);
+        assert_eq!(t.take(), Some(42));
+        assert_eq!(t.take(), None);
+        assert_eq!(t.failure(), None);
+    }
+
+    #[test]
+    fn a_cancelled_task_leaves_no_result() {
+        let (go, wait_go) = std::sync::mpsc::channel::<()>();
+        let t = Task::spawn(move |_| {
+            let _ = wait_go.recv();
+            Some(1)
+        })
+        .unwrap();
+        t.cancel();
+        go.send(()).unwrap();
+        wait(&t);
+        assert_eq!(t.take(), None);
+    }
+
+    #[test]
+    fn a_panic_is_reported_not_fatal() {
+        let t: Task<u8> = Task::spawn(|_| panic!("boom")).unwrap();
+        wait(&t);
+        assert_eq!(t.take(), None);
+        assert_eq!(t.failure().as_deref(), Some("boom"));
+    }
+}

@@ -4,9 +4,6 @@
 //! Next lesson walks the lecture in order; a lesson file dropped into the folder appears after
 //! Rescan.
 
-#[path = "common/gui.rs"]
-mod gui_common;
-
 use egui_kittest::Harness;
 use egui_kittest::kittest::{NodeT as _, Queryable as _};
 use std::path::Path;
@@ -31,7 +28,7 @@ fn start(lesson: Lesson) -> Harness<'static, ExplorerApp> {
                 },
             )
         });
-    gui_common::built(&mut h);
+    crate::gui_common::built(&mut h);
     h
 }
 
@@ -50,7 +47,7 @@ fn press(h: &mut Harness<'_, ExplorerApp>, label: &str) {
     }
     h.get_by_label(label).click();
     // The scene an experiment or a lesson's preset makes builds off the UI thread.
-    gui_common::built(h);
+    crate::gui_common::built(h);
 }
 
 #[test]

@@ -2,7 +2,7 @@
 //! displaced mesh at 4 levels leaves the window responsive"). A measurement, not a check of
 //! this machine's speed: run it by hand and read what it prints.
 //!
-//! `cargo test --test gui_frame_time -- --ignored --nocapture`
+//! `cargo test --test window gui_frame_time:: -- --ignored --nocapture`
 
 use egui_kittest::Harness;
 use std::path::Path;

@@ -6,7 +6,7 @@
 
 use super::command::Command;
 use super::compare::{AbSplit, SpeedPanel};
-use super::document::{Document, Recipe};
+use super::document::{Document, Recipe, Version};
 use super::files::{Browser, Files};
 use super::help;
 use super::history::{Gesture, Gestures, History};
@@ -416,9 +416,11 @@ impl ExplorerApp {
                                 resolution_scale,
                                 ..
                             } = self;
+                            doc.sync_ids();
                             if let Some(desc) = &mut doc.desc {
                                 // Whether it changed anything is seen at the end of the frame.
-                                let _ = scene_panel.ui(ui, desc, resolution_scale, &doc.path);
+                                let ids = &mut doc.ids;
+                                let _ = scene_panel.ui(ui, desc, ids, resolution_scale, &doc.path);
                             } else {
                                 ui.label("No scene: open a preset from the Presets menu.");
                             }
@@ -603,7 +605,7 @@ pub const BUILDING: &str = "Building the scene…";
 /// as unsaved changes.
 fn edit_menu(
     ui: &mut egui::Ui,
-    history: &History<SceneDesc>,
+    history: &History<Version>,
     camera_is_unsaved: &mut bool,
 ) -> Option<Command> {
     let mut command = None;

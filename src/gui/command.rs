@@ -142,7 +142,7 @@ impl ExplorerApp {
                 // The steps to undo hold paths relative to the old folder too.
                 self.doc
                     .history
-                    .rewrite(|d| crate::scene::rebase_assets(d, &from, to));
+                    .rewrite(|v| crate::scene::rebase_assets(&mut v.desc, &from, to));
                 *desc = out.clone();
                 self.doc.saved = Some(out);
                 self.doc.path = p.to_path_buf();
@@ -154,10 +154,11 @@ impl ExplorerApp {
         }
     }
 
-    /// Undoes or redoes one step: the description goes back, and its build starts.
+    /// Undoes or redoes one step: the description and its objects' ids go back, and its build
+    /// starts.
     fn step(&mut self, command: &Command) {
         self.doc.record();
-        let Some(current) = self.doc.desc.clone() else {
+        let Some(current) = self.doc.version() else {
             return;
         };
         let kept = self.doc.history.clone();
@@ -168,18 +169,18 @@ impl ExplorerApp {
         };
         let Some(restored) = restored else { return };
         // The object that came back or went away is the one to look at.
-        if restored.objects.len() != current.objects.len() {
+        let (now, before) = (&restored.desc.objects, &current.desc.objects);
+        if now.len() != before.len() {
             self.scene_panel.selected = restored
-                .objects
+                .ids
                 .iter()
-                .zip(&current.objects)
+                .zip(&current.ids)
                 .position(|(a, b)| a != b)
-                .unwrap_or(restored.objects.len().min(current.objects.len()));
+                .unwrap_or(now.len().min(before.len()));
         }
-        let n = restored.objects.len();
-        self.scene_panel.selected = self.scene_panel.selected.min(n.saturating_sub(1));
-        let recipe = self.recipe(&restored);
-        self.doc.desc = Some(restored);
+        self.scene_panel.selected = self.scene_panel.selected.min(now.len().saturating_sub(1));
+        let recipe = self.recipe(&restored.desc);
+        self.doc.restore(restored);
         self.doc.step(kept, recipe);
     }
 

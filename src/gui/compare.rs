@@ -3,7 +3,7 @@
 
 use super::live::LiveImage;
 use crate::names::Named as _;
-use crate::render::{Generation, RenderJob, RenderOptions};
+use crate::render::{Generation, RenderJob, RenderOptions, Task};
 use crate::report::metrics::{EncodedImage, rmse};
 use crate::report::{Mode, ProgressUpdate, ReferenceSettings, ReportConfig, Row, run_scene};
 use crate::sampler::PixelSampler;
@@ -12,7 +12,7 @@ use crate::texture::Filter;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::AtomicBool;
 use std::sync::mpsc::{Receiver, channel};
 use std::time::Duration;
 
@@ -237,24 +237,30 @@ impl AbSplit {
     }
 }
 
-/// What the measuring thread tells the window.
+/// What the measuring task tells the window as it goes.
 enum Measured {
     /// One (mode, spp) measured.
     Row(Box<Row>),
     /// Camera samples done and planned.
     Progress(u64, u64),
-    /// Finished (or failed, or cancelled).
-    Done(Result<(), String>),
+}
+
+/// A measurement running on the render pool: its rows and progress as they come, and the task
+/// (whose result says whether it failed).
+struct Measuring {
+    updates: Receiver<Measured>,
+    task: Task<Result<(), String>>,
 }
 
 /// The speed/error panel: the report's runs (`report::run_scene`) for the current scene at a
-/// small resolution, on demand on a background thread, plotted live as time against RMSE.
+/// small resolution, on demand as a [`Task`] on the render pool, plotted live as time against
+/// RMSE.
 #[derive(Default)]
 pub struct SpeedPanel {
     /// Whether the window is open.
     pub open: bool,
     rows: Vec<Row>,
-    running: Option<(Receiver<Measured>, Arc<AtomicBool>)>,
+    running: Option<Measuring>,
     progress: (u64, u64),
     error: Option<String>,
 }
@@ -274,9 +280,7 @@ const SPEED_SIZE: (u32, u32) = (160, 120);
 impl SpeedPanel {
     fn measure(&mut self, desc: &SceneDesc, path: &Path) {
         let (tx, rx) = channel();
-        let stop = Arc::new(AtomicBool::new(false));
-        let (desc, path, stop2): (SceneDesc, PathBuf, _) =
-            (desc.clone(), path.to_path_buf(), stop.clone());
+        let (desc, path): (SceneDesc, PathBuf) = (desc.clone(), path.to_path_buf());
         let config = ReportConfig {
             modes: Mode::default_set(),
             spp: SPEED_SPP.to_vec(),
@@ -288,48 +292,50 @@ impl SpeedPanel {
             reference: reference(),
             heatmap_spp: None,
         };
-        let spawned = std::thread::Builder::new()
-            .name("texplore-measure".into())
-            .spawn(move || {
-                let tx2 = tx.clone();
-                let mut progress = move |u: &ProgressUpdate<'_>| {
-                    if let Some(row) = u.row {
-                        let _ = tx2.send(Measured::Row(Box::new(row.clone())));
-                    }
-                    let _ = tx2.send(Measured::Progress(u.done, u.total));
-                };
-                let name = path
-                    .file_stem()
-                    .map_or_else(|| "scene".into(), |s| s.to_string_lossy().into_owned());
-                let r = run_scene(&name, &desc, &path, &config, &mut progress, &stop2)
-                    .map(|_| ())
-                    .map_err(|e| e.to_string());
-                let _ = tx.send(Measured::Done(r));
-            });
-        match spawned {
-            Ok(_) => {
+        let work = move |stop: &AtomicBool| {
+            let mut progress = move |u: &ProgressUpdate<'_>| {
+                if let Some(row) = u.row {
+                    let _ = tx.send(Measured::Row(Box::new(row.clone())));
+                }
+                let _ = tx.send(Measured::Progress(u.done, u.total));
+            };
+            let name = path
+                .file_stem()
+                .map_or_else(|| "scene".into(), |s| s.to_string_lossy().into_owned());
+            let r = run_scene(&name, &desc, &path, &config, &mut progress, stop)
+                .map(|_| ())
+                .map_err(|e| e.to_string());
+            Some(r)
+        };
+        match Task::spawn(work) {
+            Ok(task) => {
                 self.rows.clear();
                 self.progress = (0, 1);
-                self.running = Some((rx, stop));
+                self.error = None;
+                self.running = Some(Measuring { updates: rx, task });
             }
             Err(e) => self.error = Some(format!("cannot start the measurement: {e}")),
         }
     }
 
     fn receive(&mut self) {
-        let Some((rx, _)) = &self.running else {
+        let Some(m) = &self.running else {
             return;
         };
-        let mut done = None;
-        while let Ok(m) = rx.try_recv() {
-            match m {
+        while let Ok(u) = m.updates.try_recv() {
+            match u {
                 Measured::Row(r) => self.rows.push(*r),
                 Measured::Progress(d, t) => self.progress = (d, t.max(1)),
-                Measured::Done(r) => done = Some(r),
             }
         }
-        if let Some(r) = done {
-            self.error = r.err();
+        if !m.task.is_running() {
+            self.error = match m.task.take() {
+                Some(r) => r.err(),
+                None => m
+                    .task
+                    .failure()
+                    .map(|f| format!("the measurement stopped: {f}")),
+            };
             self.running = None;
         }
     }
@@ -338,9 +344,8 @@ impl SpeedPanel {
     pub fn window(&mut self, ctx: &egui::Context, desc: Option<&SceneDesc>, path: &Path) {
         self.receive();
         if !self.open {
-            if let Some((_, stop)) = self.running.take() {
-                stop.store(true, Ordering::Relaxed);
-            }
+            // Dropping the task cancels it.
+            self.running = None;
             return;
         }
         let mut open = self.open;
@@ -367,9 +372,9 @@ impl SpeedPanel {
                                 .show_percentage(),
                         );
                         if ui.button("Stop").on_hover_text("Cancel the measurement").clicked()
-                            && let Some((_, stop)) = &self.running
+                            && let Some(m) = &self.running
                         {
-                            stop.store(true, Ordering::Relaxed);
+                            m.task.cancel();
                         }
                         ctx.request_repaint_after(Duration::from_millis(100));
                     }
@@ -429,13 +434,5 @@ impl SpeedPanel {
                     });
             });
         self.open = open;
-    }
-}
-
-impl Drop for SpeedPanel {
-    fn drop(&mut self) {
-        if let Some((_, stop)) = &self.running {
-            stop.store(true, Ordering::Relaxed);
-        }
     }
 }

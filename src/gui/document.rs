@@ -16,6 +16,49 @@ use crate::scene::{AssetCache, CameraDesc, Scene, SceneDesc, build_scene};
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex, PoisonError};
 
+/// An object's identity in the window: it stays with the object through edits of the list,
+/// undo, redo and a lesson's *Apply*, so what an editor remembers about an object (the image it
+/// had, the maps switched off) follows it, whatever its index.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct ObjectId(u64);
+
+impl ObjectId {
+    /// An id no object has had before.
+    #[must_use]
+    pub fn fresh() -> Self {
+        static NEXT: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(1);
+        Self(NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed))
+    }
+
+    /// The id as a number, for editors that key what they keep by a plain number.
+    #[must_use]
+    pub fn number(self) -> usize {
+        usize::try_from(self.0).unwrap_or(usize::MAX)
+    }
+}
+
+/// A description and its objects' ids: what the history keeps.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Version {
+    /// The description.
+    pub desc: SceneDesc,
+    /// The id of each of its objects, in order.
+    pub ids: Vec<ObjectId>,
+}
+
+impl Version {
+    /// `desc` with fresh ids (a scene just opened).
+    fn fresh(desc: SceneDesc) -> Self {
+        let ids = desc.objects.iter().map(|_| ObjectId::fresh()).collect();
+        Self { desc, ids }
+    }
+}
+
+/// What changed from `old` to `new` ([`history::describe`]).
+fn describe(old: &Version, new: &Version) -> String {
+    history::describe(&old.desc, &new.desc)
+}
+
 /// What a build is for: what happens when it lands or fails.
 #[derive(Debug)]
 pub enum Purpose {
@@ -25,7 +68,7 @@ pub enum Purpose {
     /// the saved description, the history); on failure nothing changes.
     Open(PathBuf),
     /// An undo or redo step: on failure the history goes back to this (the step is kept).
-    Step(Box<History<SceneDesc>>),
+    Step(Box<History<Version>>),
 }
 
 /// What one build makes: the scene rendered in the viewport and, with the A/B split on, the
@@ -57,7 +100,7 @@ pub struct Landed {
 /// A build on the pool and what it was asked for.
 struct Pending {
     purpose: Purpose,
-    desc: SceneDesc,
+    version: Version,
     path: PathBuf,
     /// The gesture of the frame that asked for it (its undo step merges with that gesture's).
     gesture: Option<Gesture>,
@@ -69,14 +112,16 @@ struct Pending {
 pub struct Document {
     /// The scene the panels edit, unsaved edits included (`None` until a preset opens).
     pub(super) desc: Option<SceneDesc>,
-    /// The last description that built (restored when an edit fails).
-    good: Option<SceneDesc>,
+    /// The id of each object of `desc`, in order (kept in step by [`Document::sync_ids`]).
+    pub(super) ids: Vec<ObjectId>,
+    /// The last description that built and its ids (restored when an edit fails).
+    good: Option<Version>,
     /// The description as last opened or saved (for the unsaved-changes prompt).
     pub(super) saved: Option<SceneDesc>,
     /// The camera as opened, for *Reset view*.
     pub(super) home_camera: Option<CameraDesc>,
     /// Undo and redo over every change of the description that built, whichever panel made it.
-    pub(super) history: History<SceneDesc>,
+    pub(super) history: History<Version>,
     /// The file the scene came from; asset paths are relative to it.
     pub(super) path: PathBuf,
     /// Images and meshes loaded once, shared by every build (locked by the build running).
@@ -94,6 +139,7 @@ impl Document {
     pub fn new(path: PathBuf) -> Self {
         Self {
             desc: None,
+            ids: Vec::new(),
             good: None,
             saved: None,
             home_camera: None,
@@ -136,7 +182,40 @@ impl Document {
     /// Starts building `desc` from the file at `path` (`recipe` what to build); the scene
     /// replaces the open one when it lands.
     pub fn open(&mut self, path: &Path, desc: SceneDesc, recipe: Recipe) {
-        self.start(Purpose::Open(path.to_path_buf()), desc, path, recipe, None);
+        let version = Version::fresh(desc);
+        self.start(
+            Purpose::Open(path.to_path_buf()),
+            version,
+            path,
+            recipe,
+            None,
+        );
+    }
+
+    /// The description and its ids, the ids first brought in step with the objects.
+    pub fn version(&mut self) -> Option<Version> {
+        self.sync_ids();
+        Some(Version {
+            desc: self.desc.clone()?,
+            ids: self.ids.clone(),
+        })
+    }
+
+    /// Puts `version` in place (undo, redo, a failed edit rolled back).
+    pub fn restore(&mut self, version: Version) {
+        self.desc = Some(version.desc);
+        self.ids = version.ids;
+    }
+
+    /// One id per object: objects added at the end (*Duplicate*, a lesson's scene) get fresh
+    /// ids, ids beyond the last object go (an object removed in place is removed from `ids`
+    /// by the panel that removes it).
+    pub fn sync_ids(&mut self) {
+        let n = self.desc.as_ref().map_or(0, |d| d.objects.len());
+        self.ids.truncate(n);
+        while self.ids.len() < n {
+            self.ids.push(ObjectId::fresh());
+        }
     }
 
     /// Once a frame, after the panels: starts a build when `recipe` (what the renders need
@@ -146,7 +225,7 @@ impl Document {
         if self.opening() || self.asked.as_ref() == Some(&recipe) {
             return;
         }
-        let Some(desc) = self.desc.clone() else {
+        let Some(version) = self.version() else {
             return;
         };
         let purpose = match self.pending.take() {
@@ -159,22 +238,22 @@ impl Document {
             _ => Purpose::Edit,
         };
         let path = self.path.clone();
-        self.start(purpose, desc, &path, recipe, gesture);
+        self.start(purpose, version, &path, recipe, gesture);
     }
 
     /// Starts an undo or redo step's build: the description is already restored, `kept` is the
     /// history before the step.
-    pub fn step(&mut self, kept: History<SceneDesc>, recipe: Recipe) {
-        if let Some(desc) = self.desc.clone() {
+    pub fn step(&mut self, kept: History<Version>, recipe: Recipe) {
+        if let Some(version) = self.version() {
             let path = self.path.clone();
-            self.start(Purpose::Step(Box::new(kept)), desc, &path, recipe, None);
+            self.start(Purpose::Step(Box::new(kept)), version, &path, recipe, None);
         }
     }
 
     fn start(
         &mut self,
         purpose: Purpose,
-        desc: SceneDesc,
+        version: Version,
         path: &Path,
         recipe: Recipe,
         gesture: Option<Gesture>,
@@ -200,7 +279,7 @@ impl Document {
             Ok(task) => {
                 self.pending = Some(Pending {
                     purpose,
-                    desc,
+                    version,
                     path: path.to_path_buf(),
                     gesture,
                     recipe,
@@ -209,7 +288,14 @@ impl Document {
             }
             Err(e) => {
                 let message = e.to_string();
-                self.settle(purpose, desc, path, gesture, recipe, &Err::<(), _>(message));
+                self.settle(
+                    purpose,
+                    version,
+                    path,
+                    gesture,
+                    recipe,
+                    &Err::<(), _>(message),
+                );
             }
         }
     }
@@ -229,21 +315,21 @@ impl Document {
         };
         let Pending {
             purpose,
-            desc,
+            version,
             path,
             gesture,
             recipe,
             ..
         } = self.pending.take()?;
-        let purpose = self.settle(purpose, desc, &path, gesture, recipe, &outcome);
+        let purpose = self.settle(purpose, version, &path, gesture, recipe, &outcome);
         Some(Landed { purpose, outcome })
     }
 
-    /// Updates the document for a build of `desc` that ended with `outcome`.
+    /// Updates the document for a build of `version` that ended with `outcome`.
     fn settle<T>(
         &mut self,
         purpose: Purpose,
-        desc: SceneDesc,
+        version: Version,
         path: &Path,
         gesture: Option<Gesture>,
         recipe: Recipe,
@@ -258,21 +344,20 @@ impl Document {
         match (&purpose, outcome.is_ok()) {
             (Purpose::Open(_), true) => {
                 self.path = path.to_path_buf();
-                self.home_camera = Some(desc.camera);
-                self.saved = Some(desc.clone());
-                self.history.reset(Some(&desc));
-                self.good = Some(desc.clone());
-                self.desc = Some(desc);
+                self.home_camera = Some(version.desc.camera);
+                self.saved = Some(version.desc.clone());
+                self.history.reset(Some(&version));
+                self.good = Some(version.clone());
+                self.restore(version);
             }
             (Purpose::Open(_), false) => {}
             (_, true) => {
-                self.history
-                    .observe(Some(&desc), gesture, history::describe);
-                self.good = Some(desc);
+                self.history.observe(Some(&version), gesture, describe);
+                self.good = Some(version);
             }
             (Purpose::Edit | Purpose::Step(_), false) => {
-                if let Some(good) = &self.good {
-                    self.desc = Some(good.clone());
+                if let Some(good) = self.good.clone() {
+                    self.restore(good);
                 }
             }
         }
@@ -288,8 +373,8 @@ impl Document {
     /// Records the description as it is now, built or not (before an undo or redo, so a change
     /// still building is a step of its own).
     pub fn record(&mut self) {
-        self.history
-            .observe(self.desc.as_ref(), None, history::describe);
+        let version = self.version();
+        self.history.observe(version.as_ref(), None, describe);
     }
 
     /// Blocks until the build running has ended, or `deadline` has passed (for tests and

@@ -4,11 +4,11 @@
 //! cancels it without blocking the caller.
 
 use super::pool::{PoolError, thread_pool};
+use super::task::Task;
 use super::{DisplayImage, Film, PREVIEW_BLOCKS, render_preview, render_scheduled_pass};
 use crate::scene::Scene;
-use std::panic::AssertUnwindSafe;
 use std::sync::atomic::{AtomicU64, Ordering};
-use std::sync::{Arc, Condvar, Mutex, MutexGuard, PoisonError};
+use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 use std::time::{Duration, Instant};
 
 /// A shared counter: a job runs while the counter equals the value it started with. An edit
@@ -83,19 +83,14 @@ struct Published {
     film: Option<Arc<Film>>,
     progress: Progress,
     serial: u64,
-    /// The job's task has returned (finished, cancelled or failed).
-    done: bool,
-    /// Why the job stopped without finishing, when it was not cancelled.
-    failure: Option<String>,
     /// Called after each publication (a viewer asking for a repaint).
     on_publish: Option<Arc<dyn Fn() + Send + Sync>>,
 }
 
-/// What a job and its viewers share: the published state and the signal that the task ended.
+/// What a job and its viewers share: the published state.
 #[derive(Default)]
 struct Shared {
     published: Mutex<Published>,
-    ended: Condvar,
 }
 
 impl Shared {
@@ -106,18 +101,7 @@ impl Shared {
     }
 }
 
-/// Marks the job done when the task returns or unwinds, so a waiter never waits for a task that
-/// is gone.
-struct EndGuard(Arc<Shared>);
-
-impl Drop for EndGuard {
-    fn drop(&mut self) {
-        self.0.lock().done = true;
-        self.0.ended.notify_all();
-    }
-}
-
-/// A progressive render running as a task on the shared worker pool ([`thread_pool`]).
+/// A progressive render running as a [`Task`] on the shared worker pool ([`thread_pool`]).
 ///
 /// Dropping a job cancels it without waiting: its task notices within one tile and returns, and
 /// everything it writes belongs to the job's shared state. [`RenderJob::wait`] and
@@ -125,6 +109,7 @@ impl Drop for EndGuard {
 /// worker of the same pool.
 pub struct RenderJob {
     shared: Arc<Shared>,
+    task: Task<()>,
     generation: Generation,
     started_at: u64,
 }
@@ -144,25 +129,14 @@ impl RenderJob {
         let shared = Arc::new(Shared::default());
         let started_at = generation.current();
         let (task_shared, task_generation) = (shared.clone(), generation.clone());
-        pool.spawn(move || {
-            let guard = EndGuard(task_shared);
-            let shared = &guard.0;
-            let outcome = std::panic::catch_unwind(AssertUnwindSafe(|| {
-                run(&scene, options, &task_generation, started_at, shared);
-            }));
-            if let Err(panic) = outcome {
-                // A bug in the renderer: report it to the viewer instead of aborting the process
-                // (rayon aborts on a panic in a spawned task).
-                let what = panic
-                    .downcast_ref::<&str>()
-                    .map(ToString::to_string)
-                    .or_else(|| panic.downcast_ref::<String>().cloned())
-                    .unwrap_or_else(|| "unknown panic".into());
-                shared.lock().failure = Some(format!("the render stopped: {what}"));
-            }
+        // The job stops on its generation, not on the task's flag.
+        let task = Task::spawn_on(&pool, move |_| {
+            run(&scene, options, &task_generation, started_at, &task_shared);
+            Some(())
         });
         Ok(Self {
             shared,
+            task,
             generation: generation.clone(),
             started_at,
         })
@@ -177,7 +151,10 @@ impl RenderJob {
     /// Why the job stopped without finishing, other than cancellation (a renderer bug).
     #[must_use]
     pub fn failure(&self) -> Option<String> {
-        self.shared.lock().failure.clone()
+        // A bug in the renderer, reported to the viewer instead of aborting the process.
+        self.task
+            .failure()
+            .map(|what| format!("the render stopped: {what}"))
     }
 
     /// The latest display image and a serial number that changes whenever a new one is
@@ -217,14 +194,7 @@ impl RenderJob {
     }
 
     fn wait_for_task(&self) {
-        let mut p = self.shared.lock();
-        while !p.done {
-            p = self
-                .shared
-                .ended
-                .wait(p)
-                .unwrap_or_else(PoisonError::into_inner);
-        }
+        self.task.wait();
     }
 
     /// Waits for the job to finish or stop and returns the final film (`None` if cancelled).

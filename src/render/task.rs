@@ -1,13 +1,14 @@
-//! A computation on the shared worker pool whose result a viewer polls: the window's scene
-//! builds, the texture panel's coverage passes and the speed panel's measurements. Dropping the
-//! task (or replacing it with a newer one) cancels it: the work sees its flag set and its result
-//! is thrown away. A panic inside the work is caught and reported (rayon would abort the
-//! process).
+//! A computation on a shared worker pool whose result a viewer polls or waits for: render
+//! jobs, the window's scene builds, the texture panel's coverage passes and the speed panel's
+//! measurements. Dropping the task (or replacing it with a newer one) cancels it: the work sees
+//! its flag set and its result is thrown away. A panic inside the work is caught and reported
+//! (rayon would abort the process).
 
 use super::pool::{PoolError, thread_pool};
+use rayon::ThreadPool;
 use std::panic::AssertUnwindSafe;
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
+use std::sync::{Arc, Condvar, Mutex, MutexGuard, PoisonError};
 
 /// Where a task is.
 #[derive(Debug)]
@@ -19,10 +20,16 @@ enum State<T> {
     Panicked(String),
 }
 
-/// A computation running on the pool of [`thread_pool`]`(0)`.
+/// What a task and its viewer share: where it is, and the signal that it ended.
+struct Shared<T> {
+    state: Mutex<State<T>>,
+    ended: Condvar,
+}
+
+/// A computation running on a worker pool.
 pub struct Task<T> {
     cancel: Arc<AtomicBool>,
-    state: Arc<Mutex<State<T>>>,
+    shared: Arc<Shared<T>>,
 }
 
 impl<T> std::fmt::Debug for Task<T> {
@@ -34,7 +41,8 @@ impl<T> std::fmt::Debug for Task<T> {
 }
 
 impl<T: Send + 'static> Task<T> {
-    /// Runs `work` on the shared pool; `work` should return `None` soon after its flag is set.
+    /// Runs `work` on the shared pool of one thread per core; `work` should return `None` soon
+    /// after its flag is set.
     ///
     /// # Errors
     /// No worker pool could be had.
@@ -42,13 +50,24 @@ impl<T: Send + 'static> Task<T> {
         work: impl FnOnce(&AtomicBool) -> Option<T> + Send + 'static,
     ) -> Result<Self, PoolError> {
         let pool = thread_pool(0)?;
+        Ok(Self::spawn_on(&pool, work))
+    }
+
+    /// Runs `work` on `pool` (a pool of [`thread_pool`]).
+    pub fn spawn_on(
+        pool: &ThreadPool,
+        work: impl FnOnce(&AtomicBool) -> Option<T> + Send + 'static,
+    ) -> Self {
         let cancel = Arc::new(AtomicBool::new(false));
-        let state = Arc::new(Mutex::new(State::Running));
-        let (c, s) = (cancel.clone(), state.clone());
+        let shared = Arc::new(Shared {
+            state: Mutex::new(State::Running),
+            ended: Condvar::new(),
+        });
+        let (c, s) = (cancel.clone(), shared.clone());
         pool.spawn(move || {
             let out = std::panic::catch_unwind(AssertUnwindSafe(|| work(&c)));
-            let mut s = s.lock().unwrap_or_else(PoisonError::into_inner);
-            *s = match out {
+            let mut state = s.state.lock().unwrap_or_else(PoisonError::into_inner);
+            *state = match out {
                 Ok(Some(v)) if !c.load(Ordering::Relaxed) => State::Done(v),
                 Ok(_) => State::Empty,
                 Err(panic) => State::Panicked(
@@ -59,14 +78,32 @@ impl<T: Send + 'static> Task<T> {
                         .unwrap_or_else(|| "unknown panic".into()),
                 ),
             };
+            drop(state);
+            s.ended.notify_all();
         });
-        Ok(Self { cancel, state })
+        Self { cancel, shared }
     }
 }
 
 impl<T> Task<T> {
     fn lock(&self) -> MutexGuard<'_, State<T>> {
-        self.state.lock().unwrap_or_else(PoisonError::into_inner)
+        self.shared
+            .state
+            .lock()
+            .unwrap_or_else(PoisonError::into_inner)
+    }
+
+    /// Blocks until the work has returned (or unwound). Do not call it from a worker of the
+    /// task's own pool.
+    pub fn wait(&self) {
+        let mut s = self.lock();
+        while matches!(*s, State::Running) {
+            s = self
+                .shared
+                .ended
+                .wait(s)
+                .unwrap_or_else(PoisonError::into_inner);
+        }
     }
 
     /// The result, once (`None` while running, after it was taken, if it was cancelled or if
@@ -148,7 +185,8 @@ mod tests {
     #[test]
     fn a_panic_is_reported_not_fatal() {
         let t: Task<u8> = Task::spawn(|_| panic!("boom")).unwrap();
-        wait(&t);
+        t.wait();
+        assert!(!t.is_running());
         assert_eq!(t.take(), None);
         assert_eq!(t.failure().as_deref(), Some("boom"));
     }

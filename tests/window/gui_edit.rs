@@ -10,7 +10,7 @@ use std::collections::HashMap;
 use texplore::gui::{AppOptions, ExplorerApp, Prefs};
 use texplore::mapping::Mapping;
 use texplore::names::Named;
-use texplore::scene::{MaterialKind, ShapeKind, TextureKind};
+use texplore::scene::{MaterialKind, ShapeKind, TextureDesc, TextureKind};
 use texplore::texture::Filter;
 
 /// The Edit menu's checkbox.
@@ -219,6 +219,42 @@ fn undo_brings_a_removed_object_back_and_selects_it() {
         "the list shows it again"
     );
     assert_eq!(h.state().selected_object(), 0, "and the panel edits it");
+}
+
+/// Clicks the objects' Remove (the topmost; each light has one too).
+fn remove_selected_object(h: &mut Harness<'_, ExplorerApp>) {
+    h.get_all_by_label("Remove")
+        .min_by(|a, b| a.rect().top().total_cmp(&b.rect().top()))
+        .expect("a Remove button")
+        .click();
+    settle(h);
+}
+
+#[test]
+fn what_an_editor_remembers_about_an_object_follows_it_through_remove_and_undo() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut h = harness(small_earth(dir.path()));
+    let image = desc(&h).objects[0].material.texture().clone();
+    assert!(matches!(image, TextureDesc::Image { .. }), "{image:?}");
+    // Switched to a checker, the Earth remembers its image...
+    choose(&mut h, "Texture", TextureKind::Checker.name());
+    h.get_by_label("Duplicate").click();
+    settle(&mut h);
+    h.get_by_label("0: Earth").click();
+    settle(&mut h);
+    // ...through its removal and the undo that brings it back (kept under the object's id,
+    // not its index).
+    remove_selected_object(&mut h);
+    assert_eq!(desc(&h).objects.len(), 1);
+    undo_key(&mut h);
+    assert_eq!(desc(&h).objects.len(), 2);
+    assert_eq!(h.state().selected_object(), 0);
+    choose(&mut h, "Texture", TextureKind::Image.name());
+    assert_eq!(
+        desc(&h).objects[0].material.texture(),
+        &image,
+        "the Earth's own image comes back"
+    );
 }
 
 #[test]

@@ -15,6 +15,7 @@
 use super::material::{channel_ui, texture_settings_ui};
 use super::{ImagePicker, ScenePanel};
 use crate::geometry::displace::MAX_DISPLACED_TRIANGLES;
+use crate::gui::document::ObjectId;
 use crate::gui::widgets::number_tip;
 use crate::math::Rgb;
 use crate::names::Named;
@@ -152,22 +153,18 @@ enum Kept {
 /// bring them back), and the note that one of bump and normal map switched the other off.
 #[derive(Default)]
 pub(super) struct MapMemory {
-    kept: HashMap<(usize, Map), (PathBuf, Kept)>,
+    kept: HashMap<(ObjectId, Map), (PathBuf, Kept)>,
     /// (object, the map switched on) when that switched its rival off.
-    note: Option<(usize, Map)>,
+    note: Option<(ObjectId, Map)>,
     /// (object, value) while the displacement scale of that object is dragged: applied (and
     /// the mesh rebuilt) when the drag ends.
-    scale_drag: Option<(usize, f32)>,
+    scale_drag: Option<(ObjectId, f32)>,
 }
 
 impl MapMemory {
-    /// Object `i` was removed: its maps go, the later objects' move down by one.
-    pub(super) fn object_removed(&mut self, i: usize) {
-        self.kept = std::mem::take(&mut self.kept)
-            .into_iter()
-            .filter(|((k, _), _)| *k != i)
-            .map(|((k, m), v)| ((if k > i { k - 1 } else { k }, m), v))
-            .collect();
+    /// An object was removed: the note and a drag in progress go; the maps kept stay under
+    /// their objects' ids (Undo may bring the object back).
+    pub(super) fn object_removed(&mut self) {
         self.note = None;
         self.scale_drag = None;
     }
@@ -175,7 +172,7 @@ impl MapMemory {
     /// Object `key`'s shape is no longer a mesh: its displacement map is kept (in the
     /// preset `preset`), to come back when the object is a mesh again and displacement is
     /// switched on.
-    pub(super) fn keep_displacement(&mut self, key: usize, obj: &mut ObjectDesc, preset: &Path) {
+    pub(super) fn keep_displacement(&mut self, key: ObjectId, obj: &mut ObjectDesc, preset: &Path) {
         if let Some(d) = obj.displace.take() {
             self.kept.insert(
                 (key, Map::Displace),
@@ -265,7 +262,7 @@ impl ScenePanel {
             });
         }
         if let Some((object, on)) = self.maps.note
-            && object == self.selected
+            && object == self.key
             && let Some(off) = on.rival()
             && choice(obj, on) != Choice::Off
             && choice(obj, off) == Choice::Off
@@ -403,7 +400,7 @@ impl ScenePanel {
         obj: &mut ObjectDesc,
         picker: &ImagePicker,
     ) -> bool {
-        let key = self.selected;
+        let key = self.key;
         let Some(d) = &mut obj.displace else {
             return false;
         };
@@ -457,7 +454,7 @@ impl ScenePanel {
     /// when switched to its kind again), and a bump or normal map switched on switches the
     /// other off.
     fn switch(&mut self, obj: &mut ObjectDesc, map: Map, to: Choice, preset: &Path) {
-        let key = self.selected;
+        let key = self.key;
         // Made while the object still has its maps: a new one starts on their mapping.
         let new = match to {
             Choice::Off => None,
@@ -530,7 +527,7 @@ impl ScenePanel {
     /// The map the selected object had as `to` before it was switched away, its image paths
     /// made relative to `preset` (which may have moved since, after *Save as*).
     fn restored(&mut self, map: Map, to: Choice, preset: &Path) -> Option<Kept> {
-        let key = (self.selected, map);
+        let key = (self.key, map);
         let (_, kept) = self.maps.kept.get(&key)?;
         let kind = match kept {
             Kept::Clip(ScalarDesc::Value(_)) => Choice::Value,

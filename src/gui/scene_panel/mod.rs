@@ -16,6 +16,7 @@ mod render;
 mod texture;
 
 use crate::geometry::Shading;
+use crate::gui::document::ObjectId;
 use crate::gui::files::{BrowseFor, Browser};
 use crate::names::Named;
 use crate::scene::{
@@ -31,15 +32,18 @@ use std::path::{Path, PathBuf};
 pub struct ScenePanel {
     /// Index into `SceneDesc::objects` of the object the panel edits.
     pub selected: usize,
+    /// The selected object's id: what the panel remembers about an object is kept under it,
+    /// so it follows the object through removals, undo, redo and lessons.
+    key: ObjectId,
     /// The image path being typed, applied with Enter or "Load".
     path_text: Option<PathText>,
     /// The mesh path being typed.
     mesh_text: Option<PathText>,
     /// Shape -> Mesh was chosen for this object: the file asked for before the shape changes.
-    mesh_prompt: Option<(usize, String)>,
+    mesh_prompt: Option<(ObjectId, String)>,
     /// Per object, the image texture it had before its kind was switched away from Image, its
     /// path absolute (so a "Save as" into another folder does not break it).
-    last_image: HashMap<usize, TextureDesc>,
+    last_image: HashMap<ObjectId, TextureDesc>,
     /// The images in assets/, and the preset they were listed for (listed again when the scene
     /// moves to another folder, after *Save as* or opening another file).
     assets: Option<(PathBuf, Vec<PathBuf>)>,
@@ -57,6 +61,7 @@ pub struct ScenePanel {
 pub(super) struct ImagePicker<'a> {
     browser: &'a Browser,
     preset: &'a Path,
+    /// The object's id as a number ([`ObjectId::number`]).
     object: usize,
 }
 
@@ -64,7 +69,7 @@ pub(super) struct ImagePicker<'a> {
 /// scene whenever the object, the path or the preset changes, so it never shows a path the
 /// scene does not have (after "Save as", opening another file, picking an asset).
 struct PathText {
-    object: usize,
+    object: ObjectId,
     path: String,
     preset: PathBuf,
     text: String,
@@ -75,7 +80,7 @@ impl PathText {
     /// that same path, else the path itself.
     fn synced<'a>(
         slot: &'a mut Option<Self>,
-        object: usize,
+        object: ObjectId,
         path: &str,
         preset: &Path,
     ) -> &'a mut String {
@@ -155,11 +160,14 @@ impl ScenePanel {
         }
     }
 
-    /// The panel. Returns whether the scene changed.
+    /// The panel over `desc`, whose objects have the `ids` (an object removed here is removed
+    /// from them; the app gives objects added at the end fresh ids). Returns whether the scene
+    /// changed.
     pub fn ui(
         &mut self,
         ui: &mut egui::Ui,
         desc: &mut SceneDesc,
+        ids: &mut Vec<ObjectId>,
         resolution_scale: &mut f32,
         preset: &Path,
     ) -> bool {
@@ -188,6 +196,7 @@ impl ScenePanel {
                 o.transform.translate.y += 2.0;
                 o.name = String::new();
                 desc.objects.push(o);
+                ids.push(ObjectId::fresh());
                 self.selected = desc.objects.len() - 1;
                 changed = true;
             }
@@ -202,17 +211,17 @@ impl ScenePanel {
         });
         if let Some(i) = remove {
             desc.objects.remove(i);
+            if i < ids.len() {
+                ids.remove(i);
+            }
+            // What is remembered about the objects stays under their ids: the object removed
+            // may come back with Undo.
             self.mesh_prompt = None;
-            // The remembered images follow their objects down the list.
-            self.last_image = std::mem::take(&mut self.last_image)
-                .into_iter()
-                .filter(|(k, _)| *k != i)
-                .map(|(k, t)| (if k > i { k - 1 } else { k }, t))
-                .collect();
-            self.maps.object_removed(i);
+            self.maps.object_removed();
             self.selected = self.selected.min(desc.objects.len().saturating_sub(1));
             changed = true;
         }
+        self.key = ids.get(self.selected).copied().unwrap_or_default();
         if let Some(obj) = desc.objects.get_mut(self.selected) {
             ui.separator();
             changed |= self.object_ui(ui, obj, preset);
@@ -236,7 +245,7 @@ fn path_field(
     label: &str,
     path: &mut String,
     text: &mut Option<PathText>,
-    object: usize,
+    object: ObjectId,
     preset: &Path,
     browser: &Browser,
     what: BrowseFor,

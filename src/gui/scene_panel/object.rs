@@ -24,7 +24,7 @@ impl ScenePanel {
                 changed |= self.shape_ui(ui, &mut obj.shape, preset);
                 if !matches!(obj.shape, ShapeDesc::Mesh { .. }) {
                     // A generic shape cannot be displaced: the map waits for a mesh again.
-                    self.maps.keep_displacement(self.selected, obj, preset);
+                    self.maps.keep_displacement(self.key, obj, preset);
                 }
                 let t = &mut obj.transform;
                 changed |= vec3(ui, "translate", &mut t.translate, 0.02);
@@ -46,7 +46,7 @@ impl ScenePanel {
         let picker = ImagePicker {
             browser: &browser,
             preset,
-            object: self.selected,
+            object: self.key.number(),
         };
         egui::CollapsingHeader::new("Material")
             .default_open(true)
@@ -76,7 +76,7 @@ impl ScenePanel {
     /// is rolled back by the app, so the prompt stays with the error shown).
     fn shape_ui(&mut self, ui: &mut egui::Ui, shape: &mut ShapeDesc, preset: &Path) -> bool {
         let mut changed = false;
-        let key = self.selected;
+        let key = self.key;
         if matches!(shape, ShapeDesc::Mesh { .. }) {
             // A mesh loaded (typed here or dropped on the window): the question is answered.
             self.mesh_prompt = None;

@@ -154,13 +154,13 @@ impl ScenePanel {
                     .to_string_lossy()
                     .into_owned();
             }
-            self.last_image.insert(self.selected, kept);
+            self.last_image.insert(self.key, kept);
         }
         let mut new = tex.converted(kind);
         if kind != TextureKind::Image {
             return new;
         }
-        if let Some(mut earlier) = self.last_image.get(&self.selected).cloned() {
+        if let Some(mut earlier) = self.last_image.get(&self.key).cloned() {
             if let Some(m) = new.mapping() {
                 earlier.set_mapping(m);
             }
@@ -196,7 +196,7 @@ impl ScenePanel {
 
     fn image_path_ui(&mut self, ui: &mut egui::Ui, path: &mut String, preset: &Path) -> bool {
         let mut changed = false;
-        let key = self.selected;
+        let key = self.key;
         let dir = preset.parent().unwrap_or(Path::new(".")).to_path_buf();
         let assets = self.assets(preset).to_vec();
         let browser = self.browser.clone();

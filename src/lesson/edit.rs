@@ -8,75 +8,26 @@
 //! point, a number), every field of every preset works, including fields added later, and a
 //! value that does not fit gets the preset parser's own message.
 
-use crate::scene::{SceneDesc, check_numbers};
+use crate::scene::{FieldPath, SceneDesc, check_numbers};
 use serde::de::{self, DeserializeSeed, Deserializer, IntoDeserializer, Visitor};
 use serde_json::Value;
 use std::fmt;
 
-/// One step of a path: a field (or enum variant) name, or an index into a list.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub enum Step {
-    /// `.name`
-    Field(String),
-    /// `[n]`
-    Index(usize),
-}
+pub use crate::scene::Step;
 
-impl fmt::Display for Step {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            Self::Field(name) => f.write_str(name),
-            Self::Index(i) => write!(f, "[{i}]"),
-        }
-    }
-}
-
-/// Splits `objects[0].material.cd.mapping` into steps.
+/// Splits `objects[0].material.cd.mapping` into steps ([`FieldPath::parse`], the one path
+/// syntax of errors, lessons and the window).
 ///
 /// # Errors
 /// An empty path, an empty name (`a..b`), or a bad index (`objects[x]`), with the reason.
 pub fn parse_path(path: &str) -> Result<Vec<Step>, String> {
-    let mut steps = Vec::new();
-    if path.trim().is_empty() {
-        return Err("the path is empty".into());
-    }
-    for part in path.split('.') {
-        let (name, mut rest) = part.find('[').map_or((part, ""), |i| part.split_at(i));
-        let name = name.trim();
-        if !name.is_empty() {
-            if !name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') {
-                return Err(format!("`{name}` in `{path}` is not a field name"));
-            }
-            steps.push(Step::Field(name.to_owned()));
-        } else if rest.is_empty() || steps.is_empty() && !rest.is_empty() {
-            return Err(format!("`{path}` has an empty name"));
-        }
-        while !rest.is_empty() {
-            let Some(close) = rest.find(']').filter(|_| rest.starts_with('[')) else {
-                return Err(format!("`{path}`: expected `[number]` after `{name}`"));
-            };
-            let index = rest[1..close].trim();
-            let i = index
-                .parse::<usize>()
-                .map_err(|_| format!("`{path}`: `[{index}]` is not an index (0, 1, 2, ...)"))?;
-            steps.push(Step::Index(i));
-            rest = &rest[close + 1..];
-        }
-    }
-    Ok(steps)
+    FieldPath::parse(path).map(|p| p.steps().to_vec())
 }
 
 /// Writes steps back as a path (`objects[0].material`).
 #[must_use]
 pub fn path_text(steps: &[Step]) -> String {
-    let mut s = String::new();
-    for step in steps {
-        if matches!(step, Step::Field(_)) && !s.is_empty() {
-            s.push('.');
-        }
-        s.push_str(&step.to_string());
-    }
-    s
+    FieldPath::from(steps.to_vec()).to_string()
 }
 
 /// The single-key object `{"Variant": ...}` serde writes for an enum's data variant.

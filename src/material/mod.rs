@@ -6,10 +6,13 @@
 mod bump;
 mod normal;
 mod param;
+mod table;
 
 pub use bump::{Bump, MIN_BUMP_STEP, dual_basis, uv_gradients};
 pub use normal::{NormalMap, decode_normal, encode_normal};
 pub use param::{Colour, ParamValue, Scalar, ScalarTexture};
+pub(crate) use table::material_table;
+pub use table::{ParamDefault, ParamSpec};
 
 use crate::math::{INV_PI, Rgb, Vec3A};
 use crate::texture::{Texture, TextureContext};
@@ -90,50 +93,6 @@ impl Material {
     #[must_use]
     pub const fn is_lit(&self) -> bool {
         !matches!(self, Self::Emissive { .. })
-    }
-
-    /// The coefficients and colours besides `cd` and `ce`, by preset name.
-    #[must_use]
-    pub fn params(&self) -> Vec<(&'static str, Param<'_>)> {
-        use Param::{Colour, Scalar};
-        match self {
-            Self::Matte { ka, kd, .. } => vec![("ka", Scalar(ka)), ("kd", Scalar(kd))],
-            Self::Phong {
-                ka,
-                kd,
-                ks,
-                cs,
-                exp,
-                ce,
-                ..
-            } => vec![
-                ("ka", Scalar(ka)),
-                ("kd", Scalar(kd)),
-                ("ks", Scalar(ks)),
-                ("cs", Colour(cs)),
-                ("exp", Scalar(exp)),
-                ("ce", Colour(ce)),
-            ],
-            Self::Reflective {
-                ka,
-                kd,
-                ks,
-                cs,
-                exp,
-                kr,
-                cr,
-                ..
-            } => vec![
-                ("ka", Scalar(ka)),
-                ("kd", Scalar(kd)),
-                ("ks", Scalar(ks)),
-                ("cs", Colour(cs)),
-                ("exp", Scalar(exp)),
-                ("kr", Scalar(kr)),
-                ("cr", Colour(cr)),
-            ],
-            Self::Emissive { ls, .. } => vec![("ls", Scalar(ls))],
-        }
     }
 
     /// Whether any texture of the material (the colour or a textured parameter) needs the

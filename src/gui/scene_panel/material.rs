@@ -4,9 +4,10 @@
 use super::{ImagePicker, browse_button};
 use crate::gui::files::BrowseFor;
 use crate::gui::widgets::{colour, enum_combo, number, number_tip, uv_transform};
+use crate::material::{ParamDefault, ParamSpec};
 use crate::names::Named;
 use crate::scene::{
-    ChannelDesc, ColorDesc, MaterialDesc, ParamMut, ParamRef, ScalarDesc, TextureDesc, TextureKind,
+    ChannelDesc, ColorDesc, MaterialDesc, ParamMut, ScalarDesc, TextureDesc, TextureKind,
 };
 use crate::texture::Channel;
 
@@ -27,60 +28,29 @@ pub(super) fn material_ui(ui: &mut egui::Ui, m: &mut MaterialDesc, picker: &Imag
         *m = m.converted(kind);
         changed = true;
     }
-    let defaults = m.kind().default_desc();
     // A parameter switched to an image starts on the colour's image, if it has one.
     let colour_image = match m.texture() {
         t @ TextureDesc::Image { .. } => Some(t.clone()),
         _ => None,
     };
-    let default_of = |name: &str| {
-        defaults
-            .params()
-            .into_iter()
-            .find(|(n, _)| *n == name)
-            .map(|(_, p)| p)
-    };
-    for (name, p) in m.params_mut() {
-        let label = label(name);
+    // The table's rows come in the order of the parameters.
+    let specs = m.kind().params();
+    for (spec, (name, p)) in specs.iter().zip(m.params_mut()) {
+        debug_assert_eq!(spec.name, name);
         ui.push_id(name, |ui| match p {
             ParamMut::Scalar(s) => {
-                let fallback = match default_of(name) {
-                    Some(ParamRef::Scalar(ScalarDesc::Value(v))) => *v,
-                    _ => 1.0,
+                let fallback = match spec.default {
+                    ParamDefault::Scalar(v) => v,
+                    ParamDefault::Colour(_) => 1.0,
                 };
-                changed |= scalar_ui(ui, label, s, fallback, colour_image.as_ref(), picker);
+                changed |= scalar_ui(ui, spec, s, fallback, colour_image.as_ref(), picker);
             }
             ParamMut::Color(c) => {
-                changed |= colour_param_ui(ui, label, c, colour_image.as_ref(), picker);
+                changed |= colour_param_ui(ui, spec.label, c, colour_image.as_ref(), picker);
             }
         });
     }
     changed
-}
-
-/// What the editor calls a parameter.
-fn label(name: &str) -> &'static str {
-    match name {
-        "ka" => "ka (ambient)",
-        "kd" => "kd (diffuse)",
-        "ks" => "ks (specular)",
-        "exp" => "exponent",
-        "cs" => "specular colour",
-        "ls" => "ls (radiance)",
-        "kr" => "kr (mirror)",
-        "cr" => "mirror colour",
-        "ce" => "ce (night glow)",
-        _ => "parameter",
-    }
-}
-
-/// The largest value and the drag speed of a coefficient's editor.
-fn range_of(label: &str) -> (f32, f64) {
-    match label {
-        "exponent" => (10_000.0, 0.5),
-        "ls (radiance)" => (1e4, 0.01),
-        _ => (10.0, 0.01),
-    }
 }
 
 /// A combo over the kinds a parameter may take: a plain value or one of the textures.
@@ -121,17 +91,18 @@ fn new_texture(kind: TextureKind, colour_image: Option<&TextureDesc>) -> Texture
 
 fn scalar_ui(
     ui: &mut egui::Ui,
-    label: &str,
+    spec: &ParamSpec,
     s: &mut ScalarDesc,
     fallback: f32,
     colour_image: Option<&TextureDesc>,
     picker: &ImagePicker,
 ) -> bool {
+    let label = spec.label;
     let mut changed = false;
     let mut kind = s.texture().map_or(TextureKind::Constant, TextureDesc::kind);
     ui.horizontal(|ui| {
         if let ScalarDesc::Value(v) = s {
-            let (max, speed) = range_of(label);
+            let (max, speed) = (spec.max, spec.speed);
             changed |= number_tip(
                 ui,
                 label,

@@ -2,18 +2,16 @@
 //! accessors, and the build of the runtime [`Material`].
 
 mod param;
+mod table;
 
 pub(super) use param::scalar;
 pub use param::{ChannelDesc, ColorDesc, ScalarDesc};
 
-use super::assets::AssetCache;
-use super::texture::{TextureDesc, TextureKind, texture};
-use crate::error::Result;
-use crate::material::Material;
+pub(super) use table::material;
+
+use super::texture::TextureDesc;
 use crate::math::Rgb;
-use param::colour;
 use serde::{Deserialize, Serialize};
-use std::path::Path;
 
 /// How a surface shades, given its textured colour `cd`. Coefficients are finite and not
 /// negative. A lit material's radiance is the ambient term `ka cd L_ambient` plus, per light
@@ -148,171 +146,15 @@ impl MaterialDesc {
         }
     }
 
-    /// Every coefficient and colour besides the texture colour (`cd`, or an emissive material's
-    /// `ce`; Phong's glow `ce` is listed), by its preset name, in preset order.
-    #[must_use]
-    pub fn params(&self) -> Vec<(&'static str, ParamRef<'_>)> {
-        use ParamRef::{Color, Scalar};
-        match self {
-            Self::Matte { ka, kd, .. } => vec![("ka", Scalar(ka)), ("kd", Scalar(kd))],
-            Self::Phong {
-                ka,
-                kd,
-                ks,
-                cs,
-                exp,
-                ce,
-                ..
-            } => vec![
-                ("ka", Scalar(ka)),
-                ("kd", Scalar(kd)),
-                ("ks", Scalar(ks)),
-                ("cs", Color(cs)),
-                ("exp", Scalar(exp)),
-                ("ce", Color(ce)),
-            ],
-            Self::Reflective {
-                ka,
-                kd,
-                ks,
-                cs,
-                exp,
-                kr,
-                cr,
-                ..
-            } => vec![
-                ("ka", Scalar(ka)),
-                ("kd", Scalar(kd)),
-                ("ks", Scalar(ks)),
-                ("cs", Color(cs)),
-                ("exp", Scalar(exp)),
-                ("kr", Scalar(kr)),
-                ("cr", Color(cr)),
-            ],
-            Self::Emissive { ls, .. } => vec![("ls", Scalar(ls))],
-        }
-    }
-
-    /// The same parameters as [`MaterialDesc::params`], mutably. (Two matches, because Rust
-    /// cannot derive a mutable borrow list from a shared one.)
-    pub fn params_mut(&mut self) -> Vec<(&'static str, ParamMut<'_>)> {
-        use ParamMut::{Color, Scalar};
-        match self {
-            Self::Matte { ka, kd, .. } => vec![("ka", Scalar(ka)), ("kd", Scalar(kd))],
-            Self::Phong {
-                ka,
-                kd,
-                ks,
-                cs,
-                exp,
-                ce,
-                ..
-            } => vec![
-                ("ka", Scalar(ka)),
-                ("kd", Scalar(kd)),
-                ("ks", Scalar(ks)),
-                ("cs", Color(cs)),
-                ("exp", Scalar(exp)),
-                ("ce", Color(ce)),
-            ],
-            Self::Reflective {
-                ka,
-                kd,
-                ks,
-                cs,
-                exp,
-                kr,
-                cr,
-                ..
-            } => vec![
-                ("ka", Scalar(ka)),
-                ("kd", Scalar(kd)),
-                ("ks", Scalar(ks)),
-                ("cs", Color(cs)),
-                ("exp", Scalar(exp)),
-                ("kr", Scalar(kr)),
-                ("cr", Color(cr)),
-            ],
-            Self::Emissive { ls, .. } => vec![("ls", Scalar(ls))],
-        }
-    }
-
     /// Every texture the material reads, by parameter name: the colour (`cd` or `ce`) first,
     /// then each textured coefficient and colour.
     #[must_use]
     pub fn textures(&self) -> Vec<(&'static str, &TextureDesc)> {
-        let colour = match self {
-            Self::Emissive { .. } => "ce",
-            _ => "cd",
-        };
-        let mut v = vec![(colour, self.texture())];
+        let mut v = vec![(self.kind().colour_name(), self.texture())];
         v.extend(
             self.params()
                 .into_iter()
                 .filter_map(|(name, p)| p.texture().map(|t| (name, t))),
-        );
-        v
-    }
-
-    /// Every texture the material reads, mutably, in the order of [`MaterialDesc::textures`].
-    pub fn textures_mut(&mut self) -> Vec<(&'static str, &mut TextureDesc)> {
-        let name = if matches!(self, Self::Emissive { .. }) {
-            "ce"
-        } else {
-            "cd"
-        };
-        let (colour, params): (&mut TextureDesc, Vec<(&'static str, ParamMut<'_>)>) = match self {
-            Self::Matte { ka, kd, cd } => (
-                cd,
-                vec![("ka", ParamMut::Scalar(ka)), ("kd", ParamMut::Scalar(kd))],
-            ),
-            Self::Phong {
-                ka,
-                kd,
-                cd,
-                ks,
-                cs,
-                exp,
-                ce,
-            } => (
-                cd,
-                vec![
-                    ("ka", ParamMut::Scalar(ka)),
-                    ("kd", ParamMut::Scalar(kd)),
-                    ("ks", ParamMut::Scalar(ks)),
-                    ("cs", ParamMut::Color(cs)),
-                    ("exp", ParamMut::Scalar(exp)),
-                    ("ce", ParamMut::Color(ce)),
-                ],
-            ),
-            Self::Reflective {
-                ka,
-                kd,
-                cd,
-                ks,
-                cs,
-                exp,
-                kr,
-                cr,
-            } => (
-                cd,
-                vec![
-                    ("ka", ParamMut::Scalar(ka)),
-                    ("kd", ParamMut::Scalar(kd)),
-                    ("ks", ParamMut::Scalar(ks)),
-                    ("cs", ParamMut::Color(cs)),
-                    ("exp", ParamMut::Scalar(exp)),
-                    ("kr", ParamMut::Scalar(kr)),
-                    ("cr", ParamMut::Color(cr)),
-                ],
-            ),
-            Self::Emissive { ls, ce } => (ce, vec![("ls", ParamMut::Scalar(ls))]),
-        };
-        let mut v = vec![(name, colour)];
-        v.extend(
-            params
-                .into_iter()
-                .filter_map(|(name, p)| p.into_texture().map(|t| (name, t))),
         );
         v
     }
@@ -325,6 +167,30 @@ pub enum ParamRef<'a> {
     Scalar(&'a ScalarDesc),
     /// A colour.
     Color(&'a ColorDesc),
+}
+
+impl<'a> From<&'a ScalarDesc> for ParamRef<'a> {
+    fn from(s: &'a ScalarDesc) -> Self {
+        Self::Scalar(s)
+    }
+}
+
+impl<'a> From<&'a ColorDesc> for ParamRef<'a> {
+    fn from(c: &'a ColorDesc) -> Self {
+        Self::Color(c)
+    }
+}
+
+impl<'a> From<&'a mut ScalarDesc> for ParamMut<'a> {
+    fn from(s: &'a mut ScalarDesc) -> Self {
+        Self::Scalar(s)
+    }
+}
+
+impl<'a> From<&'a mut ColorDesc> for ParamMut<'a> {
+    fn from(c: &'a mut ColorDesc) -> Self {
+        Self::Color(c)
+    }
 }
 
 impl<'a> ParamRef<'a> {
@@ -383,44 +249,6 @@ impl crate::names::Named for MaterialKind {
     const WHAT: &'static str = "material";
 }
 
-impl MaterialKind {
-    /// The material with a preset's defaults and a constant grey colour.
-    #[must_use]
-    pub fn default_desc(self) -> MaterialDesc {
-        let colour = TextureKind::Constant.default_desc();
-        match self {
-            Self::Matte => MaterialDesc::Matte {
-                ka: default_ka(),
-                kd: default_kd(),
-                cd: colour,
-            },
-            Self::Phong => MaterialDesc::Phong {
-                ka: default_ka(),
-                kd: default_kd(),
-                cd: colour,
-                ks: default_ks(),
-                cs: white_param(),
-                exp: default_exp(),
-                ce: black_param(),
-            },
-            Self::Reflective => MaterialDesc::Reflective {
-                ka: default_ka(),
-                kd: default_kd(),
-                cd: colour.clone(),
-                ks: default_ks(),
-                cs: white_param(),
-                exp: default_exp(),
-                kr: default_kr(),
-                cr: white_param(),
-            },
-            Self::Emissive => MaterialDesc::Emissive {
-                ls: one_param(),
-                ce: colour,
-            },
-        }
-    }
-}
-
 impl MaterialDesc {
     /// Which kind of material this is.
     #[must_use]
@@ -450,56 +278,6 @@ impl MaterialDesc {
         }
         m
     }
-}
-
-pub(super) fn material(m: &MaterialDesc, base: &Path, cache: &mut AssetCache) -> Result<Material> {
-    Ok(match m {
-        MaterialDesc::Matte { ka, kd, cd } => Material::Matte {
-            ka: scalar("ka", ka, base, cache)?,
-            kd: scalar("kd", kd, base, cache)?,
-            cd: texture(cd, base, cache)?,
-        },
-        MaterialDesc::Phong {
-            ka,
-            kd,
-            cd,
-            ks,
-            cs,
-            exp,
-            ce,
-        } => Material::Phong {
-            ka: scalar("ka", ka, base, cache)?,
-            kd: scalar("kd", kd, base, cache)?,
-            cd: texture(cd, base, cache)?,
-            ks: scalar("ks", ks, base, cache)?,
-            cs: colour("cs", cs, base, cache)?,
-            exp: scalar("exp", exp, base, cache)?,
-            ce: colour("ce", ce, base, cache)?,
-        },
-        MaterialDesc::Reflective {
-            ka,
-            kd,
-            cd,
-            ks,
-            cs,
-            exp,
-            kr,
-            cr,
-        } => Material::Reflective {
-            ka: scalar("ka", ka, base, cache)?,
-            kd: scalar("kd", kd, base, cache)?,
-            cd: texture(cd, base, cache)?,
-            ks: scalar("ks", ks, base, cache)?,
-            cs: colour("cs", cs, base, cache)?,
-            exp: scalar("exp", exp, base, cache)?,
-            kr: scalar("kr", kr, base, cache)?,
-            cr: colour("cr", cr, base, cache)?,
-        },
-        MaterialDesc::Emissive { ls, ce } => Material::Emissive {
-            ls: scalar("ls", ls, base, cache)?,
-            ce: texture(ce, base, cache)?,
-        },
-    })
 }
 
 #[cfg(test)]

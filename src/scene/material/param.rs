@@ -303,12 +303,7 @@ pub(in crate::scene) fn scalar(
 }
 
 /// A colour parameter: a constant stays a plain colour (a constant texture becomes one).
-pub(super) fn colour(
-    what: &str,
-    c: &ColorDesc,
-    base: &Path,
-    cache: &mut AssetCache,
-) -> Result<Colour> {
+fn colour(what: &str, c: &ColorDesc, base: &Path, cache: &mut AssetCache) -> Result<Colour> {
     Ok(match c {
         ColorDesc::Value(c) => {
             finite_non_negative(what, &c.to_array()).map_err(|m| Error::invalid(base, m))?;
@@ -319,6 +314,32 @@ pub(super) fn colour(
             texture => Colour::Texture(Box::new(texture)),
         },
     })
+}
+
+/// A description of a coefficient or colour built into its runtime form (what the material
+/// table's build calls for every row).
+pub(super) trait BuildParam {
+    /// The runtime parameter.
+    type Runtime;
+
+    /// Builds it; `what` (the parameter's name) starts its messages.
+    fn build(&self, what: &str, base: &Path, cache: &mut AssetCache) -> Result<Self::Runtime>;
+}
+
+impl BuildParam for ScalarDesc {
+    type Runtime = Scalar;
+
+    fn build(&self, what: &str, base: &Path, cache: &mut AssetCache) -> Result<Scalar> {
+        scalar(what, self, base, cache)
+    }
+}
+
+impl BuildParam for ColorDesc {
+    type Runtime = Colour;
+
+    fn build(&self, what: &str, base: &Path, cache: &mut AssetCache) -> Result<Colour> {
+        colour(what, self, base, cache)
+    }
 }
 
 #[cfg(test)]

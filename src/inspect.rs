@@ -249,7 +249,7 @@ impl Scene {
         });
         let texture_colour = texture.eval(&ctx);
         let parameters = material.textured_values(&ctx);
-        let shown = self.trace(&ray, self.needs_differentials.then_some(&diff));
+        let shown = self.trace(&ray, self.needs_differentials().then_some(&diff));
         // The shaded radiance and the debug view's value separately: under a debug view the
         // film shows the view's colour, not the light.
         let (radiance, debug_value) = if self.settings.view == View::Shaded {
@@ -257,7 +257,7 @@ impl Scene {
         } else {
             let mut shaded = self.clone();
             shaded.settings.view = View::Shaded;
-            let l = shaded.trace(&ray, self.needs_differentials.then_some(&diff));
+            let l = shaded.trace(&ray, self.needs_differentials().then_some(&diff));
             (l, Some((self.settings.view, shown)))
         };
         let mesh = match &obj.shape {

@@ -423,7 +423,7 @@ pub fn radiance(scene: &Scene, pos: Vec2, spacing: f32) -> Rgb {
 #[inline]
 pub fn radiance_keyed(scene: &Scene, pos: Vec2, spacing: f32) -> (Rgb, u32) {
     // Without a footprint filter only the main ray is needed (saves two camera directions).
-    if !scene.needs_differentials {
+    if !scene.needs_differentials() {
         return scene
             .camera
             .primary_ray(pos)
@@ -444,7 +444,7 @@ pub fn radiance_keyed(scene: &Scene, pos: Vec2, spacing: f32) -> (Rgb, u32) {
 #[must_use]
 #[inline]
 pub fn radiance_keyed_cell(scene: &Scene, pos: Vec2, cell: Vec2) -> (Rgb, u32) {
-    if cell.x == cell.y || !scene.needs_differentials {
+    if cell.x == cell.y || !scene.needs_differentials() {
         return radiance_keyed(scene, pos, cell.x);
     }
     match scene.camera.ray(pos, cell.x.min(cell.y)) {

@@ -2,9 +2,9 @@
 //! that the renderer traces.
 //!
 //! One file (or folder) per concept, each holding its description type, its kind enum, its
-//! defaults, its validation and its build step: [`preset`] (the whole scene, its text, its PNG
-//! chunk, loading and saving), [`texture`], [`material`], [`object`], [`camera`], [`light`],
-//! render [`settings`] and the [`assets`] cache; [`trace`] is the runtime scene.
+//! defaults, its validation and its build step: `preset` (the whole scene, its text, its PNG
+//! chunk, loading and saving), `texture`, `material`, `object`, `camera`, `light`, render
+//! `settings` and the `assets` cache; `trace` is the runtime scene.
 
 mod assets;
 mod camera;
@@ -40,7 +40,10 @@ pub use settings::{
     MAX_RESOLUTION, MAX_SPP, Overrides, RenderDesc, RenderSettings, SnapshotDesc, apply_overrides,
 };
 pub use texture::{TextureDesc, TextureKind};
-pub use trace::{MAX_CLIP_LAYERS, SHADOW_OFFSET_RELATIVE, Scene, SurfaceHit, natural_mapping};
+pub use trace::{
+    MAX_CLIP_LAYERS, Perturbation, SHADOW_OFFSET_RELATIVE, Scene, Surface, SurfaceHit,
+    natural_mapping,
+};
 
 #[cfg(test)]
 mod tests {

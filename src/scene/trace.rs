@@ -34,18 +34,66 @@ pub struct Scene {
     pub camera: Camera,
     /// Resolution, sampling, exposure and view, checked against their ranges.
     pub settings: RenderSettings,
+    /// Per object (as `objects`), what its surface adds to its shape and material: a clip map
+    /// and a bump or normal map.
+    pub surfaces: Vec<Surface>,
     /// Whether any texture needs ray differentials (computed only then).
-    pub needs_differentials: bool,
-    /// Per object (as `objects`), its clip map: where the surface exists (alpha), if it has one.
-    pub clips: Vec<Option<Scalar>>,
+    pub(crate) needs_differentials: bool,
     /// Whether any object has a clip map; without one every ray takes the solid-surface path.
-    pub has_clips: bool,
-    /// Per object (as `objects`), its bump map, if it has one.
-    pub bumps: Vec<Option<Bump>>,
-    /// Per object (as `objects`), its normal map, if it has one (never beside a bump map).
-    pub normal_maps: Vec<Option<NormalMap>>,
+    pub(crate) has_clips: bool,
     /// Whether any object has a bump or normal map; without one no hit looks them up.
-    pub has_perturbations: bool,
+    pub(crate) has_perturbations: bool,
+}
+
+/// How an object's shading normal is tilted: by a bump map or by a normal map, never both (a
+/// preset naming both is refused when the scene is built).
+#[derive(Clone, Debug)]
+pub enum Perturbation {
+    /// Height slopes through the mapping's gradients.
+    Bump(Bump),
+    /// Tangent-space normals read from an image.
+    Normal(NormalMap),
+}
+
+impl Perturbation {
+    /// Whether its texture needs ray differentials.
+    #[must_use]
+    pub fn needs_differentials(&self) -> bool {
+        match self {
+            Self::Bump(b) => b.height.needs_differentials(),
+            Self::Normal(n) => n.map.needs_differentials(),
+        }
+    }
+}
+
+/// What an object's surface adds to its shape and material.
+#[derive(Clone, Debug, Default)]
+pub struct Surface {
+    /// Where the surface exists (alpha), unless it is solid everywhere.
+    pub clip: Option<Scalar>,
+    /// Its bump or normal map, if any.
+    pub perturbation: Option<Perturbation>,
+}
+
+impl Scene {
+    /// Whether any texture needs ray differentials (a footprint filter or a debug view that
+    /// shows one): rays then carry their differentials.
+    #[must_use]
+    pub const fn needs_differentials(&self) -> bool {
+        self.needs_differentials
+    }
+
+    /// Whether any object has a clip map.
+    #[must_use]
+    pub const fn has_clips(&self) -> bool {
+        self.has_clips
+    }
+
+    /// Whether any object has a bump or normal map.
+    #[must_use]
+    pub const fn has_perturbations(&self) -> bool {
+        self.has_perturbations
+    }
 }
 
 /// The most clip-mapped surfaces one ray (or shadow ray) passes through before it stops: what
@@ -274,7 +322,7 @@ impl Scene {
         layer: u32,
     ) -> (Rgb, u32) {
         if self.has_clips
-            && let Some(clip) = &self.clips[hit.object]
+            && let Some(clip) = &self.surfaces[hit.object].clip
         {
             return self.clipped(ray, hit, clip, diff, depth, layer);
         }
@@ -318,10 +366,10 @@ impl Scene {
         if !self.has_perturbations {
             return None;
         }
-        match (&self.bumps[hit.object], &self.normal_maps[hit.object]) {
-            (Some(b), _) => Some(self.bumped_normal(hit, b, ctx)),
-            (None, Some(m)) => Some(self.normal_mapped(hit, m, ctx)),
-            (None, None) => None,
+        match &self.surfaces[hit.object].perturbation {
+            Some(Perturbation::Bump(b)) => Some(self.bumped_normal(hit, b, ctx)),
+            Some(Perturbation::Normal(m)) => Some(self.normal_mapped(hit, m, ctx)),
+            None => None,
         }
     }
 
@@ -382,7 +430,7 @@ impl Scene {
             if i == skip || !o.casts_shadows {
                 continue;
             }
-            let Some(clip) = &self.clips[i] else {
+            let Some(clip) = &self.surfaces[i].clip else {
                 if o.intersect(ray, t_max).is_some() {
                     return 0.0;
                 }

@@ -249,7 +249,7 @@ fn screen_space_derivatives_match_finite_differences_of_real_hits() {
             o,
             &mut AssetCache::new(),
         );
-        assert!(scene.needs_differentials);
+        assert!(scene.needs_differentials());
         let mut checked = 0;
         for y in (10..140).step_by(7) {
             for x in (10..190).step_by(7) {
@@ -454,7 +454,7 @@ fn presets_name_ewa_plainly_and_refuse_bad_anisotropy() {
     };
     let desc = parse_preset(&text(""), &path).unwrap();
     let scene = build_scene(&desc, &path, &mut AssetCache::new()).unwrap();
-    assert!(scene.needs_differentials);
+    assert!(scene.needs_differentials());
     let desc = parse_preset(&text(", max_anisotropy: 16"), &path).unwrap();
     build_scene(&desc, &path, &mut AssetCache::new()).expect("max_anisotropy 16 is accepted");
     let desc = parse_preset(&text(", max_anisotropy: 0"), &path).unwrap();

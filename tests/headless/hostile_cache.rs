@@ -74,7 +74,10 @@ fn cache_names(tmp: &Path) -> (PathBuf, PathBuf, Vec<String>) {
         let name = e.unwrap().file_name().into_string().unwrap();
         if name.ends_with(".key.txt") {
             key = Some(name);
-        } else if name.ends_with(".exr") {
+        } else if Path::new(&name)
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("exr"))
+        {
             exr = Some(name);
         }
     }

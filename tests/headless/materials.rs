@@ -776,6 +776,7 @@ fn a_flat_height_map_changes_nothing() {
 #[test]
 fn bumped_normals_are_finite_and_unit_at_poles_seams_and_degenerate_triangles() {
     use texplore::material::{Bump, dual_basis};
+    use texplore::scene::Perturbation;
     use texplore::texture::TextureContext;
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let path = root.join("bump-test.ron");
@@ -785,7 +786,9 @@ fn bumped_normals_are_finite_and_unit_at_poles_seams_and_degenerate_triangles() 
                           filter: Ewa), scale: 0.5))])"#;
     let desc = parse_preset(text, &path).unwrap();
     let scene = build_scene(&desc, &path, &mut AssetCache::new()).unwrap();
-    let bump: &Bump = scene.bumps[0].as_ref().unwrap();
+    let Some(Perturbation::Bump(bump)) = &scene.surfaces[0].perturbation else {
+        panic!("the object has a bump map");
+    };
     let points = [
         Vec3A::Y,                                // north pole
         -Vec3A::Y,                               // south pole
@@ -983,6 +986,7 @@ fn a_normal_map_shades_like_the_bump_map_of_its_height_field() {
 #[test]
 fn normal_mapped_normals_are_finite_and_unit_at_poles_seams_and_degenerate_triangles() {
     use texplore::material::NormalMap;
+    use texplore::scene::Perturbation;
     use texplore::texture::TextureContext;
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let path = root.join("normal-test.ron");
@@ -992,7 +996,9 @@ fn normal_mapped_normals_are_finite_and_unit_at_poles_seams_and_degenerate_trian
                             filter: Ewa), strength: 3))])"#;
     let desc = parse_preset(text, &path).unwrap();
     let scene = build_scene(&desc, &path, &mut AssetCache::new()).unwrap();
-    let map: &NormalMap = scene.normal_maps[0].as_ref().unwrap();
+    let Some(Perturbation::Normal(map)) = &scene.surfaces[0].perturbation else {
+        panic!("the object has a normal map");
+    };
     let points = [
         Vec3A::Y,                                // north pole
         -Vec3A::Y,                               // south pole

@@ -566,7 +566,7 @@ fn mesh_uv_derivatives_come_when_a_footprint_filter_asks_and_match_neighbouring_
         )],
     )"#;
     let scene = scene(text, &preset).unwrap();
-    assert!(scene.needs_differentials);
+    assert!(scene.needs_differentials());
     let mut checked = 0;
     for (x, y) in [
         (200.0, 150.0),

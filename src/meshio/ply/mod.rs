@@ -600,7 +600,6 @@ fn read_header(r: &mut impl BufRead, path: &Path) -> Result<Header> {
     }
 }
 
-
 /// Writes `data` as PLY: `float x y z`, then `float nx ny nz` and `float u v` when present, and
 /// faces as `list uchar int vertex_indices`.
 ///

@@ -261,10 +261,10 @@ impl<'a> PacketPlan<'a> {
         if scene.settings.view != View::Shaded {
             return no("a debug view");
         }
-        if scene.needs_differentials {
+        if scene.needs_differentials() {
             return no("a filter that needs ray differentials");
         }
-        if scene.has_clips {
+        if scene.has_clips() {
             return no("a clip map");
         }
         let orthographic = match scene.camera.projection {
@@ -285,8 +285,10 @@ impl<'a> PacketPlan<'a> {
                 Shape::Cylinder { .. } => return no("a cylinder"),
                 Shape::Mesh(_) => return no("a mesh"),
             };
-            let perturbed = scene.bumps.get(i).is_some_and(Option::is_some)
-                || scene.normal_maps.get(i).is_some_and(Option::is_some);
+            let perturbed = scene
+                .surfaces
+                .get(i)
+                .is_some_and(|s| s.perturbation.is_some());
             let shading = if perturbed {
                 None
             } else {

@@ -11,7 +11,7 @@ use crate::texture::Texture;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
-/// A displacement map ([`ObjectDesc::displace`]), on a `Mesh` shape only (the generic shapes
+/// A displacement map ([`ObjectDesc::displace`](super::ObjectDesc::displace)), on a `Mesh` shape only (the generic shapes
 /// are analytic; a bump map gives them the look). The mesh is subdivided, then every vertex
 /// moves along its normal by `scale` times the height texture's luminance there (read at the
 /// vertex's point, through the texture's own mapping, with no footprint), before the BVH is
@@ -40,7 +40,7 @@ fn default_subdivide() -> u32 {
     DEFAULT_SUBDIVIDE
 }
 
-/// A normal map ([`ObjectDesc::normal`]).
+/// A normal map ([`ObjectDesc::normal`](super::ObjectDesc::normal)).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct NormalMapDesc {
@@ -53,7 +53,7 @@ pub struct NormalMapDesc {
     pub strength: f32,
 }
 
-/// A bump map ([`ObjectDesc::bump`]).
+/// A bump map ([`ObjectDesc::bump`](super::ObjectDesc::bump)).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct BumpDesc {

@@ -10,10 +10,11 @@ pub use maps::{BumpDesc, DEFAULT_SUBDIVIDE, DisplaceDesc, NormalMapDesc};
 
 use super::assets::AssetCache;
 use super::material::{MaterialDesc, ScalarDesc, material, scalar};
+use super::trace::{Perturbation, Surface};
 use super::values::finite_vec;
 use crate::error::{Error, Result};
 use crate::geometry::{MeshShape, Object, Shading, Shape};
-use crate::material::{Bump, Material, NormalMap, Scalar};
+use crate::material::{Material, Scalar};
 use crate::math::{Affine3A, Quat, Vec3};
 use displace::displaced_mesh;
 use maps::{bare_alpha, bump, normal_map, some_alpha};
@@ -242,12 +243,9 @@ pub(super) struct BuiltObject {
     pub object: Object,
     /// Its material.
     pub material: Material,
-    /// Its clip map, unless it is solid everywhere.
-    pub clip: Option<Scalar>,
-    /// Its bump map, unless it has none or a constant height.
-    pub bump: Option<Bump>,
-    /// Its normal map.
-    pub normal_map: Option<NormalMap>,
+    /// Its clip map (unless it is solid everywhere) and its bump map (unless it has none or a
+    /// constant height) or normal map.
+    pub surface: Surface,
     /// Whether any of its textures needs ray differentials.
     pub needs_differentials: bool,
 }
@@ -339,22 +337,20 @@ pub(super) fn build_object(
         }
         Some(n) => Some(normal_map(n, base, cache).map_err(within("."))?),
     };
+    let perturbation = bump
+        .map(Perturbation::Bump)
+        .or(normal_map.map(Perturbation::Normal));
     let needs_differentials = material.needs_differentials()
         || clip.as_ref().is_some_and(Scalar::needs_differentials)
-        || bump
+        || perturbation
             .as_ref()
-            .is_some_and(|b| b.height.needs_differentials())
-        || normal_map
-            .as_ref()
-            .is_some_and(|n| n.map.needs_differentials());
+            .is_some_and(Perturbation::needs_differentials);
     let mut object = Object::new(shape, transform, material_index, name);
     object.casts_shadows = o.casts_shadows.unwrap_or(material.is_lit());
     Ok(BuiltObject {
         object,
         material,
-        clip,
-        bump,
-        normal_map,
+        surface: Surface { clip, perturbation },
         needs_differentials,
     })
 }

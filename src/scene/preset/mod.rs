@@ -77,21 +77,16 @@ pub fn build_scene(desc: &SceneDesc, preset_path: &Path, cache: &mut AssetCache)
     let mut objects = Vec::with_capacity(desc.objects.len());
     let mut materials = Vec::with_capacity(desc.objects.len());
     let mut needs_differentials = false;
-    let mut clips = Vec::with_capacity(desc.objects.len());
-    let mut bumps = Vec::with_capacity(desc.objects.len());
-    let mut normal_maps = Vec::with_capacity(desc.objects.len());
+    let mut surfaces = Vec::with_capacity(desc.objects.len());
     for (i, o) in desc.objects.iter().enumerate() {
         let built = build_object(o, i, materials.len(), preset_path, cache)?;
         needs_differentials |= built.needs_differentials || settings.view.needs_footprint();
         objects.push(built.object);
         materials.push(built.material);
-        clips.push(built.clip);
-        bumps.push(built.bump);
-        normal_maps.push(built.normal_map);
+        surfaces.push(built.surface);
     }
-    let has_clips = clips.iter().any(Option::is_some);
-    let has_perturbations =
-        bumps.iter().any(Option::is_some) || normal_maps.iter().any(Option::is_some);
+    let has_clips = surfaces.iter().any(|s| s.clip.is_some());
+    let has_perturbations = surfaces.iter().any(|s| s.perturbation.is_some());
     Ok(Scene {
         objects,
         materials,
@@ -99,11 +94,9 @@ pub fn build_scene(desc: &SceneDesc, preset_path: &Path, cache: &mut AssetCache)
         ambient,
         camera,
         settings,
+        surfaces,
         needs_differentials,
-        clips,
         has_clips,
-        bumps,
-        normal_maps,
         has_perturbations,
     })
 }

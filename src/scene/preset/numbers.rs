@@ -9,7 +9,7 @@ use super::SceneDesc;
 
 /// Refuses a preset holding a NaN or an infinity anywhere (every `f32`, point and colour),
 /// naming the field: `ambient.color: NaN is not a number`,
-/// `objects[2].material.cd.scale: inf is not finite`. Ranges are checked by [`build_scene`];
+/// `objects[2].material.cd.scale: inf is not finite`. Ranges are checked by [`build_scene`](super::build_scene);
 /// this check needs no files, so it also guards every preset written out (a saved preset or
 /// the one a PNG carries never holds a value that does not read back).
 ///

@@ -78,7 +78,7 @@ const FIELDS: &[(&str, &str, &str)] = &[
     ("@eye", "0", "camera.eye"),
     ("@look_at", "0.5", "camera.look_at"),
     ("@up", "1", "camera.up"),
-    ("@fov", "50", "camera.fov"),
+    ("@fov", "50", "camera.projection.fov"),
     ("@exposure", "0", "render.exposure"),
     ("@background", "0", "render.background"),
     ("@threshold", "0.01", "render.adaptive.threshold"),
@@ -172,9 +172,15 @@ fn infinities_in_every_numeric_field_are_refused_naming_the_field() {
 #[test]
 fn every_projection_angle_is_checked() {
     for (projection, field) in [
-        ("Fisheye(fov: NaN)", "camera.fov"),
-        ("Spherical(h_fov: NaN, v_fov: 90)", "camera.h_fov"),
-        ("Spherical(h_fov: 360, v_fov: NaN)", "camera.v_fov"),
+        ("Fisheye(fov: NaN)", "camera.projection.fov"),
+        (
+            "Spherical(h_fov: NaN, v_fov: 90)",
+            "camera.projection.h_fov",
+        ),
+        (
+            "Spherical(h_fov: 360, v_fov: NaN)",
+            "camera.projection.v_fov",
+        ),
     ] {
         let text = preset_with(None, "").replace("Pinhole(fov: 50)", projection);
         assert_eq!(
@@ -692,4 +698,128 @@ fn a_golden_image_that_is_not_a_file_is_named() {
         s(&shots),
     ]);
     assert_refused(&o, &["checker.png", "not a regular file (a directory)"]);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Every float of the format, found by walking a description through serde (not a hand-kept
+// list): each set to infinity through the lesson path machinery is refused naming its field.
+
+/// A description with every part that holds numbers: each material kind with every parameter
+/// textured or set, each texture kind, (u, v) transforms, clip, bump, normal and displacement
+/// maps.
+const EVERYTHING: &str = r#"(
+    version: 1,
+    camera: (eye: (0, 1, 4), look_at: (0, 0.5, 0), up: (0, 1, 0), projection: Pinhole(fov: 50)),
+    render: (width: 8, height: 6, spp: 1, exposure: 0.5, background: (0, 0.1, 0),
+             adaptive: Some((max_spp: 4, threshold: 0.01))),
+    ambient: (ls: 1, color: (1, 0.9, 1)),
+    lights: [
+        Directional(direction: (1, 1, 1), ls: 1, color: (1, 1, 0.9)),
+        Point(position: (0, 4, 0), ls: 1, color: (0.9, 1, 1)),
+    ],
+    objects: [
+        (shape: Sphere,
+         transform: (translate: (0.5, 0, 0), rotate: (0, 10, 0), scale: (1, 1, 1.5)),
+         material: Phong(ka: 0.25, kd: 0.75,
+             ks: (texture: Image(path: "../assets/coffee_600x400.png", scale: 0.5), channel: Green),
+             cs: (1, 0.9, 1), exp: 20, ce: (0.1, 0.2, 0.3),
+             cd: Checker(squares: (8, 8), colors: ((0.8, 0.8, 0.8), (0.1, 0.1, 0.1)),
+                 uv: (scale: (2, 3), rotate: 10, offset: (0.25, 0.5)))),
+         alpha: (texture: Image(path: "../assets/coffee_600x400.png", scale: 0.9), channel: Red),
+         bump: (height: Image(path: "../assets/gravel_gray_512.png", mapping: Spherical, scale: 0.8), scale: 0.02)),
+        (shape: Plane, material: Matte(ka: 0.25, kd: 0.75, cd: Constant((0.5, 0.4, 0.5))),
+         normal: (map: Image(path: "../assets/coffee_600x400.png", mapping: Rectangular, scale: 0.7), strength: 0.9)),
+        (shape: Disk, material: Emissive(ls: 1.5, ce: UvGrid(max_anisotropy: 8, uv: (rotate: 5)))),
+        (shape: Rectangle, material: Reflective(ka: 0.1, kd: 0.5, kr: 0.8,
+             cd: Image(path: "../assets/coffee_600x400.png", scale: 0.9, max_anisotropy: 8),
+             cr: (0.9, 0.8, 0.7))),
+        (shape: Mesh(path: "../assets/torus-knot.ply"),
+         material: Matte(cd: MeshMaterial(max_anisotropy: 8)),
+         displace: (height: Image(path: "../assets/gravel_gray_512.png", mapping: Uv, scale: 0.9), scale: 0.15, subdivide: 1)),
+    ],
+)"#;
+
+/// Every float leaf of a JSON tree: its path as the lesson dialect spells it, and the field an
+/// error names (the path without enum variants and without indices into a number's
+/// components).
+fn float_leaves(v: &serde_json::Value, lesson: &str, field: &str, out: &mut Vec<(String, String)>) {
+    use serde_json::Value;
+    match v {
+        Value::Number(n) if n.is_f64() => out.push((lesson.to_string(), field.to_string())),
+        Value::Array(items) => {
+            let numbers = items.iter().all(|i| i.is_number() || i.is_array());
+            for (k, i) in items.iter().enumerate() {
+                let l = format!("{lesson}[{k}]");
+                let f = if numbers {
+                    field.to_string()
+                } else {
+                    format!("{field}[{k}]")
+                };
+                float_leaves(i, &l, &f, out);
+            }
+        }
+        Value::Object(map) => {
+            for (key, i) in map {
+                // An enum variant (`Phong`, `Checker`, `Pinhole`): paths step into it unnamed.
+                if key.starts_with(|c: char| c.is_ascii_uppercase()) {
+                    float_leaves(i, lesson, field, out);
+                } else {
+                    let join = |p: &str| {
+                        if p.is_empty() {
+                            key.clone()
+                        } else {
+                            format!("{p}.{key}")
+                        }
+                    };
+                    float_leaves(i, &join(lesson), &join(field), out);
+                }
+            }
+        }
+        _ => {}
+    }
+}
+
+#[test]
+fn every_float_of_the_format_refuses_infinity_naming_its_field() {
+    use texplore::lesson::edit::set_path;
+    let preset = root().join("presets/everything.ron");
+    let desc = texplore::scene::parse_preset(EVERYTHING, &preset).expect("the template parses");
+    let tree = serde_json::to_value(&desc).unwrap();
+    let mut leaves = Vec::new();
+    float_leaves(&tree, "", "", &mut leaves);
+    // The walk reaches the fields the hand-kept list above never had.
+    for must in [
+        "objects[0].material.ce",
+        "objects[0].material.cd.uv.offset",
+        "objects[0].bump.scale",
+        "objects[1].normal.strength",
+        "objects[3].material.kr",
+        "objects[3].material.cr",
+        "objects[4].displace.scale",
+    ] {
+        assert!(
+            leaves.iter().any(|(_, f)| f == must),
+            "{must} not among {leaves:?}"
+        );
+    }
+    let mut failures = Vec::new();
+    for (path, field) in &leaves {
+        // The edit checks the numbers of the scene it makes, as loading a preset does.
+        let refused = match set_path(&desc, path, "inf") {
+            Ok(d) => texplore::scene::check_numbers(&d),
+            Err(e) => Err(e),
+        };
+        match refused {
+            Err(e) if e.contains(&format!("{field}: inf is not finite")) => {}
+            Err(e) => failures.push(format!("{path}: refused without naming {field}: {e}")),
+            Ok(()) => failures.push(format!("{path}: inf accepted")),
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "{} of {} fields:\n{}",
+        failures.len(),
+        leaves.len(),
+        failures.join("\n")
+    );
 }

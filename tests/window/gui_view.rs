@@ -97,6 +97,14 @@ fn the_ab_divider_follows_a_drag_and_leaves_the_camera_alone() {
 /// Turns the wheel `clicks` notches toward the scene over the image, one event per frame, and
 /// lets egui's smooth scrolling run out.
 fn wheel_in(h: &mut Harness<'_, ExplorerApp>, clicks: usize) {
+    // The image is there once the first build and preview have landed (a loaded machine can
+    // take a few frames more than the harness's settling).
+    for _ in 0..2000 {
+        if h.query_by_label(IMAGE).is_some() {
+            break;
+        }
+        h.step();
+    }
     let centre = h.get_by_label(IMAGE).rect().center();
     h.hover_at(centre);
     h.step();

@@ -23,11 +23,11 @@ pub fn check_numbers(desc: &SceneDesc) -> std::result::Result<(), String> {
     n.check(|| "camera.up".into(), &c.up.to_array());
     match c.projection {
         ProjectionDesc::Pinhole { fov } | ProjectionDesc::Fisheye { fov } => {
-            n.check(|| "camera.fov".into(), &[fov]);
+            n.check(|| "camera.projection.fov".into(), &[fov]);
         }
         ProjectionDesc::Spherical { h_fov, v_fov } => {
-            n.check(|| "camera.h_fov".into(), &[h_fov]);
-            n.check(|| "camera.v_fov".into(), &[v_fov]);
+            n.check(|| "camera.projection.h_fov".into(), &[h_fov]);
+            n.check(|| "camera.projection.v_fov".into(), &[v_fov]);
         }
         ProjectionDesc::Orthographic { height } => {
             n.check(|| "camera.height".into(), &[height]);

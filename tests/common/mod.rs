@@ -108,3 +108,38 @@ pub fn render_on(scene: &Scene, threads: usize) -> Film {
     let pool = texplore::render::thread_pool(threads).unwrap_or_else(|e| panic!("{e}"));
     pool.install(|| render_blocking(scene, |_| {}))
 }
+
+/// `texplore report` on `presets` at 16x12, one mode, 1 spp, a 4-spp reference, cached in
+/// `cache` (`None`: `--no-cache`).
+pub fn tiny_report(presets: &[&Path], out: &Path, cache: Option<&Path>) -> Output {
+    let mut args = vec!["report".to_string()];
+    args.extend(presets.iter().map(|p| p.to_str().unwrap().to_string()));
+    for a in [
+        "--modes",
+        "nearest/jittered",
+        "--spp",
+        "1",
+        "--reference-spp",
+        "4",
+        "--width",
+        "16",
+        "--height",
+        "12",
+        "--repeat",
+        "1",
+        "--time-budget",
+        "0",
+        "--threads",
+        "1",
+        "-o",
+        out.to_str().unwrap(),
+    ] {
+        args.push(a.into());
+    }
+    match cache {
+        Some(c) => args.extend(["--cache".into(), c.to_str().unwrap().into()]),
+        None => args.push("--no-cache".into()),
+    }
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    texplore(&args)
+}

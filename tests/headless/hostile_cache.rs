@@ -6,46 +6,17 @@
 
 use std::os::unix::fs::symlink;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 
-fn root() -> &'static Path {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-}
+use crate::common::root;
 
 fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
-/// `texplore report PRESET` at 16x12, one mode, 1 spp, a 4-spp reference, cached in `cache`.
+/// [`crate::common::tiny_report`] of one preset, cached in `cache`.
 fn report(preset: &Path, out: &Path, cache: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_texplore"))
-        .current_dir(root())
-        .arg("report")
-        .arg(preset)
-        .args([
-            "--modes",
-            "nearest/jittered",
-            "--spp",
-            "1",
-            "--reference-spp",
-            "4",
-            "--width",
-            "16",
-            "--height",
-            "12",
-            "--repeat",
-            "1",
-            "--time-budget",
-            "0",
-            "--threads",
-            "1",
-        ])
-        .arg("--cache")
-        .arg(cache)
-        .arg("-o")
-        .arg(out)
-        .output()
-        .unwrap()
+    crate::common::tiny_report(&[preset], out, Some(cache))
 }
 
 fn earth() -> PathBuf {

@@ -478,40 +478,6 @@ fn soup_can_scene(dir: &Path) -> PathBuf {
     preset
 }
 
-/// `texplore report` on `presets` at 16x12, one mode, 1 spp, a 4-spp reference.
-fn report(presets: &[&Path], out: &Path, cache: Option<&Path>) -> Output {
-    let mut args = vec!["report".to_string()];
-    args.extend(presets.iter().map(|p| s(p).to_string()));
-    for a in [
-        "--modes",
-        "nearest/jittered",
-        "--spp",
-        "1",
-        "--reference-spp",
-        "4",
-        "--width",
-        "16",
-        "--height",
-        "12",
-        "--repeat",
-        "1",
-        "--time-budget",
-        "0",
-        "--threads",
-        "1",
-        "-o",
-        s(out),
-    ] {
-        args.push(a.into());
-    }
-    match cache {
-        Some(c) => args.extend(["--cache".into(), s(c).into()]),
-        None => args.push("--no-cache".into()),
-    }
-    let args: Vec<&str> = args.iter().map(String::as_str).collect();
-    texplore(&args)
-}
-
 /// The RMSE column of a report's CSV, as written.
 fn rmse(out: &Path) -> Vec<String> {
     let csv = std::fs::read_to_string(out.join("report.csv")).unwrap();
@@ -541,7 +507,7 @@ fn editing_the_mesh_its_mtl_or_its_map_kd_renders_the_reference_again() {
     let preset = soup_can_scene(tmp.path());
     let cache = tmp.path().join("cache");
     let out = tmp.path().join("out");
-    let run = || reference_line(&report(&[&preset], &out, Some(&cache)));
+    let run = || reference_line(&crate::common::tiny_report(&[&preset], &out, Some(&cache)));
     assert!(run().contains("rendered"));
     assert!(run().contains("from the cache"));
     let edits: [(&str, &Edit); 3] = [
@@ -585,7 +551,11 @@ fn editing_the_mesh_its_mtl_or_its_map_kd_renders_the_reference_again() {
         // The numbers are those of a reference rendered from the edited files.
         let cached = rmse(&out);
         let fresh_out = tmp.path().join("fresh");
-        assert!(report(&[&preset], &fresh_out, None).status.success());
+        assert!(
+            crate::common::tiny_report(&[&preset], &fresh_out, None)
+                .status
+                .success()
+        );
         assert_eq!(cached, rmse(&fresh_out), "after editing {what}");
         assert!(run().contains("from the cache"), "after editing {what}");
     }
@@ -597,7 +567,10 @@ fn a_bit_flipped_cached_reference_is_rendered_again_and_said_so() {
     let cache = tmp.path().join("cache");
     let out = tmp.path().join("out");
     let preset = root().join("presets/checker.ron");
-    assert!(reference_line(&report(&[&preset], &out, Some(&cache))).contains("rendered"));
+    assert!(
+        reference_line(&crate::common::tiny_report(&[&preset], &out, Some(&cache)))
+            .contains("rendered")
+    );
     let good = rmse(&out);
     let exr = std::fs::read_dir(&cache)
         .unwrap()
@@ -608,14 +581,17 @@ fn a_bit_flipped_cached_reference_is_rendered_again_and_said_so() {
     let at = bytes.len() - 8;
     bytes[at] ^= 0x04;
     std::fs::write(&exr, &bytes).unwrap();
-    let line = reference_line(&report(&[&preset], &out, Some(&cache)));
+    let line = reference_line(&crate::common::tiny_report(&[&preset], &out, Some(&cache)));
     assert!(
         line.contains("rendered") && line.contains("checksum mismatch") && line.contains(s(&exr)),
         "{line}"
     );
     assert_eq!(rmse(&out), good);
     // Stored again whole: the next report uses it.
-    assert!(reference_line(&report(&[&preset], &out, Some(&cache))).contains("from the cache"));
+    assert!(
+        reference_line(&crate::common::tiny_report(&[&preset], &out, Some(&cache)))
+            .contains("from the cache")
+    );
 }
 
 /// Two reports sharing `--cache`, started together, both succeed with the same numbers
@@ -631,8 +607,8 @@ fn two_reports_sharing_a_cache_both_succeed() {
             tmp.path().join(format!("b{round}")),
         ];
         let (a, b) = std::thread::scope(|scope| {
-            let a = scope.spawn(|| report(&[&preset], &outs[0], Some(&cache)));
-            let b = scope.spawn(|| report(&[&preset], &outs[1], Some(&cache)));
+            let a = scope.spawn(|| crate::common::tiny_report(&[&preset], &outs[0], Some(&cache)));
+            let b = scope.spawn(|| crate::common::tiny_report(&[&preset], &outs[1], Some(&cache)));
             (a.join().unwrap(), b.join().unwrap())
         });
         assert!(a.status.success(), "round {round}: {}", stderr(&a));
@@ -655,7 +631,7 @@ fn two_presets_with_one_file_stem_keep_their_own_plots() {
     assert_ne!(brighter, checker);
     std::fs::write(b.join("scene.ron"), brighter).unwrap();
     let out = tmp.path().join("out");
-    let o = report(&[&a.join("scene.ron"), &b.join("scene.ron")], &out, None);
+    let o = crate::common::tiny_report(&[&a.join("scene.ron"), &b.join("scene.ron")], &out, None);
     assert!(o.status.success(), "{}", stderr(&o));
     for name in ["a-scene", "b-scene"] {
         for f in ["error_vs_time.svg", "error_vs_time.png"] {

@@ -136,14 +136,21 @@ fn an_unknown_lesson_lists_the_names() {
     );
 }
 
-#[test]
-fn a_broken_lesson_is_named_with_its_line_and_the_others_still_list() {
+/// A temporary folder with an empty `lessons/` in it, and the text of lesson 5 with its preset
+/// paths made absolute (so a copy of it loads from there).
+fn lesson_folder() -> (tempfile::TempDir, std::path::PathBuf, String) {
     let dir = tempfile::tempdir().unwrap();
     let lessons = dir.path().join("lessons");
     std::fs::create_dir(&lessons).unwrap();
     let good = std::fs::read_to_string(root().join("lessons/05-cylindrical-mapping.toml"))
         .unwrap()
         .replace("../presets/", &format!("{}/presets/", root().display()));
+    (dir, lessons, good)
+}
+
+#[test]
+fn a_broken_lesson_is_named_with_its_line_and_the_others_still_list() {
+    let (dir, lessons, good) = lesson_folder();
     std::fs::write(lessons.join("01-good.toml"), &good).unwrap();
     // A typo in a path of the preset, on the line of the second experiment's `set`.
     let bad = good.replace("cd.path", "cd.pth");
@@ -205,12 +212,7 @@ fn every_character_of_every_lesson_draws_in_the_window() {
 
 #[test]
 fn lesson_list_escapes_control_characters_in_titles() {
-    let dir = tempfile::tempdir().unwrap();
-    let lessons = dir.path().join("lessons");
-    std::fs::create_dir(&lessons).unwrap();
-    let good = std::fs::read_to_string(root().join("lessons/05-cylindrical-mapping.toml"))
-        .unwrap()
-        .replace("../presets/", &format!("{}/presets/", root().display()));
+    let (dir, lessons, good) = lesson_folder();
     let title_line = good
         .lines()
         .find(|l| l.starts_with("title"))

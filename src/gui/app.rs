@@ -11,12 +11,12 @@ use super::files::{Browser, Files};
 use super::help;
 use super::history::{Gesture, Gestures, History};
 use super::inspector::Inspector;
+use super::layout::{Layout, Pane};
 use super::lessons::LessonsPanel;
+use super::resolution::ViewResolution;
 use super::scene_panel::ScenePanel;
 use super::texture_panel::TexturePanel;
 use super::viewer::Viewer;
-use super::viewport;
-use crate::math::Vec2;
 use crate::render::DisplayImage;
 use crate::scene::SceneDesc;
 use std::path::{Path, PathBuf};
@@ -34,18 +34,39 @@ pub struct AppOptions {
     pub lesson: Option<crate::lesson::Lesson>,
     /// What every *Browse…* button asks (the system's file dialog unless replaced).
     pub browser: Browser,
+    /// Render at the image pane's size (the window) rather than the preset's resolution
+    /// (tests, which render small presets at their own size).
+    pub follow_viewport: bool,
 }
 
-/// What the window remembers between runs besides its size and panel widths (which eframe and
-/// egui keep themselves): the scene it had open and the unsaved-changes rule.
-#[derive(Clone, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+/// What the window remembers between runs besides its size (which eframe keeps) and the
+/// arrangement of its panels ([`Layout`]): the scene it had open, the unsaved-changes rule and
+/// the UI scale.
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(default)]
 pub struct Prefs {
     /// The file open when the window closed (absolute).
     pub last_scene: Option<PathBuf>,
     /// *Edit → Camera moves are unsaved changes*.
     pub camera_is_unsaved: bool,
+    /// *View → UI scale* (Ctrl+= / Ctrl+- / Ctrl+0): egui's zoom factor.
+    pub ui_scale: f32,
 }
+
+impl Default for Prefs {
+    fn default() -> Self {
+        Self {
+            last_scene: None,
+            camera_is_unsaved: false,
+            ui_scale: 1.0,
+        }
+    }
+}
+
+/// The UI scales *View → UI scale* and its shortcuts reach.
+pub const UI_SCALES: std::ops::RangeInclusive<f32> = 0.5..=3.0;
+/// One step of Ctrl+= and Ctrl+-.
+const UI_SCALE_STEP: f32 = 0.1;
 
 impl Prefs {
     /// The key [`Prefs`] is stored under in eframe's storage.
@@ -66,8 +87,14 @@ pub struct ExplorerApp {
     pub(super) doc: Document,
     /// The scene shown and its render.
     pub(super) viewer: Viewer,
-    /// Render at this fraction of the preset's resolution (a view setting, not saved).
-    pub(super) resolution_scale: f32,
+    /// The resolution renders follow (a view setting, not saved in the scene).
+    pub(super) resolution: ViewResolution,
+    /// The arrangement of the panels, and presentation mode.
+    pub(super) layout: Layout,
+    /// The UI scale (egui's zoom factor), kept in [`Prefs`].
+    pub(super) ui_scale: f32,
+    /// The image pane's space for the image at the last frame (points).
+    pub(super) image_space: Option<egui::Rect>,
     pub(super) error: Option<String>,
     /// A confirmation shown for a few seconds ("Screenshot saved to ...") and when it came.
     notice: Option<(String, std::time::Instant)>,
@@ -105,7 +132,10 @@ impl ExplorerApp {
         let mut app = Self {
             doc: Document::new(path),
             viewer: Viewer::default(),
-            resolution_scale: 1.0,
+            resolution: ViewResolution::new(options.follow_viewport),
+            layout: Layout::default(),
+            ui_scale: 1.0,
+            image_space: None,
             error: None,
             notice: None,
             scene_panel: ScenePanel::with_browser(options.browser.clone()),
@@ -150,6 +180,11 @@ impl ExplorerApp {
             .unwrap_or_else(|| PathBuf::from(super::DEFAULT_PRESET));
         let mut app = Self::with_options(path, options);
         app.camera_is_unsaved = prefs.camera_is_unsaved;
+        app.ui_scale = prefs.ui_scale.clamp(*UI_SCALES.start(), *UI_SCALES.end());
+        if !app.ui_scale.is_finite() {
+            app.ui_scale = 1.0;
+        }
+        app.layout = Layout::restore(storage);
         app
     }
 
@@ -160,7 +195,20 @@ impl ExplorerApp {
         Prefs {
             last_scene: Some(std::path::absolute(path).unwrap_or_else(|_| path.clone())),
             camera_is_unsaved: self.camera_is_unsaved,
+            ui_scale: self.ui_scale,
         }
+    }
+
+    /// The space the image pane gave the image at the last frame (points), if it was drawn.
+    #[must_use]
+    pub fn image_space(&self) -> Option<egui::Rect> {
+        self.image_space
+    }
+
+    /// Whether presentation mode is on (*View → Presentation mode*, F5).
+    #[must_use]
+    pub fn presenting(&self) -> bool {
+        self.layout.presenting()
     }
 
     /// The scene with the window's edits, saved or not (`None` until a preset opens).
@@ -286,9 +334,7 @@ impl ExplorerApp {
     /// with the A/B split shown, the split's descriptions.
     pub(super) fn recipe(&self, desc: &SceneDesc) -> Recipe {
         let mut d = desc.clone();
-        let s = self.resolution_scale;
-        d.render.width = ((d.render.width as f32 * s).round() as u32).max(1);
-        d.render.height = ((d.render.height as f32 * s).round() as u32).max(1);
+        (d.render.width, d.render.height) = self.resolution.film((d.render.width, d.render.height));
         Recipe {
             split: self.ab.enabled.then(|| self.ab.descs(&d)),
             render: d,
@@ -313,6 +359,7 @@ impl eframe::App for ExplorerApp {
 
     fn save(&mut self, storage: &mut dyn eframe::Storage) {
         eframe::set_value(storage, Prefs::KEY, &self.prefs());
+        self.layout.save(storage);
     }
 }
 
@@ -329,10 +376,13 @@ impl ExplorerApp {
         help::shortcuts_window(&ctx, &mut self.shortcuts_open);
         self.file_dialogs(&ctx, &mut commands);
         self.status_bar(ui, &ctx);
-        self.scene_panel_ui(ui);
-        self.lessons_panel(ui, &mut commands);
-        self.side_panels(ui, &ctx);
-        self.viewport(ui, &ctx, &mut commands);
+        self.poll(&ctx);
+        if self.layout.presenting() {
+            self.strip(ui);
+        }
+        self.tiles(ui, &mut commands);
+        self.speed
+            .window(&ctx, self.doc.desc.as_ref(), &self.doc.path);
         for c in commands {
             self.run(&ctx, c);
         }
@@ -396,81 +446,9 @@ impl ExplorerApp {
         }
     }
 
-    /// The scene panel on the left: it edits the description in place (disabled while another
-    /// scene is opening).
-    fn scene_panel_ui(&mut self, ui: &mut egui::Ui) {
-        let opening = self.doc.opening();
-        egui::Panel::left("scene")
-            .default_size(320.0)
-            .resizable(true)
-            .show(ui, |ui| {
-                // Scrolls both ways inside the panel's own width: wide content (large numbers,
-                // long paths) scrolls instead of widening the panel and moving the viewport.
-                egui::ScrollArea::both()
-                    .auto_shrink([false, false])
-                    .show(ui, |ui| {
-                        ui.add_enabled_ui(!opening, |ui| {
-                            let Self {
-                                doc,
-                                scene_panel,
-                                resolution_scale,
-                                ..
-                            } = self;
-                            doc.sync_ids();
-                            if let Some(desc) = &mut doc.desc {
-                                // Whether it changed anything is seen at the end of the frame.
-                                let ids = &mut doc.ids;
-                                let _ = scene_panel.ui(ui, desc, ids, resolution_scale, &doc.path);
-                            } else {
-                                ui.label("No scene: open a preset from the Presets menu.");
-                            }
-                        });
-                    });
-            });
-    }
-
-    /// The Lessons panel (when open): its buttons push commands (open a lesson's preset,
-    /// apply an experiment's scene, show an error).
-    fn lessons_panel(&mut self, ui: &mut egui::Ui, commands: &mut Vec<Command>) {
-        if self.lessons.open {
-            let dirty = self.is_dirty();
-            let command = egui::Panel::right("lessons")
-                .default_size(380.0)
-                .resizable(true)
-                .show(ui, |ui| self.lessons.ui(ui, self.doc.desc.as_ref(), dirty))
-                .inner;
-            commands.extend(command);
-        }
-    }
-
-    /// The inspector and the texture panel on the right, and the speed window.
-    fn side_panels(&mut self, ui: &mut egui::Ui, ctx: &egui::Context) {
-        self.texture_panel.update(ctx, self.viewer.scene_arc());
-        if self.inspector.open {
-            egui::Panel::right("inspector")
-                .default_size(440.0)
-                .resizable(true)
-                .show(ui, |ui| {
-                    // As the scene panel: the inspector's content changes with every pixel
-                    // hovered, and must not move the viewport.
-                    egui::ScrollArea::both()
-                        .auto_shrink([false, false])
-                        .show(ui, |ui| self.inspector.ui(ui));
-                });
-        }
-        if self.texture_panel.open {
-            egui::Panel::right("texture-panel")
-                .default_size(380.0)
-                .resizable(true)
-                .show(ui, |ui| self.texture_panel.ui(ui, self.inspector.shown()));
-        }
-        self.speed
-            .window(ctx, self.doc.desc.as_ref(), &self.doc.path);
-    }
-
-    /// The viewport: the render (or the A/B split), its pointer's camera commands, the
-    /// inspector following the pointer.
-    fn viewport(&mut self, ui: &mut egui::Ui, ctx: &egui::Context, commands: &mut Vec<Command>) {
+    /// Polls the render, the A/B split and the scene build, at the target frame rate while
+    /// any of them runs; the texture panel follows the scene shown.
+    fn poll(&mut self, ctx: &egui::Context) {
         let busy = self.viewer.poll(ctx) | self.ab.poll(ctx) | self.doc.building();
         if busy {
             let dt = ctx.input(|i| i.unstable_dt).min(1.0);
@@ -479,54 +457,32 @@ impl ExplorerApp {
             // a software rasteriser (lavapipe) would otherwise take a core from the workers.
             ctx.request_repaint_after(FRAME_INTERVAL);
         }
-        let size = self
-            .viewer
-            .scene()
-            .map(|s| Vec2::new(s.settings.width as f32, s.settings.height as f32));
-        let out = egui::CentralPanel::default()
-            .show(ui, |ui| {
-                let hint = self.doc.desc.as_ref().and_then(viewport::edge_on_hint);
-                let view = self.doc.desc.as_mut().map(|d| &mut d.render.view);
-                if self.ab.enabled {
-                    viewport::show_split(ui, &mut self.ab, size, view, hint.as_deref())
-                } else {
-                    let texture = self.viewer.live.texture();
-                    viewport::show(ui, texture, size, view, hint.as_deref())
-                }
-            })
-            .inner;
-        commands.extend(out.edit);
-        if let Some(scene) = self.viewer.scene() {
-            self.inspector.pointer(scene, out.hover, out.click);
-        }
+        self.texture_panel.update(ctx, self.viewer.scene_arc());
     }
 
     /// The menu bar: File, Edit, Presets, View, Help; an Edit command chosen goes to `commands`.
     fn menu_bar(&mut self, ui: &mut egui::Ui, commands: &mut Vec<Command>) {
+        let mut view = ViewChoice::default();
         egui::Panel::top("menu").show(ui, |ui| {
+            let mut open = self.open_panels();
             let Self {
                 files,
                 doc,
                 camera_is_unsaved,
                 shortcuts_open,
-                inspector,
-                texture_panel,
-                lessons,
                 ab,
                 speed,
+                ui_scale,
+                layout,
                 ..
             } = self;
             files.menu_bar(
                 ui,
                 &doc.path,
-                [
-                    (&mut inspector.open, "Inspector"),
-                    (&mut texture_panel.open, "Texture panel"),
-                    (&mut ab.enabled, "A/B split"),
-                    (&mut speed.open, "Speed and error"),
-                    (&mut lessons.open, "Lessons"),
-                ],
                 |ui| commands.extend(edit_menu(ui, &doc.history, camera_is_unsaved)),
+                |ui| {
+                    view = view_menu(ui, &mut open, ab, speed, ui_scale, layout.presenting());
+                },
                 |ui| {
                     if ui
                         .add(
@@ -540,18 +496,32 @@ impl ExplorerApp {
                     }
                 },
             );
+            self.set_open_panels(open);
         });
+        match view {
+            ViewChoice::None => {}
+            ViewChoice::Present => self.toggle_presentation(),
+            ViewChoice::ResetLayout => self.layout.reset(),
+        }
     }
 
-    /// Ctrl+Z undoes, Ctrl+Shift+Z and Ctrl+Y redo, F1 opens the shortcuts; not while a text
-    /// field has the keyboard (it has its own undo).
+    /// Ctrl+Z undoes, Ctrl+Shift+Z and Ctrl+Y redo, F1 opens the shortcuts, F5 presents, I
+    /// shows the inspector; not while a text field has the keyboard (it has its own undo).
+    /// Ctrl+= and Ctrl+- scale the UI and Ctrl+0 resets it, always.
     fn edit_shortcuts(&mut self, ctx: &egui::Context) -> Vec<Command> {
+        self.ui_scale_shortcuts(ctx);
         if ctx.egui_wants_keyboard_input() {
             return Vec::new();
         }
         ctx.input_mut(|i| {
             if i.consume_shortcut(&help::SHORTCUTS_KEY) {
                 self.shortcuts_open = !self.shortcuts_open;
+            }
+            if i.consume_shortcut(&help::PRESENT) {
+                self.toggle_presentation();
+            }
+            if i.consume_shortcut(&help::INSPECTOR) {
+                self.inspector.open = !self.inspector.open;
             }
             // Shift first: Ctrl+Z would also match Ctrl+Shift+Z.
             if i.consume_shortcut(&help::REDO) || i.consume_shortcut(&help::REDO_Y) {
@@ -596,6 +566,106 @@ impl ExplorerApp {
         })
         .inner
     }
+}
+
+impl ExplorerApp {
+    /// Ctrl+= (or Ctrl++) and Ctrl+- step the UI scale, Ctrl+0 resets it; then the scale is
+    /// applied (egui's own keyboard zoom is off, so a key is never counted twice).
+    fn ui_scale_shortcuts(&mut self, ctx: &egui::Context) {
+        ctx.options_mut(|o| o.zoom_with_keyboard = false);
+        let step = ctx.input_mut(|i| {
+            if i.consume_shortcut(&help::SCALE_UP) || i.consume_shortcut(&help::SCALE_UP_PLUS) {
+                Some(UI_SCALE_STEP)
+            } else if i.consume_shortcut(&help::SCALE_DOWN) {
+                Some(-UI_SCALE_STEP)
+            } else if i.consume_shortcut(&help::SCALE_RESET) {
+                Some(0.0)
+            } else {
+                None
+            }
+        });
+        match step {
+            Some(0.0) => self.ui_scale = 1.0,
+            Some(d) => {
+                // Steps land on tenths, whatever the slider left.
+                let s = ((self.ui_scale + d) * 10.0).round() / 10.0;
+                self.ui_scale = s.clamp(*UI_SCALES.start(), *UI_SCALES.end());
+            }
+            None => {}
+        }
+        if (ctx.zoom_factor() - self.ui_scale).abs() > 1e-4 {
+            ctx.set_zoom_factor(self.ui_scale);
+        }
+    }
+}
+
+/// What the View menu asked for besides its toggles.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+enum ViewChoice {
+    #[default]
+    None,
+    Present,
+    ResetLayout,
+}
+
+/// The View menu: the panels, the A/B split and the speed window, presentation mode, the UI
+/// scale and the layout's reset.
+fn view_menu(
+    ui: &mut egui::Ui,
+    open: &mut super::layout::Open,
+    ab: &mut AbSplit,
+    speed: &mut SpeedPanel,
+    ui_scale: &mut f32,
+    presenting: bool,
+) -> ViewChoice {
+    let mut choice = ViewChoice::None;
+    for pane in Pane::ALL {
+        if pane == Pane::Image {
+            continue;
+        }
+        let mut on = open.get(pane);
+        if ui.checkbox(&mut on, pane.title()).changed() {
+            open.set(pane, on);
+        }
+    }
+    ui.checkbox(&mut ab.enabled, "A/B split");
+    ui.checkbox(&mut speed.open, "Speed and error");
+    ui.separator();
+    let text = if presenting {
+        "Leave presentation mode"
+    } else {
+        "Presentation mode"
+    };
+    if ui
+        .add(egui::Button::new(text).shortcut_text(ui.ctx().format_shortcut(&help::PRESENT)))
+        .on_hover_text(
+            "The image alone, the panels in a strip at the left, the lesson's Look for and \
+             question over the image in large type",
+        )
+        .clicked()
+    {
+        choice = ViewChoice::Present;
+        ui.close();
+    }
+    ui.horizontal(|ui| {
+        let l = ui.label("UI scale");
+        ui.add(
+            egui::Slider::new(ui_scale, UI_SCALES)
+                .step_by(f64::from(UI_SCALE_STEP))
+                .suffix(" x"),
+        )
+        .labelled_by(l.id)
+        .on_hover_text("Ctrl+= larger, Ctrl+- smaller, Ctrl+0 back to 1 x (kept between runs)");
+    });
+    if ui
+        .button("Reset layout")
+        .on_hover_text("The panels back where they start: scene left, image, tabs right")
+        .clicked()
+    {
+        choice = ViewChoice::ResetLayout;
+        ui.close();
+    }
+    choice
 }
 
 /// What the status line says while a scene builds.

@@ -254,14 +254,14 @@ impl Files {
         }
     }
 
-    /// The menu bar. `toggles` are the View menu's panels; `edit` fills the Edit menu and `help`
-    /// the Help menu.
-    pub fn menu_bar<const N: usize>(
+    /// The menu bar. `edit` fills the Edit menu, `view` the View menu and `help` the Help
+    /// menu.
+    pub fn menu_bar(
         &mut self,
         ui: &mut egui::Ui,
         current: &Path,
-        toggles: [(&mut bool, &str); N],
         edit: impl FnOnce(&mut egui::Ui),
+        view: impl FnOnce(&mut egui::Ui),
         help: impl FnOnce(&mut egui::Ui),
     ) {
         self.current = current.to_path_buf();
@@ -346,11 +346,7 @@ impl Files {
                     }
                 });
             });
-            ui.menu_button("View", |ui| {
-                for (flag, name) in toggles {
-                    ui.checkbox(flag, name);
-                }
-            });
+            ui.menu_button("View", view);
             ui.menu_button("Help", help);
             let name = current
                 .file_name()

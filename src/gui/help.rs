@@ -17,8 +17,21 @@ pub const SAVE: KeyboardShortcut = KeyboardShortcut::new(Modifiers::COMMAND, Key
 /// Show or hide the shortcuts window.
 pub const SHORTCUTS_KEY: KeyboardShortcut = KeyboardShortcut::new(Modifiers::NONE, Key::F1);
 
+/// Presentation mode on or off.
+pub const PRESENT: KeyboardShortcut = KeyboardShortcut::new(Modifiers::NONE, Key::F5);
+/// Show or hide the inspector (one key away in presentation mode).
+pub const INSPECTOR: KeyboardShortcut = KeyboardShortcut::new(Modifiers::NONE, Key::I);
+/// A larger UI.
+pub const SCALE_UP: KeyboardShortcut = KeyboardShortcut::new(Modifiers::COMMAND, Key::Equals);
+/// A larger UI, the key with the plus sign.
+pub const SCALE_UP_PLUS: KeyboardShortcut = KeyboardShortcut::new(Modifiers::COMMAND, Key::Plus);
+/// A smaller UI.
+pub const SCALE_DOWN: KeyboardShortcut = KeyboardShortcut::new(Modifiers::COMMAND, Key::Minus);
+/// The UI at its own size.
+pub const SCALE_RESET: KeyboardShortcut = KeyboardShortcut::new(Modifiers::COMMAND, Key::Num0);
+
 /// The keys, in the order the window lists them, with what they do.
-pub const KEYS: [(KeyboardShortcut, &str); 6] = [
+pub const KEYS: [(KeyboardShortcut, &str); 12] = [
     (OPEN, "Open a preset or a texplore PNG"),
     (
         SAVE,
@@ -28,6 +41,15 @@ pub const KEYS: [(KeyboardShortcut, &str); 6] = [
     (REDO, "Redo"),
     (REDO_Y, "Redo"),
     (SHORTCUTS_KEY, "Show or hide this list"),
+    (
+        PRESENT,
+        "Presentation mode: the image alone, with the lesson's captions",
+    ),
+    (INSPECTOR, "Show or hide the inspector"),
+    (SCALE_UP, "Larger UI (for a projector)"),
+    (SCALE_UP_PLUS, "Larger UI"),
+    (SCALE_DOWN, "Smaller UI"),
+    (SCALE_RESET, "UI at its own size"),
 ];
 
 /// The pointer gestures over the image and in dialogs.

@@ -313,3 +313,29 @@ impl LessonsPanel {
         }
     }
 }
+
+/// What presentation mode shows over the image for the lesson on screen.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Caption {
+    /// The experiment applied last: its label and its *Look for*.
+    pub experiment: Option<(String, String)>,
+    /// The lesson's question.
+    pub question: String,
+}
+
+impl LessonsPanel {
+    /// The captions for presentation mode: `None` unless the scene is a lesson's.
+    #[must_use]
+    pub fn caption(&self) -> Option<Caption> {
+        let lesson = self.lesson().filter(|_| self.active)?;
+        let experiment = self
+            .applied
+            .last()
+            .and_then(|a| lesson.experiments.get(a.experiment))
+            .map(|x| (x.label.clone(), x.look_for.clone()));
+        Some(Caption {
+            experiment,
+            question: lesson.question.clone(),
+        })
+    }
+}

@@ -10,9 +10,12 @@ mod files;
 mod help;
 mod history;
 mod inspector;
+mod layout;
 mod lessons;
 mod live;
 mod overlay;
+mod panes;
+mod resolution;
 mod scene_panel;
 mod texture_panel;
 mod viewer;
@@ -60,6 +63,7 @@ fn run_app(open: Option<PathBuf>, lesson: Option<crate::lesson::Lesson>) -> anyh
         recent_file: config_dir().map(|d| d.join("recent.ron")),
         lesson,
         browser: Browser::default(),
+        follow_viewport: true,
     };
     eframe::run_native(
         "texplore",

@@ -15,7 +15,7 @@ pub const IMAGE_LABEL: &str = "Rendered image";
 pub const DIVIDER_LABEL: &str = "A/B divider";
 
 /// What the pointer did in the viewport this frame.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug)]
 pub struct ViewOutput {
     /// The camera edit a drag or the wheel asked for, if any.
     pub edit: Option<Command>,
@@ -25,6 +25,21 @@ pub struct ViewOutput {
     pub click: Option<Vec2>,
     /// The debug view was changed.
     pub view_changed: bool,
+    /// The space the image is fitted into (below the toolbar), in points (`Rect::NOTHING`
+    /// until drawn).
+    pub avail: egui::Rect,
+}
+
+impl Default for ViewOutput {
+    fn default() -> Self {
+        Self {
+            edit: None,
+            hover: None,
+            click: None,
+            view_changed: false,
+            avail: egui::Rect::NOTHING,
+        }
+    }
 }
 
 /// Wheel points to a zoom factor: one notch (about 50 points) is 10 %.
@@ -264,6 +279,7 @@ pub fn show(
     let shown_view = view.as_deref().copied().unwrap_or_default();
     toolbar(ui, &mut out, view);
     let avail = ui.available_rect_before_wrap();
+    out.avail = avail;
     let (Some(t), Some(size)) = (texture, size) else {
         ui.centered_and_justified(egui::Ui::spinner);
         return out;
@@ -297,6 +313,7 @@ pub fn show_split(
     toolbar(ui, &mut out, view);
     ab.controls(ui);
     let avail = ui.available_rect_before_wrap();
+    out.avail = avail;
     let Some(size) = size else {
         return out;
     };
@@ -375,4 +392,43 @@ pub fn show_split(
         image_hint(ui, rect, hint);
     }
     out
+}
+
+/// Presentation mode's captions over the image, in type a room can read: the experiment tried
+/// and its *Look for* at the top, the lesson's question at the bottom (each an accessible
+/// label).
+pub fn captions(ui: &egui::Ui, avail: egui::Rect, caption: &super::lessons::Caption) {
+    let painter = ui.painter().with_clip_rect(avail);
+    let width = (avail.width() - 32.0).max(80.0);
+    let band = |text: String, size: f32, top: bool, key: &str| {
+        let galley = painter.layout(
+            text.clone(),
+            egui::FontId::proportional(size),
+            egui::Color32::WHITE,
+            width,
+        );
+        let x = avail.center().x - galley.size().x / 2.0;
+        let y = if top {
+            avail.top() + 12.0
+        } else {
+            avail.bottom() - 12.0 - galley.size().y
+        };
+        let pos = egui::pos2(x, y);
+        let back = egui::Rect::from_min_size(pos, galley.size()).expand(8.0);
+        painter.rect_filled(back, 6.0, egui::Color32::from_black_alpha(200));
+        painter.galley(pos, galley, egui::Color32::WHITE);
+        let response = ui.interact(back, ui.scope_id().with(key), egui::Sense::hover());
+        response.widget_info(|| egui::WidgetInfo::labeled(egui::Role::Label, true, &text));
+    };
+    if let Some((label, look_for)) = &caption.experiment {
+        band(
+            format!("{label}\nLook for: {look_for}"),
+            26.0,
+            true,
+            "caption-look-for",
+        );
+    }
+    if !caption.question.is_empty() {
+        band(caption.question.clone(), 22.0, false, "caption-question");
+    }
 }

@@ -13,8 +13,9 @@ use std::path::{Path, PathBuf};
 use texplore::gui::{AppOptions, ExplorerApp};
 use texplore::scene::{SceneDesc, TextureDesc, load_preset, save_preset};
 
-/// The window size every test opens.
-pub const WINDOW: [f32; 2] = [1280.0, 800.0];
+/// The window size every test opens: tall enough that the scene panel, above the inspector in
+/// the panels' column, shows its editors without scrolling (as it did at full height).
+pub const WINDOW: [f32; 2] = [1280.0, 1400.0];
 
 /// The Earth preset at 160 x 120 and 4 spp, written to `dir` with a copy of its texture (so
 /// the paths the window shows are the same on every machine).

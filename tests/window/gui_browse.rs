@@ -3,7 +3,7 @@
 //! Esc, the recent list, where a screenshot goes and the message saying so, the assets list
 //! after *Save as*, and the description *Save as* offers to edit.
 
-use crate::gui_common::{harness, harness_with, settle, small_earth};
+use crate::gui_common::{WINDOW, harness, harness_with, settle, small_earth};
 use egui::accesskit::Role;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable as _;
@@ -121,12 +121,17 @@ fn browse_beside_the_mesh_prompt_makes_the_shape_that_mesh() {
     assert_eq!(asked.lock().expect("lock")[0].0, BrowseFor::Mesh);
 }
 
-/// Clicks the path dialog's *Browse…* (the image field has one too, in the left panel).
+/// Clicks the path dialog's *Browse…* (the image field has one too, in the scene panel): the
+/// one nearest the window's centre, where the modal sits.
 fn dialog_browse(h: &mut Harness<'_, ExplorerApp>) {
     // A modal takes a few frames to size itself (the Open dialog's list) and settle.
     h.run_steps(5);
+    let centre = egui::pos2(WINDOW[0] / 2.0, WINDOW[1] / 2.0);
     h.get_all_by_label("Browse…")
-        .max_by(|a, b| a.rect().left().total_cmp(&b.rect().left()))
+        .min_by(|a, b| {
+            let d = |n: &egui_kittest::Node<'_>| n.rect().center().distance(centre);
+            d(a).total_cmp(&d(b))
+        })
         .expect("a Browse… button")
         .click();
     settle(h);

@@ -156,7 +156,10 @@ fn panels_keep_their_width_when_their_content_grows() {
     assert_eq!(h.get_by_label("Rendered image").rect(), after);
     // The hint line is whole: it ends before the inspector begins.
     let hint = h.get_by_label(texplore::gui::VIEW_HINT).rect();
-    let inspector = h.get_by_label("Inspector").rect();
+    // The inspector's tab: the pane's left edge.
+    let inspector = h
+        .get_by_role_and_label(egui::accesskit::Role::Button, "Inspector")
+        .rect();
     assert!(
         hint.right() <= inspector.left(),
         "the hint {hint:?} runs under the inspector {inspector:?}"

@@ -13,6 +13,7 @@ mod gui_edit;
 mod gui_files;
 mod gui_frame_time;
 mod gui_labels;
+mod gui_layout;
 mod gui_lessons;
 mod gui_materials;
 mod gui_texture_panel;

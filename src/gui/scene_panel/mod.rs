@@ -168,7 +168,7 @@ impl ScenePanel {
         ui: &mut egui::Ui,
         desc: &mut SceneDesc,
         ids: &mut Vec<ObjectId>,
-        resolution_scale: &mut f32,
+        resolution: &mut crate::gui::resolution::ViewResolution,
         preset: &Path,
     ) -> bool {
         let mut changed = false;
@@ -227,7 +227,7 @@ impl ScenePanel {
             changed |= self.object_ui(ui, obj, preset);
         }
         ui.separator();
-        changed |= render::render_ui(ui, desc, resolution_scale);
+        changed |= render::render_ui(ui, desc, resolution);
         ui.separator();
         changed |= camera::camera_ui(ui, desc, &mut self.projections);
         ui.separator();

@@ -1,6 +1,7 @@
 //! The render settings: sampler, samples per pixel, exposure, resolution scale, seed and
 //! background.
 
+use crate::gui::resolution::ViewResolution;
 use crate::gui::widgets::{colour, enum_combo};
 use crate::scene::SceneDesc;
 
@@ -8,7 +9,7 @@ use crate::scene::SceneDesc;
 pub(super) fn render_ui(
     ui: &mut egui::Ui,
     desc: &mut SceneDesc,
-    resolution_scale: &mut f32,
+    resolution: &mut ViewResolution,
 ) -> bool {
     let mut changed = false;
     ui.heading("Render");
@@ -32,18 +33,28 @@ pub(super) fn render_ui(
     });
     ui.horizontal(|ui| {
         let l = ui.label("resolution");
+        let tip = format!(
+            "Renders at this fraction of {} (a view setting, not saved)",
+            resolution.of_what()
+        );
         changed |= ui
             .add(
-                egui::Slider::new(resolution_scale, 0.125..=2.0)
+                egui::Slider::new(&mut resolution.scale, 0.125..=2.0)
                     .logarithmic(true)
                     .suffix(" x"),
             )
             .labelled_by(l.id)
-            .on_hover_text(
-                "Renders at this fraction of the preset's resolution (a view setting, not saved)",
-            )
+            .on_hover_text(tip)
             .changed();
     });
+    changed |= ui
+        .checkbox(&mut resolution.follow_viewport, "follow the image pane")
+        .on_hover_text(
+            "On: render at the image pane's size in screen pixels, at the preset's aspect \
+             ratio, so a larger window or a projector gets a sharper image. Off: render at the \
+             preset's resolution (what Save and the CLI use)",
+        )
+        .changed();
     ui.horizontal(|ui| {
         let l = ui.label("seed");
         changed |= ui

@@ -1,0 +1,164 @@
+//! The resolution the window renders at: by default the image pane's own size in screen
+//! pixels (at the preset's aspect ratio), so a larger pane, a projector or a higher UI scale
+//! gets a sharper image instead of a 640x480 film drawn large; or the preset's resolution. A
+//! scale renders a fraction of either (a view setting, never saved in the scene).
+
+use crate::math::Vec2;
+use std::time::{Duration, Instant};
+
+/// How long the pane's size must hold before the render follows it (a drag of a divider does
+/// not restart the render on every frame).
+const SETTLE: Duration = Duration::from_millis(250);
+
+/// The smallest film side the viewport asks for.
+const MIN_SIDE: u32 = 16;
+
+/// The view's resolution setting and the size the image pane asks for.
+#[derive(Clone, Debug)]
+pub struct ViewResolution {
+    /// Render at the pane's size (else at the preset's resolution).
+    pub follow_viewport: bool,
+    /// The fraction of that size rendered (0.125 to 2).
+    pub scale: f32,
+    /// The pane's size in pixels, once it has held for [`SETTLE`].
+    settled: Option<(u32, u32)>,
+    /// A new pane size and when it was first seen.
+    pending: Option<((u32, u32), Instant)>,
+}
+
+impl Default for ViewResolution {
+    /// The preset's resolution (tests render small presets at their own size; the window
+    /// turns [`ViewResolution::follow_viewport`] on).
+    fn default() -> Self {
+        Self {
+            follow_viewport: false,
+            scale: 1.0,
+            settled: None,
+            pending: None,
+        }
+    }
+}
+
+impl ViewResolution {
+    /// The preset's resolution, or the image pane's size when `follow_viewport`.
+    #[must_use]
+    pub fn new(follow_viewport: bool) -> Self {
+        Self {
+            follow_viewport,
+            ..Self::default()
+        }
+    }
+
+    /// The image pane's space this frame: `avail` in points, the scene's `aspect` (its preset
+    /// width and height), `ppp` screen pixels per point.
+    pub fn viewport(&mut self, avail: egui::Rect, aspect: Vec2, ppp: f32, ctx: &egui::Context) {
+        let Some(size) = pane_pixels(avail, aspect, ppp) else {
+            return;
+        };
+        if self.settled == Some(size) {
+            self.pending = None;
+            return;
+        }
+        let now = Instant::now();
+        match self.pending {
+            _ if self.settled.is_none() => {
+                self.settled = Some(size);
+                self.pending = None;
+            }
+            Some((s, since)) if s == size => {
+                let held = now.duration_since(since);
+                if held >= SETTLE {
+                    self.settled = Some(size);
+                    self.pending = None;
+                } else {
+                    ctx.request_repaint_after(SETTLE.saturating_sub(held));
+                }
+            }
+            _ => {
+                self.pending = Some((size, now));
+                ctx.request_repaint_after(SETTLE);
+            }
+        }
+    }
+
+    /// The film size to render for a preset of `preset` pixels.
+    #[must_use]
+    pub fn film(&self, preset: (u32, u32)) -> (u32, u32) {
+        let base = match self.settled {
+            Some(s) if self.follow_viewport => s,
+            _ => preset,
+        };
+        let side = |v: u32| ((v as f32 * self.scale).round() as u32).max(1);
+        (side(base.0), side(base.1))
+    }
+
+    /// What the slider's tooltip says the scale is a fraction of.
+    #[must_use]
+    pub fn of_what(&self) -> &'static str {
+        if self.follow_viewport {
+            "the image pane's size in screen pixels"
+        } else {
+            "the preset's resolution"
+        }
+    }
+}
+
+/// The pixels of the largest rectangle of `aspect` that fits in `avail` (`None` for an empty
+/// pane or a degenerate aspect).
+fn pane_pixels(avail: egui::Rect, aspect: Vec2, ppp: f32) -> Option<(u32, u32)> {
+    if !(aspect.x > 0.0 && aspect.y > 0.0 && avail.width() > 1.0 && avail.height() > 1.0) {
+        return None;
+    }
+    let fit = (avail.width() / aspect.x).min(avail.height() / aspect.y) * ppp;
+    let side = |v: f32| ((v * fit).round() as u32).max(MIN_SIDE);
+    Some((side(aspect.x), side(aspect.y)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn rect(w: f32, h: f32) -> egui::Rect {
+        egui::Rect::from_min_size(egui::Pos2::ZERO, egui::vec2(w, h))
+    }
+
+    #[test]
+    fn the_film_fills_the_pane_at_the_presets_aspect() {
+        // A 4:3 preset in a 900x500-point pane at 2 pixels per point: 500 points high.
+        assert_eq!(
+            pane_pixels(rect(900.0, 500.0), Vec2::new(640.0, 480.0), 2.0),
+            Some((1333, 1000))
+        );
+        assert_eq!(
+            pane_pixels(rect(0.0, 500.0), Vec2::new(640.0, 480.0), 1.0),
+            None
+        );
+    }
+
+    #[test]
+    fn the_first_size_is_taken_at_once_and_later_ones_once_they_hold() {
+        let ctx = egui::Context::default();
+        let mut r = ViewResolution {
+            follow_viewport: true,
+            ..ViewResolution::default()
+        };
+        let aspect = Vec2::new(4.0, 3.0);
+        r.viewport(rect(400.0, 300.0), aspect, 1.0, &ctx);
+        assert_eq!(r.film((640, 480)), (400, 300));
+        r.viewport(rect(800.0, 600.0), aspect, 1.0, &ctx);
+        assert_eq!(r.film((640, 480)), (400, 300), "not before it holds");
+        r.pending = r.pending.map(|(s, t)| {
+            (
+                s,
+                t.checked_sub(SETTLE)
+                    .expect("the clock runs longer than that"),
+            )
+        });
+        r.viewport(rect(800.0, 600.0), aspect, 1.0, &ctx);
+        assert_eq!(r.film((640, 480)), (800, 600));
+        r.scale = 0.5;
+        assert_eq!(r.film((640, 480)), (400, 300));
+        r.follow_viewport = false;
+        assert_eq!(r.film((640, 480)), (320, 240));
+    }
+}

@@ -17,6 +17,7 @@ mod overlay;
 mod panes;
 mod resolution;
 mod scene_panel;
+mod storage;
 mod texture_panel;
 mod viewer;
 mod viewport;
@@ -24,6 +25,7 @@ mod widgets;
 
 pub use app::{AppOptions, ExplorerApp, Prefs};
 pub use files::{BrowseFor, Browser, config_dir, screenshot_default};
+pub use storage::{Guarded, app_ron, guard as guard_storage};
 pub use viewport::HINT as VIEW_HINT;
 
 use std::path::PathBuf;
@@ -50,6 +52,23 @@ pub fn run_lesson(lesson: crate::lesson::Lesson) -> anyhow::Result<()> {
 }
 
 fn run_app(open: Option<PathBuf>, lesson: Option<crate::lesson::Lesson>) -> anyhow::Result<()> {
+    // The window's memory is checked before eframe reads it (see `storage`).
+    let memory = app_ron();
+    if let Some(path) = &memory {
+        match guard_storage(path)? {
+            Guarded::Fine => {}
+            Guarded::Repaired(notes) => {
+                for note in notes {
+                    eprintln!("warning: {}: {note}", path.display());
+                }
+            }
+            Guarded::MovedAside(to, why) => eprintln!(
+                "warning: {}: {why}; moved aside to {} and starting afresh",
+                path.display(),
+                to.display()
+            ),
+        }
+    }
     let options = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()
             .with_title("texplore")
@@ -57,6 +76,7 @@ fn run_app(open: Option<PathBuf>, lesson: Option<crate::lesson::Lesson>) -> anyh
             .with_min_inner_size([800.0, 500.0])
             .with_drag_and_drop(true),
         renderer: eframe::Renderer::Wgpu,
+        persistence_path: memory,
         ..Default::default()
     };
     let app_options = AppOptions {

@@ -15,6 +15,8 @@ mod hard_cases;
 mod hostile;
 mod hostile_cache;
 mod hostile_read;
+#[cfg(feature = "gui")]
+mod hostile_storage;
 mod hostile_values;
 mod images;
 mod layering;

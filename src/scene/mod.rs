@@ -37,7 +37,8 @@ pub use preset::{
 };
 pub use settings::{
     AdaptiveDesc, DEFAULT_ADAPTIVE_THRESHOLD, DEFAULT_REFLECTION_DEPTH, MAX_REFLECTION_DEPTH,
-    MAX_RESOLUTION, MAX_SPP, Overrides, RenderDesc, RenderSettings, SnapshotDesc, apply_overrides,
+    MAX_RENDER_BYTES, MAX_RESOLUTION, MAX_SPP, Overrides, RENDER_BYTES_PER_PIXEL, RenderDesc,
+    RenderSettings, SnapshotDesc, apply_overrides,
 };
 pub use texture::{TextureDesc, TextureKind};
 pub use trace::{

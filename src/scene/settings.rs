@@ -12,6 +12,16 @@ use serde::{Deserialize, Serialize};
 /// Largest accepted width or height of a render.
 pub const MAX_RESOLUTION: u32 = 16_384;
 
+/// Bytes a render keeps for each pixel, whatever the command: the film's running sums (16),
+/// its adaptive statistics and edge keys (12), the display image (4) and a linear copy (12,
+/// what EXR output and the report's metrics read).
+pub const RENDER_BYTES_PER_PIXEL: u64 = 44;
+
+/// The memory a render's per-pixel buffers may take together: 2 GiB, about 6986 x 6986
+/// pixels. A larger render is refused before anything is allocated, where it used to abort
+/// when the allocation failed (16384 x 16384 needs 11 GiB).
+pub const MAX_RENDER_BYTES: u64 = 2 << 30;
+
 /// Largest accepted samples per pixel.
 pub const MAX_SPP: u32 = 1 << 20;
 
@@ -160,6 +170,22 @@ pub(super) fn render_settings(r: &RenderDesc) -> std::result::Result<RenderSetti
         return Err(format!(
             "render: resolution {}x{} is out of range (1 to {MAX_RESOLUTION} per side)",
             r.width, r.height
+        ));
+    }
+    let bytes = u64::from(r.width) * u64::from(r.height) * RENDER_BYTES_PER_PIXEL;
+    if bytes > MAX_RENDER_BYTES {
+        let side = ((MAX_RENDER_BYTES / RENDER_BYTES_PER_PIXEL) as f64)
+            .sqrt()
+            .floor();
+        let gib = |b: u64| b as f64 / f64::from(1u32 << 30);
+        return Err(format!(
+            "render: {}x{} pixels need {:.1} GiB for the film and the image \
+             ({RENDER_BYTES_PER_PIXEL} bytes a pixel), above the {:.0} GiB render budget \
+             (about {side}x{side} at most)",
+            r.width,
+            r.height,
+            gib(bytes),
+            gib(MAX_RENDER_BYTES)
         ));
     }
     if !(1..=MAX_SPP).contains(&r.spp) {

@@ -366,3 +366,37 @@ fn an_image_of_extreme_aspect_loads() {
         assert_eq!(texels.len(), 100_000 * 4);
     }
 }
+
+#[test]
+fn a_16384_squared_render_is_refused_by_the_render_budget_before_allocating() {
+    // A 200-byte preset asking for the largest resolution: the film, the display image and a
+    // linear copy would take 11 GiB; under a 6 GB address space it used to abort.
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("huge.ron"),
+        "(version: 1, camera: (eye: (0, 0, 3.6)), render: (width: 16384, height: 16384, spp: 1), objects: [(shape: Sphere, material: Matte(cd: Constant((0.5, 0.5, 0.5))))])",
+    )
+    .unwrap();
+    let out = texplore_limited(
+        dir.path(),
+        &["render", "huge.ron", "-o", "out.png"],
+        6 << 30,
+    );
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("huge.ron")
+            && err.contains("16384x16384 pixels need 11.0 GiB")
+            && err.contains("above the 2 GiB render budget"),
+        "{err}"
+    );
+    assert!(!dir.path().join("out.png").exists());
+    // Just inside the budget (6986 x 6986 needs 2.0 GiB) the settings are accepted.
+    let desc: texplore::scene::SceneDesc = ron::from_str(
+        "(version: 1, camera: (eye: (0, 0, 3.6)), render: (width: 6986, height: 6986, spp: 1), objects: [(shape: Sphere, material: Matte(cd: Constant((0.5, 0.5, 0.5))))])",
+    )
+    .unwrap();
+    let mut cache = texplore::scene::AssetCache::default();
+    let built = texplore::scene::build_scene(&desc, &dir.path().join("p.ron"), &mut cache);
+    assert!(built.is_ok(), "{:?}", built.err().map(|e| e.to_string()));
+}

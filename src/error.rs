@@ -52,6 +52,17 @@ pub enum Error {
         /// What was wrong or expected.
         message: String,
     },
+    /// A file a preset's field names could not be used: the preset, the field, and the file's
+    /// own error (`p.ron: objects[0] (Earth).material: earth.jpg: No such file or directory`).
+    #[error("{}: {field}: {cause}", path.display())]
+    InField {
+        /// The preset.
+        path: PathBuf,
+        /// The field, as a lesson's path spells it (`objects[0].material`).
+        field: String,
+        /// The asset's error (kept out of the error chain: the message already includes it).
+        cause: Box<Error>,
+    },
     /// A value is out of range or inconsistent (a zero scale, spp = 0, an absurd resolution).
     #[error("{}: {message}", path.display())]
     Invalid {
@@ -78,6 +89,22 @@ impl Error {
         Self::Invalid {
             path: path.to_path_buf(),
             message: message.into(),
+        }
+    }
+}
+
+impl Error {
+    /// `cause` (an asset's error) as the error of `field` of the preset at `path`; an error
+    /// that already names the preset and a field is returned as it is.
+    #[must_use]
+    pub fn in_field(path: &Path, field: impl Into<String>, cause: Self) -> Self {
+        match cause {
+            e @ (Self::InField { .. } | Self::Invalid { .. } | Self::Preset { .. }) => e,
+            cause => Self::InField {
+                path: path.to_path_buf(),
+                field: field.into(),
+                cause: Box::new(cause),
+            },
         }
     }
 }

@@ -290,6 +290,15 @@ impl TextureDesc {
     }
 }
 
+/// An image's path must name a file: an empty one would name the preset's folder.
+fn check_path(path: &str) -> std::result::Result<(), String> {
+    if path.is_empty() {
+        Err("Image.path is empty: name an image file".to_owned())
+    } else {
+        Ok(())
+    }
+}
+
 /// A texture of parameter `what`, its messages prefixed with the parameter's name
 /// (`ks.Image.scale: ...`).
 pub(super) fn param_texture(
@@ -332,6 +341,7 @@ pub(super) fn alpha_texture(
     };
     check_anisotropy("Image", *max_anisotropy).map_err(|m| Error::invalid(base, m))?;
     let transform = uv_transform("Image", uv).map_err(|m| Error::invalid(base, m))?;
+    check_path(path).map_err(|m| Error::invalid(base, m))?;
     let image = cache.alpha(&base.join(path))?;
     let mip = filter.needs_mip().then(|| cache.mip(&image));
     Ok(Texture::Image(ImageTexture {
@@ -368,6 +378,7 @@ pub(super) fn texture(t: &TextureDesc, base: &Path, cache: &mut AssetCache) -> R
             finite_non_negative("Image.scale", &[*scale]).map_err(invalid)?;
             let transform = uv_transform("Image", uv).map_err(invalid)?;
             check_anisotropy("Image", *max_anisotropy).map_err(invalid)?;
+            check_path(path).map_err(invalid)?;
             let image = cache.image(&base.join(path), *srgb)?;
             let mip = filter.needs_mip().then(|| cache.mip(&image));
             Texture::Image(ImageTexture {

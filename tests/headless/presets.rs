@@ -155,3 +155,62 @@ fn saves_are_atomic_and_a_failed_save_keeps_the_old_file() {
     let e = load_preset(&huge).unwrap_err().to_string();
     assert!(e.contains("huge.ron") && e.contains("too large"), "{e}");
 }
+
+/// The error building a scene whose one object is `(name: "Ball", OBJECT)`, with the preset
+/// at `dir/p.ron`.
+fn build_error(dir: &Path, object: &str) -> String {
+    let text =
+        format!("(version: 1, camera: (eye: (0, 0, 3.6)), objects: [(name: \"Ball\", {object})])");
+    let preset = dir.join("p.ron");
+    let desc = parse_preset(&text, &preset).expect("parses");
+    match build_scene(&desc, &preset, &mut AssetCache::new()) {
+        Ok(_) => panic!("{text} built"),
+        Err(e) => e.to_string(),
+    }
+}
+
+#[test]
+fn a_missing_or_empty_asset_path_names_the_preset_the_object_and_the_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let p = d.join("p.ron").display().to_string();
+    // Empty: it used to read the preset's folder ("/tmp/x/: not a regular file (a directory)").
+    let e = build_error(d, r#"shape: Sphere, material: Matte(cd: Image(path: ""))"#);
+    assert_eq!(
+        e,
+        format!("{p}: objects[0] (Ball).material: Image.path is empty: name an image file")
+    );
+    let e = build_error(
+        d,
+        r#"shape: Mesh(path: ""), material: Matte(cd: Constant((1, 1, 1)))"#,
+    );
+    assert!(
+        e.starts_with(&format!("{p}: objects[0] (Ball).shape: Mesh.path is empty")),
+        "{e}"
+    );
+    let e = build_error(
+        d,
+        r#"shape: Sphere, material: Matte(cd: Constant((1, 1, 1))), alpha: (texture: Image(path: ""), channel: Alpha)"#,
+    );
+    assert!(
+        e.starts_with(&format!("{p}: objects[0] (Ball)")) && e.contains("Image.path is empty"),
+        "{e}"
+    );
+    // Missing: the preset and the field first, then the file's own error.
+    let e = build_error(
+        d,
+        r#"shape: Sphere, material: Phong(cd: Constant((1, 1, 1)), ks: Image(path: "gone.png"))"#,
+    );
+    assert!(
+        e.starts_with(&format!("{p}: objects[0] (Ball).material: ")) && e.contains("gone.png"),
+        "{e}"
+    );
+    let e = build_error(
+        d,
+        r#"shape: Mesh(path: "gone.ply"), material: Matte(cd: Constant((1, 1, 1)))"#,
+    );
+    assert!(
+        e.starts_with(&format!("{p}: objects[0] (Ball).shape: ")) && e.contains("gone.ply"),
+        "{e}"
+    );
+}

@@ -267,19 +267,30 @@ pub(super) fn build_object(
     } else {
         format!("objects[{i}] ({})", o.name)
     };
-    // A message of a field of the object, prefixed with the object.
+    // A message of a field of the object, prefixed with the object; a file's error (an image
+    // or mesh that cannot be read) names the preset and the field too.
     let within = |prefix: &'static str| {
         let (what, bad) = (&what, &bad);
         move |e: Error| match e {
             Error::Invalid { message, .. } => bad(format!("{what}{prefix}{message}")),
-            other => other,
+            other => {
+                let field = format!("{what}{}", prefix.trim_end_matches([':', ' ', '.']));
+                Error::in_field(preset_path, field, other)
+            }
         }
     };
     let transform = transform(&o.transform).map_err(|m| bad(format!("{what}.transform: {m}")))?;
     let shape = match (&o.shape, &o.displace) {
         (ShapeDesc::Mesh { path, shading }, displace) => {
+            if path.is_empty() {
+                return Err(bad(format!(
+                    "{what}.shape: Mesh.path is empty: name a PLY or OBJ file"
+                )));
+            }
             let file = base.join(path);
-            let mut mesh = cache.mesh(&file)?;
+            let mut mesh = cache
+                .mesh(&file)
+                .map_err(|e| Error::in_field(preset_path, format!("{what}.shape"), e))?;
             if let Some(d) = displace {
                 mesh =
                     displaced_mesh(&mesh, &file, d, base, cache).map_err(within(".displace."))?;

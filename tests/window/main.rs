@@ -14,6 +14,7 @@ mod gui_files;
 mod gui_frame_time;
 mod gui_labels;
 mod gui_lessons;
+mod gui_lessons_class;
 mod gui_materials;
 mod gui_texture_panel;
 mod gui_view;

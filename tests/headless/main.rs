@@ -19,6 +19,7 @@ mod hostile_values;
 mod images;
 mod layering;
 mod lessons;
+mod lessons_claims;
 mod materials;
 mod memory;
 mod meshes;

@@ -456,6 +456,12 @@ pub struct IsoLines {
     pub flags: Vec<u8>,
     /// One label per line that shows, near the middle of its run of pixels.
     pub labels: Vec<IsoLabel>,
+    /// The pixels on the seam, for a drawing that is seen from afar (a line one film pixel wide
+    /// is not).
+    pub seam: Vec<(u32, u32)>,
+    /// Where each pole shows: of the pixels flagged for it, the centre of the one whose v is
+    /// nearest the pole's (film pixels from the top-left corner), one per object and pole.
+    pub poles: Vec<(f32, f32)>,
 }
 
 impl IsoLines {
@@ -481,6 +487,9 @@ pub fn iso_lines(field: &UvField, divisions: u32) -> IsoLines {
     let mut flags = vec![0_u8; field.pixels.len()];
     // (is_u, k) -> the pixels on that line.
     let mut runs: BTreeMap<(bool, u32), Vec<(u32, u32)>> = BTreeMap::default();
+    let mut seam = Vec::new();
+    // (object, north) -> the pixel nearest the pole so far, and its distance to it in v.
+    let mut poles: BTreeMap<(usize, bool), (f32, u32, u32)> = BTreeMap::default();
     for y in 0..h {
         for x in 0..w {
             let Some(p) = field.at(x, y) else { continue };
@@ -504,10 +513,32 @@ pub fn iso_lines(field: &UvField, divisions: u32) -> IsoLines {
                 }
             }
             if mapping.is_some_and(Mapping::v_clamps) {
-                let dv = p.tex.duvdx.y.abs().max(p.tex.duvdy.y.abs()) * 0.5;
+                // The footprint's reach in v, or (without ray differentials: nearest and
+                // bilinear lookups) the step in v to the neighbouring pixels, so a pole between
+                // pixel centres still marks the pixel nearest it.
+                let step = [
+                    (x.wrapping_sub(1), y),
+                    (x + 1, y),
+                    (x, y.wrapping_sub(1)),
+                    (x, y + 1),
+                ]
+                .into_iter()
+                .filter_map(|(nx, ny)| field.at(nx, ny).filter(|q| q.object == p.object))
+                .map(|q| (q.tex.uv.y - p.tex.uv.y).abs())
+                .fold(0.0_f32, f32::max);
+                let dv = (p.tex.duvdx.y.abs().max(p.tex.duvdy.y.abs()) * 0.5).max(step);
                 if p.tex.uv.y + dv >= 1.0 || p.tex.uv.y - dv <= 0.0 {
                     f |= ISO_POLE;
+                    let north = p.tex.uv.y > 0.5;
+                    let off = if north { 1.0 - p.tex.uv.y } else { p.tex.uv.y };
+                    let e = poles.entry((p.object, north)).or_insert((off, x, y));
+                    if off < e.0 {
+                        *e = (off, x, y);
+                    }
                 }
+            }
+            if f & ISO_SEAM != 0 {
+                seam.push((x, y));
             }
             flags[(y * w + x) as usize] = f;
         }
@@ -531,6 +562,11 @@ pub fn iso_lines(field: &UvField, divisions: u32) -> IsoLines {
         divisions,
         flags,
         labels,
+        seam,
+        poles: poles
+            .into_values()
+            .map(|(_, x, y)| (x as f32 + 0.5, y as f32 + 0.5))
+            .collect(),
     }
 }
 

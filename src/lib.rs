@@ -26,6 +26,7 @@ pub mod report;
 pub mod robustness;
 pub mod sampler;
 pub mod scene;
+pub mod shipped;
 pub mod snapshot;
 pub mod texture;
 

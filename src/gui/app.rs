@@ -166,7 +166,7 @@ impl ExplorerApp {
     }
 
     /// The window as it starts: on `open` if given, else on the scene `storage` says was open
-    /// last (if that file is still there), else on [`super::DEFAULT_PRESET`]; with the
+    /// last (if that file is still there), else on [`super::default_preset`]; with the
     /// preferences `storage` kept. Tests pass their own storage or none, never the user's.
     #[must_use]
     pub fn restore(
@@ -177,7 +177,7 @@ impl ExplorerApp {
         let prefs = Prefs::load(storage);
         let path = open
             .or(prefs.last_scene.filter(|p| p.is_file()))
-            .unwrap_or_else(|| PathBuf::from(super::DEFAULT_PRESET));
+            .unwrap_or_else(super::default_preset);
         let mut app = Self::with_options(path, options);
         app.camera_is_unsaved = prefs.camera_is_unsaved;
         app.ui_scale = prefs.ui_scale.clamp(*UI_SCALES.start(), *UI_SCALES.end());

@@ -224,6 +224,8 @@ impl ExplorerApp {
                     self.inspector.clear();
                     self.files.add_recent(path);
                     self.lessons.opened(path, true, self.doc.desc.as_ref());
+                    // The lessons' scenes are read-only, as the shipped files are.
+                    self.files.protect(self.lessons.scenes());
                 }
                 self.error = None;
                 if let Some(split) = built.split {

@@ -1,113 +1,58 @@
 //! Files: the menu bar, built-in presets, open / save / save-as / screenshot dialogs (a path
 //! field with quick picks and a *Browse…* button for the system's file dialog), recent files,
 //! dropped files, and the prompts that guard unsaved changes and existing files.
+//!
+//! Shipped presets and lessons ([`crate::shipped::is_shipped`]) and the scenes of lessons are
+//! read-only here: *Save* on one (the menu, Ctrl+S, the unsaved-changes prompt) is always
+//! *Save as*, and *Save as* refuses them as targets.
 
+pub use super::browse::{BrowseFor, Browser, IMAGE_EXTENSIONS};
 use super::command::Command;
 use crate::scene::read_png_preset;
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
-
-/// What a *Browse…* button asks the file dialog for.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum BrowseFor {
-    /// An image for the texture.
-    Image,
-    /// A PLY or OBJ mesh for the shape.
-    Mesh,
-    /// A preset or a texplore PNG to open.
-    Scene,
-    /// Where to save the preset.
-    Preset,
-    /// Where to save the screenshot.
-    Screenshot,
-}
-
-/// A file chooser: what is asked for, the folder to start in, the file name to suggest;
-/// `None` when the user cancels.
-pub type BrowseFn = dyn Fn(BrowseFor, &Path, &str) -> Option<PathBuf> + Send + Sync;
-
-/// The file chooser behind every *Browse…* button: the system's dialog (`rfd`: the XDG desktop
-/// portal on Linux, the native panels on macOS and Windows), or, in tests, a function that
-/// answers in its place.
-#[derive(Clone, Default)]
-pub struct Browser(Option<Arc<BrowseFn>>);
-
-impl std::fmt::Debug for Browser {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(if self.0.is_some() {
-            "Browser(replaced)"
-        } else {
-            "Browser(native)"
-        })
-    }
-}
-
-impl Browser {
-    /// A chooser that calls `f` instead of showing the system's dialog.
-    #[must_use]
-    pub fn replaced_by(
-        f: impl Fn(BrowseFor, &Path, &str) -> Option<PathBuf> + Send + Sync + 'static,
-    ) -> Self {
-        Self(Some(Arc::new(f)))
-    }
-
-    /// Asks for a file: `start` is the folder shown first, `name` the suggested file name of a
-    /// save. Blocks until the dialog closes.
-    #[must_use]
-    pub fn pick(&self, what: BrowseFor, start: &Path, name: &str) -> Option<PathBuf> {
-        if let Some(f) = &self.0 {
-            return f(what, start, name);
-        }
-        let start = std::path::absolute(start).unwrap_or_else(|_| start.to_path_buf());
-        let d = rfd::FileDialog::new().set_directory(start);
-        match what {
-            BrowseFor::Image => d
-                .set_title("Choose an image")
-                .add_filter("Images", &IMAGE_EXTENSIONS)
-                .pick_file(),
-            BrowseFor::Mesh => d
-                .set_title("Choose a mesh")
-                .add_filter("Meshes (PLY, OBJ)", &["ply", "obj"])
-                .pick_file(),
-            BrowseFor::Scene => d
-                .set_title("Open a preset or a texplore PNG")
-                .add_filter("Presets and texplore PNGs", &["ron", "png"])
-                .pick_file(),
-            BrowseFor::Preset => d
-                .set_title("Save the scene as a preset")
-                .add_filter("Preset (.ron)", &["ron"])
-                .set_file_name(name)
-                .save_file(),
-            BrowseFor::Screenshot => d
-                .set_title("Save a screenshot")
-                .add_filter("PNG", &["png"])
-                .set_file_name(name)
-                .save_file(),
-        }
-    }
-}
-
-/// The image files texplore reads, by extension.
-pub const IMAGE_EXTENSIONS: [&str; 9] = [
-    "png", "jpg", "jpeg", "hdr", "exr", "tif", "tiff", "ppm", "pgm",
-];
 
 /// How many recent files are remembered.
 const MAX_RECENT: usize = 10;
-/// Where the built-in presets live.
-const PRESET_DIR: &str = "presets";
+
+/// The built-in presets' folder: the copy of those shipped in the binary.
+fn preset_dir() -> PathBuf {
+    crate::shipped::presets_dir().unwrap_or_else(|_| PathBuf::from("presets"))
+}
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum DialogKind {
     Open,
     SaveAs,
     Screenshot,
+    /// An image for the selected object (a *Browse…* with no system dialog).
+    Image,
+    /// A mesh for the selected object (likewise).
+    Mesh,
 }
 
 #[derive(Clone, Debug, PartialEq)]
 enum Pending {
     Open(PathBuf),
     Quit,
+}
+
+/// Why a file is not saved over, if it is not.
+fn read_only_reason(path: &Path, protected: &[PathBuf]) -> Option<String> {
+    let name = path.file_name().map_or_else(
+        || path.display().to_string(),
+        |n| n.to_string_lossy().into_owned(),
+    );
+    if crate::shipped::is_shipped(path) {
+        Some(format!(
+            "{name} ships with texplore and is read-only: save your scene under another name"
+        ))
+    } else if protected.iter().any(|p| canonical(p) == canonical(path)) {
+        Some(format!(
+            "{name} is a lesson's scene and is read-only here: save your scene under another name"
+        ))
+    } else {
+        None
+    }
 }
 
 /// The path dialog while it is open.
@@ -119,6 +64,10 @@ struct Dialog {
     description: Option<String>,
     /// The path field takes the keyboard on the dialog's first frame.
     focus: bool,
+    /// Why the dialog is shown or what was wrong with the path typed.
+    note: Option<String>,
+    /// *Save as* from the unsaved-changes prompt: what to do once saved.
+    then: Option<Pending>,
 }
 
 /// The files state.
@@ -131,9 +80,14 @@ pub struct Files {
     presets: Option<Vec<(PathBuf, String)>>,
     requested: Option<Pending>,
     prompt: Option<Pending>,
-    overwrite: Option<Command>,
+    /// The replace prompt: the save it confirms, and what to do after it.
+    overwrite: Option<(Command, Option<Pending>)>,
     close_ok: bool,
     current: PathBuf,
+    /// The scenes of lessons ([`Files::protect`]): read-only, as shipped files are.
+    protected: Vec<PathBuf>,
+    /// Whether `current` is read-only, and why (worked out once per file).
+    read_only: Option<(PathBuf, Option<String>)>,
 }
 
 /// The user's config folder for texplore, from the `dirs` crate: `$XDG_CONFIG_HOME/texplore`
@@ -169,6 +123,22 @@ fn folder_of(file: &Path) -> &Path {
         .unwrap_or(Path::new("."))
 }
 
+/// Where *Save as* suggests saving a copy of the read-only `current`: the user's Documents
+/// folder (else the home folder), under its name, or `-2`, `-3`... so that it replaces nothing.
+fn copy_default(current: &Path) -> PathBuf {
+    let dir = dirs::document_dir()
+        .or_else(dirs::home_dir)
+        .unwrap_or_else(|| PathBuf::from("."));
+    let stem = stem(current);
+    let mut p = dir.join(format!("{stem}.ron"));
+    let mut n = 2;
+    while p.exists() && n < 10_000 {
+        p = dir.join(format!("{stem}-{n}.ron"));
+        n += 1;
+    }
+    p
+}
+
 /// Where a screenshot of the scene from `current` goes by default: beside its preset, or, for a
 /// built-in preset, in the user's Pictures folder (else the home folder; the program's presets
 /// folder is no place for it); named `<preset>-shot.png`, or `-shot-2.png`... so that the
@@ -176,13 +146,14 @@ fn folder_of(file: &Path) -> &Path {
 #[must_use]
 pub fn screenshot_default(current: &Path) -> PathBuf {
     let folder = folder_of(current);
-    let dir = if canonical(folder) == canonical(Path::new(PRESET_DIR)) {
-        dirs::picture_dir()
-            .or_else(dirs::home_dir)
-            .unwrap_or_else(|| folder.to_path_buf())
-    } else {
-        folder.to_path_buf()
-    };
+    let dir =
+        if canonical(folder) == canonical(&preset_dir()) || crate::shipped::is_shipped(current) {
+            dirs::picture_dir()
+                .or_else(dirs::home_dir)
+                .unwrap_or_else(|| folder.to_path_buf())
+        } else {
+            folder.to_path_buf()
+        };
     let stem = stem(current);
     let mut p = dir.join(format!("{stem}-shot.png"));
     let mut n = 2;
@@ -217,6 +188,54 @@ impl Files {
             overwrite: None,
             close_ok: false,
             current: PathBuf::new(),
+            protected: Vec::new(),
+            read_only: None,
+        }
+    }
+
+    /// Makes `scenes` (the lessons' presets) read-only in the window, as shipped files are.
+    pub fn protect(&mut self, scenes: Vec<PathBuf>) {
+        if scenes != self.protected {
+            self.protected = scenes;
+            self.read_only = None;
+        }
+    }
+
+    /// Why the scene's file `current` cannot be saved over, if it cannot.
+    fn read_only(&mut self, current: &Path) -> Option<String> {
+        match &self.read_only {
+            Some((p, why)) if p == current => why.clone(),
+            _ => {
+                let why = read_only_reason(current, &self.protected);
+                self.read_only = Some((current.to_path_buf(), why.clone()));
+                why
+            }
+        }
+    }
+
+    /// Save: over the preset the scene came from, after the replace prompt; a read-only file
+    /// (shipped, or a lesson's scene) or a PNG opens *Save as*, saying why.
+    fn save(&mut self, current: &Path) {
+        if let Some(why) = self.read_only(current) {
+            self.save_as_copy(current, why, None);
+        } else if current.extension().is_some_and(|e| e == "ron") {
+            // Never overwrite without asking: the replace prompt confirms.
+            self.overwrite = Some((Command::Save(current.to_path_buf()), None));
+        } else {
+            self.open_dialog(DialogKind::SaveAs, String::new());
+        }
+    }
+
+    /// *Save as* for a read-only `current`, suggesting a copy in the user's folder; `then` runs
+    /// once it is saved.
+    fn save_as_copy(&mut self, current: &Path, why: String, then: Option<Pending>) {
+        self.open_dialog(
+            DialogKind::SaveAs,
+            copy_default(current).display().to_string(),
+        );
+        if let Some(d) = &mut self.dialog {
+            d.note = Some(why);
+            d.then = then;
         }
     }
 
@@ -224,7 +243,7 @@ impl Files {
     /// with its description.
     fn presets(&mut self) -> Vec<(PathBuf, String)> {
         self.presets
-            .get_or_insert_with(|| crate::scene::presets_in_lecture_order(Path::new(PRESET_DIR)))
+            .get_or_insert_with(|| crate::scene::presets_in_lecture_order(&preset_dir()))
             .clone()
     }
 
@@ -234,6 +253,8 @@ impl Files {
             text,
             description: None,
             focus: true,
+            note: None,
+            then: None,
         });
     }
 
@@ -273,12 +294,7 @@ impl Files {
             )
         });
         if save {
-            if current.extension().is_some_and(|e| e == "ron") {
-                // Never overwrite without asking: the replace prompt confirms.
-                self.overwrite = Some(Command::Save(current.to_path_buf()));
-            } else {
-                self.open_dialog(DialogKind::SaveAs, String::new());
-            }
+            self.save(current);
         }
         if open {
             self.open_dialog(DialogKind::Open, String::new());
@@ -288,22 +304,23 @@ impl Files {
                 if ui.button("Open…").clicked() {
                     self.open_dialog(DialogKind::Open, String::new());
                 }
-                let is_ron = current.extension().is_some_and(|e| e == "ron");
+                let read_only = self.read_only(current);
                 if ui
                     .button("Save")
-                    .on_hover_text("Save the scene over the preset it came from")
+                    .on_hover_text(read_only.clone().unwrap_or_else(|| {
+                        "Save the scene over the preset it came from".to_owned()
+                    }))
                     .clicked()
                 {
-                    if is_ron {
-                        // Never overwrite without asking: the replace prompt confirms.
-                        self.overwrite = Some(Command::Save(current.to_path_buf()));
-                    } else {
-                        self.open_dialog(DialogKind::SaveAs, String::new());
-                    }
+                    self.save(current);
                 }
                 if ui.button("Save as…").clicked() {
-                    let name = current.with_extension("ron").display().to_string();
-                    self.open_dialog(DialogKind::SaveAs, name);
+                    if let Some(why) = read_only {
+                        self.save_as_copy(current, why, None);
+                    } else {
+                        let name = current.with_extension("ron").display().to_string();
+                        self.open_dialog(DialogKind::SaveAs, name);
+                    }
                 }
                 if ui
                     .button("Save screenshot…")
@@ -403,6 +420,7 @@ impl Files {
     /// which *Save as* offers to edit.
     pub fn dialogs(&mut self, ctx: &egui::Context, dirty: bool, description: &str) -> Vec<Command> {
         let mut out = Vec::new();
+        self.fall_back();
         if let Some(req) = self.requested.take() {
             if dirty {
                 self.prompt = Some(req);
@@ -414,15 +432,29 @@ impl Files {
             egui::Modal::new(egui::Id::unique("unsaved")).show(ctx, |ui| {
                 ui.heading("Unsaved changes");
                 ui.label("The scene has changes that are not saved. Discard them?");
+                let current = self.current.clone();
+                let read_only = self.read_only(&current);
+                if let Some(why) = &read_only {
+                    ui.weak(why);
+                }
                 ui.horizontal(|ui| {
-                    let is_ron = self.current.extension().is_some_and(|e| e == "ron");
-                    if is_ron
+                    let is_ron = current.extension().is_some_and(|e| e == "ron");
+                    if let Some(why) = &read_only {
+                        if ui
+                            .button("Save as… and continue")
+                            .on_hover_text("Save the scene under another name, then go on")
+                            .clicked()
+                        {
+                            self.save_as_copy(&current, why.clone(), Some(pending.clone()));
+                            self.prompt = None;
+                        }
+                    } else if is_ron
                         && ui
                             .button("Save and continue")
-                            .on_hover_text(format!("Save to {}", self.current.display()))
+                            .on_hover_text(format!("Save to {}", current.display()))
                             .clicked()
                     {
-                        out.push(Command::Save(self.current.clone()));
+                        out.push(Command::Save(current.clone()));
                         out.push(self.confirm(pending.clone()));
                         self.prompt = None;
                     }
@@ -436,7 +468,7 @@ impl Files {
                 });
             });
         }
-        if let Some(action) = self.overwrite.clone() {
+        if let Some((action, then)) = self.overwrite.clone() {
             let path = match &action {
                 Command::Save(p) | Command::Screenshot(p) => p.display().to_string(),
                 _ => String::new(),
@@ -447,6 +479,9 @@ impl Files {
                 ui.horizontal(|ui| {
                     if ui.button("Replace").clicked() {
                         out.push(action.clone());
+                        if let Some(then) = then.clone() {
+                            out.push(self.confirm(then));
+                        }
                         self.overwrite = None;
                     }
                     if ui.button("Cancel").clicked() {
@@ -469,9 +504,18 @@ impl Files {
                 DialogKind::Open => "Open a preset or a texplore PNG",
                 DialogKind::SaveAs => "Save the scene as a preset (.ron)",
                 DialogKind::Screenshot => "Save a screenshot (.png, with the scene inside)",
+                DialogKind::Image => "Choose an image for the selected object",
+                DialogKind::Mesh => "Choose a mesh (PLY, OBJ) for the selected object",
             };
+            let native = self.browser.missing().is_none();
             let modal = egui::Modal::new(egui::Id::unique("path-dialog")).show(ctx, |ui| {
                 ui.heading(title);
+                if let Some(note) = &dialog.note {
+                    ui.label(note);
+                } else if let Some(why) = self.browser.missing() {
+                    // No system dialog: no Browse… below, and the reason.
+                    ui.weak(why);
+                }
                 let mut go = false;
                 let text = &mut dialog.text;
                 ui.horizontal(|ui| {
@@ -483,15 +527,18 @@ impl Files {
                         r.request_focus();
                     }
                     go |= r.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
-                    if ui
-                        .button("Browse…")
-                        .on_hover_text("Choose the file in the system's file dialog")
-                        .clicked()
+                    if native
+                        && ui
+                            .button("Browse…")
+                            .on_hover_text("Choose the file in the system's file dialog")
+                            .clicked()
                     {
                         let what = match kind {
                             DialogKind::Open => BrowseFor::Scene,
                             DialogKind::SaveAs => BrowseFor::Preset,
                             DialogKind::Screenshot => BrowseFor::Screenshot,
+                            DialogKind::Image => BrowseFor::Image,
+                            DialogKind::Mesh => BrowseFor::Mesh,
                         };
                         let typed = Path::new(text.trim());
                         let start = if text.trim().is_empty() {
@@ -520,33 +567,12 @@ impl Files {
                     )
                     .labelled_by(l.id);
                 }
-                if kind == DialogKind::Open {
-                    ui.label("Built-in presets and recent files:");
-                    let presets: Vec<PathBuf> =
-                        self.presets().into_iter().map(|(p, _)| p).collect();
-                    let builtin: Vec<PathBuf> = presets.iter().map(|p| canonical(p)).collect();
-                    let recent = self
-                        .recent
-                        .iter()
-                        .filter(|r| !builtin.contains(&canonical(r)))
-                        .cloned();
-                    egui::ScrollArea::vertical()
-                        .max_height(200.0)
-                        .show(ui, |ui| {
-                            for p in presets.into_iter().chain(recent) {
-                                if ui
-                                    .selectable_label(false, p.display().to_string())
-                                    .clicked()
-                                {
-                                    *text = p.display().to_string();
-                                }
-                            }
-                        });
-                }
+                self.quick_picks(ui, kind, text);
                 ui.horizontal(|ui| {
                     let ok = match kind {
                         DialogKind::Open => "Open",
-                        _ => "Save",
+                        DialogKind::Image | DialogKind::Mesh => "Use",
+                        DialogKind::SaveAs | DialogKind::Screenshot => "Save",
                     };
                     go |= ui
                         .add_enabled(!text.trim().is_empty(), egui::Button::new(ok))
@@ -560,21 +586,38 @@ impl Files {
                     keep = false;
                     match kind {
                         DialogKind::Open => self.requested = Some(Pending::Open(p)),
+                        DialogKind::Image => out.push(Command::UseImage(p)),
+                        DialogKind::Mesh => out.push(Command::UseMesh(p)),
                         DialogKind::SaveAs | DialogKind::Screenshot => {
-                            if let Some(d) = dialog.description.take()
-                                && d != description
-                            {
-                                out.push(Command::Describe(d));
-                            }
-                            let action = if kind == DialogKind::SaveAs {
-                                Command::Save(p.clone())
+                            let refused = if kind == DialogKind::SaveAs {
+                                read_only_reason(&p, &self.protected)
                             } else {
-                                Command::Screenshot(p.clone())
+                                None
                             };
-                            if p.exists() {
-                                self.overwrite = Some(action);
+                            if let Some(why) = refused {
+                                // The dialog stays, saying why.
+                                dialog.note = Some(why);
+                                keep = true;
                             } else {
-                                out.push(action);
+                                if let Some(d) = dialog.description.take()
+                                    && d != description
+                                {
+                                    out.push(Command::Describe(d));
+                                }
+                                let action = if kind == DialogKind::SaveAs {
+                                    Command::Save(p.clone())
+                                } else {
+                                    Command::Screenshot(p.clone())
+                                };
+                                let then = dialog.then.take();
+                                if p.exists() {
+                                    self.overwrite = Some((action, then));
+                                } else {
+                                    out.push(action);
+                                    if let Some(then) = then {
+                                        out.push(self.confirm(then));
+                                    }
+                                }
                             }
                         }
                     }
@@ -585,6 +628,83 @@ impl Files {
                 self.dialog = Some(dialog);
             }
         }
+    }
+
+    /// A *Browse…* found no system dialog: the path dialog says why, and an image or a mesh
+    /// asked for by the scene panel gets a path dialog of its own.
+    fn fall_back(&mut self) {
+        let Some((what, start)) = self.browser.take_fallback() else {
+            return;
+        };
+        let why = self.browser.missing().unwrap_or_default();
+        let kind = match what {
+            BrowseFor::Image => Some(DialogKind::Image),
+            BrowseFor::Mesh => Some(DialogKind::Mesh),
+            BrowseFor::Scene | BrowseFor::Preset | BrowseFor::Screenshot => None,
+        };
+        if let Some(kind) = kind {
+            let folder = std::path::absolute(&start).unwrap_or(start);
+            let text = format!("{}{}", folder.display(), std::path::MAIN_SEPARATOR);
+            self.open_dialog(kind, text);
+        }
+        if let Some(d) = &mut self.dialog {
+            d.note = Some(why);
+        }
+    }
+
+    /// The shipped files of one kind, for the quick picks of the image and mesh dialogs.
+    fn shipped_assets(kind: DialogKind) -> Vec<PathBuf> {
+        let Ok(root) = crate::shipped::root() else {
+            return Vec::new();
+        };
+        crate::shipped::files()
+            .into_iter()
+            .map(|(p, _)| root.join(p))
+            .filter(|p| p.starts_with(root.join("assets")))
+            .filter(|p| match kind {
+                DialogKind::Image => is_image(p),
+                _ => p.extension().is_some_and(|e| {
+                    e.eq_ignore_ascii_case("ply") || e.eq_ignore_ascii_case("obj")
+                }),
+            })
+            .collect()
+    }
+
+    /// The files a path dialog offers to pick (a click puts the path in `text`): the shipped
+    /// images or meshes, or the built-in presets and the recent files not among them.
+    fn quick_picks(&mut self, ui: &mut egui::Ui, kind: DialogKind, text: &mut String) {
+        let (heading, files): (&str, Vec<PathBuf>) = match kind {
+            DialogKind::Image | DialogKind::Mesh => {
+                ("Shipped with texplore:", Self::shipped_assets(kind))
+            }
+            DialogKind::Open => {
+                let presets: Vec<PathBuf> = self.presets().into_iter().map(|(p, _)| p).collect();
+                let builtin: Vec<PathBuf> = presets.iter().map(|p| canonical(p)).collect();
+                let recent = self
+                    .recent
+                    .iter()
+                    .filter(|r| !builtin.contains(&canonical(r)))
+                    .cloned();
+                (
+                    "Built-in presets and recent files:",
+                    presets.iter().cloned().chain(recent).collect(),
+                )
+            }
+            DialogKind::SaveAs | DialogKind::Screenshot => return,
+        };
+        ui.label(heading);
+        egui::ScrollArea::vertical()
+            .max_height(200.0)
+            .show(ui, |ui| {
+                for p in files {
+                    if ui
+                        .selectable_label(false, p.display().to_string())
+                        .clicked()
+                    {
+                        *text = p.display().to_string();
+                    }
+                }
+            });
     }
 
     fn confirm(&mut self, p: Pending) -> Command {

@@ -1,27 +1,35 @@
-//! The Lessons panel: a picker of the lessons in `lessons/`, the lesson's text, its *Try this*
-//! experiments (each a button that edits the scene, with *Undo* back to the scene before it),
-//! their *Look for* sentences, the question with *Show answer*, and Previous / Next.
+//! The Lessons panel: a picker of the lessons (the shipped ones and the teacher's own, see
+//! [`crate::lesson::default_dirs`]), the lesson's text (Markdown), its *Try this* experiments
+//! (each a button that puts the lesson's scene with that experiment's edits in place, with
+//! *Undo* back to the scene it started from), their *Look for* sentences, the question with
+//! *Show answer*, and Previous / Next.
+//!
+//! Experiments are independent: each applies to the lesson's own scene (as its preset opened),
+//! or, when it says `after = "label"`, to that experiment's scene. Which experiment shows as
+//! applied is read from the scene itself, so *Edit → Undo* and the panel always agree.
 //!
 //! The panel never touches the app: it returns a [`Command`] (open a lesson's preset, put
 //! an edited description in place) that the app carries out the way it carries out every
 //! other panel's edit.
 
 use super::command::Command;
-use crate::lesson::{LESSON_DIR, Lesson, Lessons, load_dir};
+use crate::lesson::{Lesson, Lessons, edit::value_at, load_default, load_dirs};
 use crate::scene::SceneDesc;
 use std::path::{Path, PathBuf};
 
-/// An experiment applied to the scene, and the scene before it.
-struct Applied {
-    experiment: usize,
-    before: SceneDesc,
+/// Which experiments the scene shows, worked out once per change of the scene.
+struct Shown {
+    lesson: usize,
+    desc: SceneDesc,
+    applied: Vec<bool>,
 }
 
 /// The panel's state.
 pub struct LessonsPanel {
     /// Whether the panel shows (View → Lessons).
     pub open: bool,
-    dir: PathBuf,
+    /// The folders read; `None`: the shipped lessons and the teacher's own.
+    dirs: Option<Vec<PathBuf>>,
     loaded: Option<Lessons>,
     /// The lesson the picker shows.
     selected: usize,
@@ -29,47 +37,82 @@ pub struct LessonsPanel {
     active: bool,
     /// The lesson whose preset the app was asked to open.
     pending: Option<usize>,
-    /// Experiments applied, oldest first.
-    applied: Vec<Applied>,
-    /// The scene as the lesson's experiments last left it (edits beyond it are the learner's).
-    lesson_desc: Option<SceneDesc>,
+    /// The lesson's scene as its preset opened: what every experiment applies to.
+    base: Option<SceneDesc>,
+    /// The experiment the panel applied last (shown as applied while the scene has its edits).
+    last: Option<usize>,
+    shown: Option<Shown>,
     show_answer: bool,
+    /// The lesson whose text was drawn last: the text scrolls back to its top when another
+    /// one is drawn.
+    drawn: Option<usize>,
+    markdown: egui_commonmark::CommonMarkCache,
 }
 
 impl Default for LessonsPanel {
     fn default() -> Self {
-        Self::new(PathBuf::from(LESSON_DIR))
+        Self::with_dirs(None)
     }
 }
 
 impl LessonsPanel {
-    /// A closed panel over the lessons in `dir` (read when the panel first shows).
+    /// A closed panel over the lessons in `dir` (read when the panel first shows); the shipped
+    /// lessons' folder means the default folders (the shipped lessons and the teacher's own).
     #[must_use]
     pub fn new(dir: PathBuf) -> Self {
+        let canonical = |p: &Path| std::fs::canonicalize(p).ok();
+        let shipped = crate::shipped::lessons_dir().ok();
+        if shipped.is_some_and(|s| canonical(&s).is_some() && canonical(&s) == canonical(&dir)) {
+            Self::with_dirs(None)
+        } else {
+            Self::with_dirs(Some(vec![dir]))
+        }
+    }
+
+    fn with_dirs(dirs: Option<Vec<PathBuf>>) -> Self {
         Self {
             open: false,
-            dir,
+            dirs,
             loaded: None,
             selected: 0,
             active: false,
             pending: None,
-            applied: Vec::new(),
-            lesson_desc: None,
+            base: None,
+            last: None,
+            shown: None,
             show_answer: false,
+            drawn: None,
+            markdown: egui_commonmark::CommonMarkCache::default(),
+        }
+    }
+
+    /// Where the lessons come from, for the Rescan button's tooltip.
+    fn place(&self) -> String {
+        match &self.dirs {
+            Some(d) => d
+                .iter()
+                .map(|d| d.display().to_string())
+                .collect::<Vec<_>>()
+                .join(", "),
+            None => crate::lesson::user_dir().map_or_else(
+                || "the shipped lessons".to_owned(),
+                |u| format!("the shipped lessons and {}", u.display()),
+            ),
         }
     }
 
     /// Reads the lessons again (Rescan): a file dropped into the folder appears.
     pub fn rescan(&mut self) {
-        let name = self.lesson().map(|l| l.name.clone());
-        let loaded = load_dir(&self.dir).unwrap_or_else(|e| Lessons {
-            lessons: Vec::new(),
-            errors: vec![e],
-        });
+        let name = self.lesson().map(|l| l.file.clone());
+        let loaded = match &self.dirs {
+            Some(d) => load_dirs(d),
+            None => load_default(),
+        };
         self.selected = name
-            .and_then(|n| loaded.lessons.iter().position(|l| l.name == n))
+            .and_then(|n| loaded.lessons.iter().position(|l| l.file == n))
             .unwrap_or(0);
         self.loaded = Some(loaded);
+        self.shown = None;
     }
 
     fn lessons(&mut self) -> &Lessons {
@@ -81,6 +124,15 @@ impl LessonsPanel {
 
     fn lesson(&self) -> Option<&Lesson> {
         self.loaded.as_ref()?.lessons.get(self.selected)
+    }
+
+    /// The scenes of the lessons (their presets): the window saves them only under another name.
+    #[must_use]
+    pub fn scenes(&self) -> Vec<PathBuf> {
+        self.loaded
+            .as_ref()
+            .map(|l| l.lessons.iter().map(|l| l.preset.clone()).collect())
+            .unwrap_or_default()
     }
 
     /// Opens the panel on the lesson named `name`, whose preset the app is opening.
@@ -116,18 +168,79 @@ impl LessonsPanel {
         } else {
             self.active = false;
         }
-        self.applied.clear();
-        self.lesson_desc = desc.cloned();
+        self.base = desc.cloned();
+        self.last = None;
+        self.shown = None;
         self.show_answer = false;
+    }
+
+    /// Whether `desc` is the lesson's scene or one of its experiments' (not the learner's
+    /// work: switching lessons asks nothing).
+    fn is_lessons_own(&self, desc: &SceneDesc) -> bool {
+        let (Some(base), Some(lesson)) = (&self.base, self.lesson()) else {
+            return false;
+        };
+        self.active
+            && (desc == base
+                || (0..lesson.experiments.len())
+                    .any(|k| lesson.scene(k, base).is_ok_and(|s| s == *desc)))
     }
 
     fn go_to(&mut self, i: usize, desc: Option<&SceneDesc>, dirty: bool) -> Option<Command> {
         // The picker moves once the preset has opened (the prompt may be cancelled).
         let preset = self.loaded.as_ref()?.lessons.get(i)?.preset.clone();
         self.pending = Some(i);
-        // The lesson's own experiments are not the learner's work: no prompt for them.
-        let force = !dirty || (desc.is_some() && desc == self.lesson_desc.as_ref());
+        let force = !dirty || desc.is_some_and(|d| self.is_lessons_own(d));
         Some(Command::OpenLesson { preset, force })
+    }
+
+    /// Which experiments `desc` shows: those whose scene it matches on every path the lesson's
+    /// experiments set (read from the scene, so *Edit → Undo* and the panel agree).
+    fn applied(&mut self, desc: Option<&SceneDesc>) -> Vec<bool> {
+        let count = self.lesson().map_or(0, |l| l.experiments.len());
+        let (Some(desc), Some(base), Some(lesson), true) =
+            (desc, self.base.clone(), self.lesson().cloned(), self.active)
+        else {
+            return vec![false; count];
+        };
+        if let Some(s) = &self.shown
+            && s.lesson == self.selected
+            && s.desc == *desc
+        {
+            return s.applied.clone();
+        }
+        // Every path any experiment of the lesson sets: an experiment shows when the scene
+        // agrees with its own scene on all of them (so one that leaves the lookup alone is not
+        // shown over another that changed it).
+        let mut paths: Vec<&str> = lesson
+            .experiments
+            .iter()
+            .flat_map(|x| x.edits.iter().map(|e| e.path.as_str()))
+            .collect();
+        paths.sort_unstable();
+        paths.dedup();
+        let now: Vec<_> = paths.iter().map(|p| value_at(desc, p)).collect();
+        let holds: Vec<bool> = (0..count)
+            .map(|k| {
+                lesson.scene(k, &base).is_ok_and(|scene| {
+                    paths
+                        .iter()
+                        .zip(&now)
+                        .all(|(p, v)| value_at(&scene, p) == *v)
+                })
+            })
+            .collect();
+        // Two experiments with the same scene: the one pressed last.
+        let applied: Vec<bool> = match self.last.filter(|&k| holds.get(k) == Some(&true)) {
+            Some(last) => (0..count).map(|k| k == last).collect(),
+            None => holds,
+        };
+        self.shown = Some(Shown {
+            lesson: self.selected,
+            desc: desc.clone(),
+            applied: applied.clone(),
+        });
+        applied
     }
 
     /// The panel. `desc` is the app's scene, `dirty` whether it has unsaved changes.
@@ -137,6 +250,10 @@ impl LessonsPanel {
         desc: Option<&SceneDesc>,
         dirty: bool,
     ) -> Option<Command> {
+        // Everything below wraps or truncates to the pane's width (the layout's, which the user
+        // drags): a long title does not widen the pane.
+        let width = ui.available_width();
+        ui.set_max_width(width);
         let mut action = None;
         let count = self.lessons().lessons.len();
         ui.horizontal(|ui| {
@@ -145,7 +262,7 @@ impl LessonsPanel {
                 .button("Rescan lessons")
                 .on_hover_text(format!(
                     "Read {} again (a lesson file dropped there appears)",
-                    self.dir.display()
+                    self.place()
                 ))
                 .clicked()
             {
@@ -161,7 +278,7 @@ impl LessonsPanel {
             ui.colored_label(egui::Color32::LIGHT_RED, e);
         }
         if count == 0 {
-            ui.label(format!("No lessons in {}.", self.dir.display()));
+            ui.label(format!("No lessons in {}.", self.place()));
             return None;
         }
         let titles: Vec<String> = self
@@ -176,13 +293,12 @@ impl LessonsPanel {
             })
             .unwrap_or_default();
         let mut pick = self.selected.min(count - 1);
-        // The label on the left, the picker filling the rest (a label on the right, squeezed by
-        // the picker, wrapped one letter per line). A little under the available width: the
-        // full width would widen the panel every frame.
+        // The label on the left, the picker filling the rest, its text truncated.
         ui.horizontal(|ui| {
             let label = ui.label("Lesson");
             egui::ComboBox::from_id_salt("lesson-picker")
-                .width((ui.available_width() - 24.0).max(160.0))
+                .width((ui.available_width() - 8.0).max(120.0))
+                .truncate()
                 .selected_text(titles[pick].clone())
                 .show_ui(ui, |ui| {
                     for (i, t) in titles.iter().enumerate() {
@@ -214,17 +330,28 @@ impl LessonsPanel {
         let Some(lesson) = self.lesson().cloned() else {
             return action;
         };
-        egui::ScrollArea::vertical().show(ui, |ui| {
+        let mut scroll = egui::ScrollArea::vertical()
+            .id_salt("lesson-text")
+            .auto_shrink([false, false]);
+        if self.drawn.replace(self.selected) != Some(self.selected) {
+            scroll = scroll.vertical_scroll_offset(0.0);
+        }
+        scroll.show(ui, |ui| {
+            ui.set_max_width(width);
             ui.heading(&lesson.title);
-            for para in lesson.text.split("\n\n") {
-                let para = para.trim_end();
-                if para.lines().all(|l| l.starts_with("    ")) {
-                    // Indented paragraphs are formulas: keep their lines and spacing.
-                    ui.label(egui::RichText::new(para).monospace());
-                } else {
-                    ui.label(para.replace('\n', " "));
+            for block in blocks(&lesson.text) {
+                match block {
+                    Block::Markdown(md) => {
+                        egui_commonmark::CommonMarkViewer::new().show(ui, &mut self.markdown, &md);
+                    }
+                    Block::Formula(f) => {
+                        egui::Frame::new()
+                            .fill(ui.visuals().extreme_bg_color)
+                            .inner_margin(4.0)
+                            .show(ui, |ui| ui.label(egui::RichText::new(f).monospace()));
+                        ui.add_space(4.0);
+                    }
                 }
-                ui.add_space(4.0);
             }
             ui.separator();
             if !self.active {
@@ -234,6 +361,7 @@ impl LessonsPanel {
                 }
             }
             ui.strong("Try this");
+            ui.weak("Each experiment starts from the lesson's scene.");
             self.experiments_ui(ui, &lesson, desc, &mut action);
             ui.separator();
             ui.strong("Question");
@@ -254,12 +382,13 @@ impl LessonsPanel {
         desc: Option<&SceneDesc>,
         action: &mut Option<Command>,
     ) {
+        let applied = self.applied(desc);
         for (k, x) in lesson.experiments.iter().enumerate() {
-            let applied = self.applied.iter().any(|a| a.experiment == k);
-            ui.horizontal(|ui| {
-                let button = egui::Button::new(&x.label).selected(applied);
+            let on = applied.get(k).copied().unwrap_or(false);
+            ui.horizontal_wrapped(|ui| {
+                let button = egui::Button::new(&x.label).selected(on);
                 if ui
-                    .add_enabled(self.active && desc.is_some(), button)
+                    .add_enabled(self.active && self.base.is_some(), button)
                     .on_hover_text(
                         x.edits
                             .iter()
@@ -268,18 +397,11 @@ impl LessonsPanel {
                             .join("\n"),
                     )
                     .clicked()
-                    && let Some(d) = desc
+                    && let Some(base) = &self.base
                 {
-                    match x.apply(d) {
+                    match lesson.scene(k, base) {
                         Ok(new) => {
-                            // Pressed again: Undo still goes back to before the first press.
-                            if !applied {
-                                self.applied.push(Applied {
-                                    experiment: k,
-                                    before: d.clone(),
-                                });
-                            }
-                            self.lesson_desc = Some(new.clone());
+                            self.last = Some(k);
                             *action = Some(Command::Apply(new));
                         }
                         Err(e) => {
@@ -291,20 +413,32 @@ impl LessonsPanel {
                         }
                     }
                 }
-                if applied
+                if on
+                    && let Some(base) = &self.base
                     && ui
                         .button("Undo")
-                        .on_hover_text("Back to the scene before this experiment")
+                        .on_hover_text(match x.after {
+                            Some(a) => {
+                                format!("Back to the scene of \"{}\"", lesson.experiments[a].label)
+                            }
+                            None => "Back to the lesson's scene".to_owned(),
+                        })
                         .clicked()
-                    && let Some(pos) = self.applied.iter().position(|a| a.experiment == k)
                 {
-                    // Undoing an experiment also drops those applied after it.
-                    let before = self.applied[pos].before.clone();
-                    self.applied.truncate(pos);
-                    self.lesson_desc = Some(before.clone());
-                    *action = Some(Command::Apply(before));
+                    let back = match x.after {
+                        Some(a) => lesson.scene(a, base).unwrap_or_else(|_| base.clone()),
+                        None => base.clone(),
+                    };
+                    self.last = x.after;
+                    *action = Some(Command::Apply(back));
                 }
             });
+            if let Some(a) = x.after {
+                ui.weak(format!(
+                    "Builds on \"{}\": its edits come first.",
+                    lesson.experiments[a].label
+                ));
+            }
             ui.horizontal_wrapped(|ui| {
                 ui.weak("Look for:");
                 ui.label(&x.look_for);
@@ -317,25 +451,118 @@ impl LessonsPanel {
 /// What presentation mode shows over the image for the lesson on screen.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct Caption {
-    /// The experiment applied last: its label and its *Look for*.
+    /// The experiment the scene shows (the one pressed last if several): its label and its
+    /// *Look for*.
     pub experiment: Option<(String, String)>,
     /// The lesson's question.
     pub question: String,
 }
 
 impl LessonsPanel {
-    /// The captions for presentation mode: `None` unless the scene is a lesson's.
-    #[must_use]
-    pub fn caption(&self) -> Option<Caption> {
-        let lesson = self.lesson().filter(|_| self.active)?;
-        let experiment = self
-            .applied
-            .last()
-            .and_then(|a| lesson.experiments.get(a.experiment))
+    /// The captions for presentation mode over the scene `desc`: `None` unless the scene is a
+    /// lesson's. The experiment is the one the panel shows as applied (read from the scene, so
+    /// Undo takes its caption away too).
+    pub fn caption(&mut self, desc: Option<&SceneDesc>) -> Option<Caption> {
+        if !self.active {
+            return None;
+        }
+        let applied = self.applied(desc);
+        let lesson = self.lesson()?;
+        let shown = self
+            .last
+            .filter(|&k| applied.get(k) == Some(&true))
+            .or_else(|| applied.iter().position(|&a| a));
+        let experiment = shown
+            .and_then(|k| lesson.experiments.get(k))
             .map(|x| (x.label.clone(), x.look_for.clone()));
         Some(Caption {
             experiment,
             question: lesson.question.clone(),
         })
+    }
+}
+
+/// A piece of a lesson's text.
+#[derive(Debug, PartialEq)]
+enum Block {
+    /// Markdown (paragraphs, lists, emphasis, inline code), drawn by `egui_commonmark`.
+    Markdown(String),
+    /// A formula: a paragraph whose lines are all indented by four spaces (or a fenced code
+    /// block), drawn as written in the monospace font. Kept out of `egui_commonmark`, whose code
+    /// blocks carry a copy button in a glyph egui's bundled fonts do not have.
+    Formula(String),
+}
+
+/// `text` split into Markdown and formulas, in order.
+fn blocks(text: &str) -> Vec<Block> {
+    let mut out = Vec::new();
+    let mut markdown: Vec<String> = Vec::new();
+    let flush = |markdown: &mut Vec<String>, out: &mut Vec<Block>| {
+        if !markdown.is_empty() {
+            out.push(Block::Markdown(markdown.join("\n\n")));
+            markdown.clear();
+        }
+    };
+    let mut fence: Option<Vec<&str>> = None;
+    let mut paragraph: Vec<&str> = Vec::new();
+    let end_paragraph =
+        |paragraph: &mut Vec<&str>, markdown: &mut Vec<String>, out: &mut Vec<Block>| {
+            if paragraph.is_empty() {
+                return;
+            }
+            if paragraph.iter().all(|l| l.starts_with("    ")) {
+                flush(markdown, out);
+                let lines: Vec<&str> = paragraph.iter().map(|l| &l[4..]).collect();
+                out.push(Block::Formula(lines.join("\n")));
+            } else {
+                markdown.push(paragraph.join("\n"));
+            }
+            paragraph.clear();
+        };
+    for line in text.lines() {
+        if let Some(lines) = &mut fence {
+            if line.trim_start().starts_with("```") {
+                flush(&mut markdown, &mut out);
+                out.push(Block::Formula(lines.join("\n")));
+                fence = None;
+            } else {
+                lines.push(line);
+            }
+        } else if line.trim_start().starts_with("```") {
+            end_paragraph(&mut paragraph, &mut markdown, &mut out);
+            fence = Some(Vec::new());
+        } else if line.trim().is_empty() {
+            end_paragraph(&mut paragraph, &mut markdown, &mut out);
+        } else {
+            paragraph.push(line);
+        }
+    }
+    if let Some(lines) = fence {
+        // An unclosed fence runs to the end, as in Markdown.
+        flush(&mut markdown, &mut out);
+        out.push(Block::Formula(lines.join("\n")));
+    }
+    end_paragraph(&mut paragraph, &mut markdown, &mut out);
+    flush(&mut markdown, &mut out);
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{Block, blocks};
+
+    #[test]
+    fn formulas_are_split_from_the_markdown() {
+        let text = "A *map*:\n\n    u = x\n    v = y\n\n- one\n- two\n\n```\nz = 1\n```\nafter";
+        assert_eq!(
+            blocks(text),
+            vec![
+                Block::Markdown("A *map*:".into()),
+                Block::Formula("u = x\nv = y".into()),
+                Block::Markdown("- one\n- two".into()),
+                Block::Formula("z = 1".into()),
+                Block::Markdown("after".into()),
+            ]
+        );
     }
 }

@@ -3,6 +3,7 @@
 //! displays what [`crate::inspect`] computes. One file per panel.
 
 mod app;
+mod browse;
 mod command;
 mod compare;
 mod document;
@@ -30,8 +31,18 @@ pub use viewport::HINT as VIEW_HINT;
 
 use std::path::PathBuf;
 
-/// The preset the window opens on.
+/// The preset the window opens on (in the shipped presets, [`default_preset`]).
 pub const DEFAULT_PRESET: &str = "presets/earth.ron";
+
+/// [`DEFAULT_PRESET`] in the copy of the shipped files, so the window opens on the Earth
+/// wherever it is started (in the working folder if the copy cannot be made).
+#[must_use]
+pub fn default_preset() -> PathBuf {
+    crate::shipped::root().map_or_else(
+        |_| PathBuf::from(DEFAULT_PRESET),
+        |r| r.join(DEFAULT_PRESET),
+    )
+}
 
 /// Opens the window on `open` (a preset or a texplore PNG), else on the scene open when it was
 /// last closed, else on the Earth. eframe keeps the window's size, the panels' widths and

@@ -210,7 +210,7 @@ impl ExplorerApp {
         }
         if self.layout.presenting()
             && self.layout.captions
-            && let Some(caption) = self.lessons.caption()
+            && let Some(caption) = self.lessons.caption(self.doc.desc.as_ref())
         {
             viewport::captions(ui, out.avail, &caption);
         }

@@ -264,6 +264,12 @@ impl TexturePanel {
                         (at, l.text.clone(), colour)
                     })
                     .collect();
+                o.seam = iso
+                    .seam
+                    .iter()
+                    .map(|&(x, y)| egui::pos2(x as f32 + 0.5, y as f32 + 0.5))
+                    .collect();
+                o.poles = iso.poles.iter().map(|&(x, y)| egui::pos2(x, y)).collect();
             }
             if let Some((ask, mask)) = &self.highlight
                 && Some(*ask) == self.asked

@@ -19,9 +19,17 @@
 //! answer = "At x = 0, z = 1."
 //! ```
 //!
+//! Each experiment applies to the lesson's own scene, not on top of the experiment before it;
+//! `after = "label"` makes an experiment build on another one of the lesson (declared before it):
+//! its edits go on top of that experiment's scene ([`Lesson::scene`]).
+//!
 //! Loading checks every edit of every experiment against the lesson's preset, so a lesson that
 //! loads applies. A lesson that does not load is one error naming its file and line; the others
 //! still load ([`load_dir`]).
+//!
+//! Where lessons are found ([`default_dirs`]): the shipped ones are built into the binary
+//! ([`crate::shipped`]), a teacher's own go in [`user_dir`]. A lesson's preset is found beside
+//! the lesson file, else (for a copy of a shipped lesson) among the shipped files.
 
 pub mod edit;
 
@@ -31,8 +39,6 @@ use serde::Deserialize;
 use std::path::{Path, PathBuf};
 use toml::Spanned;
 
-/// Where the shipped lessons live (relative to the working folder, like `presets/`).
-pub const LESSON_DIR: &str = "lessons";
 /// Largest lesson file read (a lesson is a few kilobytes of text).
 pub const MAX_LESSON_BYTES: u64 = 1 << 20;
 
@@ -66,6 +72,9 @@ pub struct Experiment {
     pub look_for: String,
     /// The edits, applied in order.
     pub edits: Vec<Edit>,
+    /// The experiment (an index into the lesson's, always an earlier one) whose scene this one
+    /// builds on (`after = "label"`); `None`: the lesson's own scene.
+    pub after: Option<usize>,
 }
 
 /// One edit: the value at `path` (`objects[0].material.cd.mapping`) becomes `value` (RON text,
@@ -93,6 +102,38 @@ impl Experiment {
     }
 }
 
+impl Lesson {
+    /// The scene of experiment `k`: `base` (the lesson's preset) with the edits of the
+    /// experiments it builds on (`after`), then its own.
+    ///
+    /// # Errors
+    /// No experiment `k`, or an edit does not fit (as [`Experiment::apply`]).
+    pub fn scene(&self, k: usize, base: &SceneDesc) -> std::result::Result<SceneDesc, String> {
+        let x = self
+            .experiments
+            .get(k)
+            .ok_or_else(|| format!("{}: no experiment {k}", self.name))?;
+        // `after` always names an earlier experiment, so this ends.
+        let start = match x.after {
+            Some(a) if a < k => self.scene(a, base)?,
+            _ => base.clone(),
+        };
+        x.apply(&start)
+    }
+
+    /// The experiments `k` builds on, nearest first.
+    #[must_use]
+    pub fn chain(&self, k: usize) -> Vec<usize> {
+        let mut out = Vec::new();
+        let mut at = self.experiments.get(k).and_then(|x| x.after);
+        while let Some(a) = at.filter(|a| !out.contains(a)) {
+            out.push(a);
+            at = self.experiments.get(a).and_then(|x| x.after);
+        }
+        out
+    }
+}
+
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct LessonFile {
@@ -109,6 +150,8 @@ struct LessonFile {
 struct ExperimentFile {
     label: String,
     look_for: String,
+    #[serde(default)]
+    after: Option<Spanned<String>>,
     set: Spanned<toml::Table>,
 }
 
@@ -181,7 +224,7 @@ fn parse_with(text: &str, file: &Path, cache: &mut AssetCache) -> Result<Lesson>
         at(file, text, offset, e.message().trim().to_owned())
     })?;
     let folder = file.parent().unwrap_or(Path::new("."));
-    let preset = folder.join(raw.preset.get_ref());
+    let preset = preset_path(folder, Path::new(raw.preset.get_ref()));
     let base = load_preset(&preset).map_err(|e| {
         at(
             file,
@@ -198,7 +241,9 @@ fn parse_with(text: &str, file: &Path, cache: &mut AssetCache) -> Result<Lesson>
             format!("preset {:?} does not build: {e}", raw.preset.get_ref()),
         )
     })?;
-    let mut experiments = Vec::new();
+    let mut experiments: Vec<Experiment> = Vec::new();
+    // Each experiment's scene, for those that build on it.
+    let mut scenes: Vec<SceneDesc> = Vec::new();
     for x in raw.experiments {
         let span = x.set.span();
         if x.set.get_ref().is_empty() {
@@ -210,7 +255,28 @@ fn parse_with(text: &str, file: &Path, cache: &mut AssetCache) -> Result<Lesson>
             ));
         }
         let mut edits = Vec::new();
-        let mut desc = base.clone();
+        let after = match &x.after {
+            None => None,
+            Some(a) => Some(
+                experiments
+                    .iter()
+                    .position(|e| e.label == *a.get_ref())
+                    .ok_or_else(|| {
+                        at(
+                            file,
+                            text,
+                            a.span().start,
+                            format!(
+                                "experiment \"{}\": `after` names no experiment before it: \"{}\"",
+                                x.label,
+                                a.get_ref()
+                            ),
+                        )
+                    })?,
+            ),
+        };
+        let start = after.map_or_else(|| base.clone(), |a| scenes[a].clone());
+        let mut desc = start.clone();
         for (key, value) in x.set.get_ref() {
             // The line of this key inside the `set` table (its span covers the whole table).
             let slice = &text[span.clone()];
@@ -230,13 +296,13 @@ fn parse_with(text: &str, file: &Path, cache: &mut AssetCache) -> Result<Lesson>
                 value,
             });
         }
-        if desc == base {
+        if desc == start {
             return Err(at(
                 file,
                 text,
                 span.start,
                 format!(
-                    "experiment \"{}\" changes nothing: the preset already has these values",
+                    "experiment \"{}\" changes nothing: the scene it starts from already has these values",
                     x.label
                 ),
             ));
@@ -249,10 +315,12 @@ fn parse_with(text: &str, file: &Path, cache: &mut AssetCache) -> Result<Lesson>
                 format!("experiment \"{}\": the scene does not build: {e}", x.label),
             )
         })?;
+        scenes.push(desc);
         experiments.push(Experiment {
             label: x.label,
             look_for: x.look_for,
             edits,
+            after,
         });
     }
     Ok(Lesson {
@@ -283,6 +351,72 @@ pub fn load_lesson(file: &Path) -> Result<Lesson> {
 fn load_with(file: &Path, cache: &mut AssetCache) -> Result<Lesson> {
     let text = crate::input::read_input_text(file, MAX_LESSON_BYTES)?;
     parse_with(&text, file, cache)
+}
+
+/// The preset `named` in a lesson of `folder`: beside the lesson, else (a teacher's copy of a
+/// shipped lesson, naming `../presets/earth.ron`) the shipped file of that name.
+fn preset_path(folder: &Path, named: &Path) -> PathBuf {
+    let beside = folder.join(named);
+    if beside.exists() || named.is_absolute() {
+        return beside;
+    }
+    match crate::shipped::lessons_dir() {
+        Ok(shipped) if shipped.join(named).exists() => shipped.join(named),
+        _ => beside,
+    }
+}
+
+/// The folder of a teacher's own lessons: `texplore/lessons` in the user's data folder
+/// (`~/.local/share` on Linux, `~/Library/Application Support` on macOS, `%APPDATA%` on
+/// Windows). The window and `texplore lesson` list them after the shipped ones.
+#[must_use]
+pub fn user_dir() -> Option<PathBuf> {
+    dirs::data_dir().map(|d| d.join("texplore").join("lessons"))
+}
+
+/// Where lessons are looked for when no folder is named: the shipped lessons (the copy of
+/// those built into the binary), then [`user_dir`].
+#[must_use]
+pub fn default_dirs() -> Vec<PathBuf> {
+    let mut dirs = Vec::new();
+    if let Ok(d) = crate::shipped::lessons_dir() {
+        dirs.push(d);
+    }
+    dirs.extend(user_dir());
+    dirs
+}
+
+/// The lessons of several folders, each folder's in file-name order, the folders in the order
+/// given. A folder that does not exist lists nothing (the user folder until a teacher makes
+/// it); the shipped lessons that cannot be copied out are one error.
+#[must_use]
+pub fn load_dirs(dirs: &[PathBuf]) -> Lessons {
+    let mut out = Lessons::default();
+    for d in dirs {
+        if !d.exists() {
+            continue;
+        }
+        match load_dir(d) {
+            Ok(l) => {
+                out.lessons.extend(l.lessons);
+                out.errors.extend(l.errors);
+            }
+            Err(e) => out.errors.push(e),
+        }
+    }
+    out
+}
+
+/// The lessons of [`default_dirs`]; shipped lessons that cannot be copied out of the binary
+/// are one error (the teacher's still load).
+#[must_use]
+pub fn load_default() -> Lessons {
+    let mut out = load_dirs(&default_dirs());
+    if let Err(e) = crate::shipped::root() {
+        out.errors
+            .insert(0, Error::invalid(Path::new("lessons"), e));
+    }
+    out
 }
 
 fn lesson_name(file: &Path) -> String {
@@ -323,10 +457,12 @@ pub fn load_dir(dir: &Path) -> Result<Lessons> {
 }
 
 /// The lesson `name` names: its file name without `.toml` (`05-cylindrical`), that name
-/// without its number (`cylindrical`), or its number (`5`).
+/// without its number (`cylindrical`), or its number (`5`), tried in that order.
 ///
 /// # Errors
-/// No lesson matches: the message lists the names.
+/// No lesson matches (the message lists the names), or several do at the first of these that
+/// matches any (`5` for `05-a`, `05-b` and `5-a`; the same name in two folders): the message
+/// lists them, with their files when the names alone are the same.
 pub fn find<'a>(lessons: &'a [Lesson], name: &str) -> std::result::Result<&'a Lesson, String> {
     let name = name.trim().trim_end_matches(".toml");
     let number = |l: &Lesson| -> Option<u32> {
@@ -339,25 +475,44 @@ pub fn find<'a>(lessons: &'a [Lesson], name: &str) -> std::result::Result<&'a Le
             .trim_start_matches(['-', '_'])
             .to_owned()
     };
-    lessons
-        .iter()
-        .find(|l| l.name == name)
-        .or_else(|| lessons.iter().find(|l| bare(l) == name))
-        .or_else(|| {
-            let n: u32 = name.parse().ok()?;
-            lessons.iter().find(|l| number(l) == Some(n))
-        })
-        .ok_or_else(|| {
-            let names: Vec<&str> = lessons.iter().map(|l| l.name.as_str()).collect();
-            if names.is_empty() {
-                format!("no lesson named `{name}`: no lesson loaded")
-            } else {
-                format!(
-                    "no lesson named `{name}`; the lessons are: {}",
-                    names.join(", ")
-                )
+    let wanted: Option<u32> = name.parse().ok();
+    let rules: [&dyn Fn(&Lesson) -> bool; 3] = [&|l| l.name == name, &|l| bare(l) == name, &|l| {
+        wanted.is_some() && number(l) == wanted
+    }];
+    for rule in rules {
+        let matches: Vec<&Lesson> = lessons.iter().filter(|l| rule(l)).collect();
+        match matches.as_slice() {
+            [] => {}
+            [one] => return Ok(one),
+            many => {
+                let same_names = many.iter().all(|l| l.name == many[0].name);
+                let listed: Vec<String> = many
+                    .iter()
+                    .map(|l| {
+                        if same_names {
+                            l.file.display().to_string()
+                        } else {
+                            l.name.clone()
+                        }
+                    })
+                    .collect();
+                return Err(format!(
+                    "`{name}` names {} lessons: {}; give the full name",
+                    many.len(),
+                    listed.join(", ")
+                ));
             }
-        })
+        }
+    }
+    let names: Vec<&str> = lessons.iter().map(|l| l.name.as_str()).collect();
+    Err(if names.is_empty() {
+        format!("no lesson named `{name}`: no lesson loaded")
+    } else {
+        format!(
+            "no lesson named `{name}`; the lessons are: {}",
+            names.join(", ")
+        )
+    })
 }
 
 #[cfg(test)]
@@ -486,6 +641,50 @@ answer = "Because."
     }
 
     #[test]
+    fn experiments_start_from_the_lessons_scene_unless_they_say_after() {
+        let text = format!(
+            "{GOOD}\n{}",
+            r#"
+[[experiment]]
+label = "Closer"
+look_for = "Bigger."
+set = { "camera.eye" = [0, 0, 2] }
+
+[[experiment]]
+label = "Closer still, cylindrical"
+look_for = "Bigger still."
+after = "Cylinder map"
+set = { "camera.eye" = [0, 0, 1.5] }
+"#
+        )
+        // The [question] table must come last in TOML: move it there.
+        .replace("[question]\nask = \"Why?\"\nanswer = \"Because.\"\n", "")
+            + "\n[question]\nask = \"Why?\"\nanswer = \"Because.\"\n";
+        let l = parse(&text).unwrap();
+        let base = load_preset(&l.preset).unwrap();
+        assert_eq!(l.experiments[1].after, None);
+        assert_eq!(l.experiments[2].after, Some(0));
+        assert_eq!(l.chain(2), vec![0]);
+        // "Closer" does not keep the cylinder map of the experiment before it.
+        let closer = l.scene(1, &base).unwrap();
+        assert_eq!(closer.objects[0].material, base.objects[0].material);
+        assert_eq!(closer.camera.eye, crate::math::Vec3::new(0.0, 0.0, 2.0));
+        // "Closer still" builds on "Cylinder map": its mapping, then its own eye.
+        let still = l.scene(2, &base).unwrap();
+        let cylinder = l.scene(0, &base).unwrap();
+        assert_eq!(still.objects[0].material, cylinder.objects[0].material);
+        assert_ne!(still.objects[0].material, base.objects[0].material);
+        assert_eq!(still.camera.eye, crate::math::Vec3::new(0.0, 0.0, 1.5));
+        // `after` must name an experiment before it.
+        let e = parse(&text.replace("after = \"Cylinder map\"", "after = \"Later\"")).unwrap_err();
+        assert!(
+            e.to_string()
+                .contains("`after` names no experiment before it: \"Later\""),
+            "{e}"
+        );
+    }
+
+    #[test]
     fn a_bad_lesson_does_not_stop_the_others() {
         let dir = tempfile::tempdir().unwrap();
         let root = Path::new(env!("CARGO_MANIFEST_DIR"));
@@ -509,7 +708,11 @@ answer = "Because."
             got.errors[0]
         );
         assert_eq!(find(&got.lessons, "3").unwrap().name, "03-good");
-        assert_eq!(find(&got.lessons, "good").unwrap().name, "01-good");
+        assert_eq!(
+            find(&got.lessons, "good").unwrap_err(),
+            "`good` names 2 lessons: 01-good, 03-good; give the full name"
+        );
+        assert_eq!(find(&got.lessons, "01-good").unwrap().name, "01-good");
         assert_eq!(
             find(&got.lessons, "mars").unwrap_err(),
             "no lesson named `mars`; the lessons are: 01-good, 03-good"

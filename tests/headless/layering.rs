@@ -20,6 +20,8 @@ const LAYERS: &[&[&str]] = &[
     // (both return the error type).
     &["error"],
     &["names", "input", "output"],
+    // The shipped files built into the binary, and their copy on disk (through input/output).
+    &["shipped"],
     &["math"],
     &["geometry"],
     // Mesh files produce `geometry::MeshData`.

@@ -1,8 +1,11 @@
 //! The shipped lessons: every one loads, in lecture order; every experiment applies to its
 //! preset and visibly changes the render; `texplore lesson --list` lists them and a bad name or
-//! a broken lesson file is an error naming it.
+//! a broken lesson file is an error naming it. The lessons are built into the binary: they list
+//! and print from any folder, and a teacher's own (in the user folder) come after them.
 
-use crate::common::{failure, root, success, texplore, texplore_in};
+use crate::common::{failure, root, success};
+use std::path::Path;
+use std::process::{Command, Output};
 use texplore::lesson::{Lesson, find, load_dir};
 use texplore::scene::{AssetCache, SceneDesc, load_preset};
 use texplore::snapshot::render_snapshot;
@@ -51,15 +54,16 @@ fn the_lessons_follow_the_lecture() {
     );
     for l in &lessons {
         assert!(
-            (2..=5).contains(&l.experiments.len()),
+            (2..=6).contains(&l.experiments.len()),
             "{}: {} experiments",
             l.name,
             l.experiments.len()
         );
         assert!(!l.title.is_empty() && !l.text.is_empty(), "{}", l.name);
         assert!(!l.question.is_empty() && !l.answer.is_empty(), "{}", l.name);
-        for x in &l.experiments {
+        for (k, x) in l.experiments.iter().enumerate() {
             assert!(!x.label.is_empty() && !x.look_for.is_empty(), "{}", l.name);
+            assert!(x.after.is_none_or(|a| a < k), "{}: {}", l.name, x.label);
         }
     }
     assert_eq!(find(&lessons, "5").unwrap().name, "05-cylindrical-mapping");
@@ -71,10 +75,20 @@ fn every_experiment_changes_the_image() {
     let mut cache = AssetCache::new();
     for lesson in shipped() {
         let base = load_preset(&lesson.preset).unwrap();
-        let before = small(&base, &base, &lesson, &mut cache);
-        for x in &lesson.experiments {
-            let desc = x.apply(&base).unwrap();
-            assert_ne!(desc, base, "{}: {}", lesson.name, x.label);
+        let base_image = small(&base, &base, &lesson, &mut cache);
+        for (k, x) in lesson.experiments.iter().enumerate() {
+            let desc = lesson.scene(k, &base).unwrap();
+            // An experiment that builds on another changes that one's image.
+            let start = match x.after {
+                Some(a) => lesson.scene(a, &base).unwrap(),
+                None => base.clone(),
+            };
+            assert_ne!(desc, start, "{}: {}", lesson.name, x.label);
+            let before = if x.after.is_some() {
+                small(&start, &base, &lesson, &mut cache)
+            } else {
+                base_image.clone()
+            };
             let after = small(&desc, &base, &lesson, &mut cache);
             let pixels = before.len() / 3;
             let changed = before
@@ -116,7 +130,8 @@ fn the_lecture_lookup_never_shows_the_last_column() {
 
 #[test]
 fn lesson_list_names_and_titles() {
-    let out = success(&texplore(&["lesson", "--list"]));
+    let home = tempfile::tempdir().unwrap();
+    let out = success(&lesson_cli(root(), home.path(), &["lesson", "--list"]));
     let lines: Vec<&str> = out.lines().collect();
     assert_eq!(lines.len(), 10, "{out}");
     assert!(
@@ -129,9 +144,106 @@ fn lesson_list_names_and_titles() {
 
 #[test]
 fn an_unknown_lesson_lists_the_names() {
-    let err = failure(&texplore(&["lesson", "marmite"]));
+    let home = tempfile::tempdir().unwrap();
+    let err = failure(&lesson_cli(root(), home.path(), &["lesson", "marmite"]));
     assert!(
         err.contains("no lesson named `marmite`; the lessons are: 01-constant-vs-image, 02-"),
+        "{err}"
+    );
+}
+
+/// Runs `texplore` with `args` from `cwd`, with `data_home` as the user's data folder (so the
+/// teacher's lessons folder is `data_home/texplore/lessons`, whatever the machine's user has).
+fn lesson_cli(cwd: &Path, data_home: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_texplore"))
+        .current_dir(cwd)
+        .env("XDG_DATA_HOME", data_home)
+        .args(args)
+        .output()
+        .unwrap_or_else(|e| panic!("cannot run texplore {args:?}: {e}"))
+}
+
+#[test]
+fn lessons_list_and_print_from_any_folder() {
+    // A folder with no lessons/ or presets/ in it: the shipped ones are in the binary.
+    let elsewhere = tempfile::tempdir().unwrap();
+    let out = success(&lesson_cli(
+        elsewhere.path(),
+        elsewhere.path(),
+        &["lesson", "--list"],
+    ));
+    assert_eq!(out.lines().count(), 10, "{out}");
+    let printed = success(&lesson_cli(
+        elsewhere.path(),
+        elsewhere.path(),
+        &["lesson", "1", "--print"],
+    ));
+    let first = &shipped()[0];
+    assert!(
+        printed.starts_with(&format!("# {}\n", first.title)),
+        "{printed}"
+    );
+    // The scene it names is a real file (the copy of the shipped presets), with its image.
+    let scene = printed
+        .lines()
+        .find_map(|l| l.strip_prefix("Scene: "))
+        .expect("a Scene line");
+    let desc = load_preset(Path::new(scene)).unwrap();
+    texplore::scene::build_scene(&desc, Path::new(scene), &mut AssetCache::new()).unwrap();
+    for x in &first.experiments {
+        assert!(
+            printed.contains(&format!("Look for: {}", x.look_for)),
+            "{printed}"
+        );
+    }
+    assert!(printed.contains(&first.answer), "{printed}");
+}
+
+#[test]
+fn a_teachers_lessons_follow_the_shipped_ones_and_a_shared_number_is_an_error() {
+    let home = tempfile::tempdir().unwrap();
+    let mine = home.path().join("texplore/lessons");
+    std::fs::create_dir_all(&mine).unwrap();
+    // A teacher's copy of lesson 5 still names `../presets/cylinder.ron`: found among the
+    // shipped presets.
+    let text = std::fs::read_to_string(root().join("lessons/05-cylindrical-mapping.toml")).unwrap();
+    for name in ["05-a", "05-b", "5-a"] {
+        std::fs::write(mine.join(format!("{name}.toml")), &text).unwrap();
+    }
+    let elsewhere = tempfile::tempdir().unwrap();
+    let list = success(&lesson_cli(
+        elsewhere.path(),
+        home.path(),
+        &["lesson", "--list"],
+    ));
+    let names: Vec<&str> = list
+        .lines()
+        .map(|l| l.split_whitespace().next().unwrap())
+        .collect();
+    assert_eq!(names.len(), 13, "{list}");
+    assert_eq!(&names[10..], ["05-a", "05-b", "5-a"], "{list}");
+    let err = failure(&lesson_cli(elsewhere.path(), home.path(), &["lesson", "5"]));
+    assert!(
+        err.contains("`5` names 4 lessons: 05-cylindrical-mapping, 05-a, 05-b, 5-a"),
+        "{err}"
+    );
+    // The full name picks one.
+    let printed = success(&lesson_cli(
+        elsewhere.path(),
+        home.path(),
+        &["lesson", "05-b", "--print"],
+    ));
+    assert!(printed.contains("presets/cylinder.ron"), "{printed}");
+    // The same name in both places names both files.
+    std::fs::write(mine.join("08-aliasing.toml"), &text).unwrap();
+    let err = failure(&lesson_cli(
+        elsewhere.path(),
+        home.path(),
+        &["lesson", "aliasing"],
+    ));
+    assert!(
+        err.contains("`aliasing` names 2 lessons: ")
+            && err.contains("texplore/lessons/08-aliasing.toml"),
         "{err}"
     );
 }
@@ -156,7 +268,11 @@ fn a_broken_lesson_is_named_with_its_line_and_the_others_still_list() {
     let bad = good.replace("cd.path", "cd.pth");
     let line = 1 + bad[..bad.find("cd.pth").unwrap()].matches('\n').count();
     std::fs::write(lessons.join("02-typo.toml"), &bad).unwrap();
-    let out = texplore_in(dir.path(), &["lesson", "--list"]);
+    let out = lesson_cli(
+        dir.path(),
+        dir.path(),
+        &["lesson", "--list", "--dir", "lessons"],
+    );
     let stdout = String::from_utf8_lossy(&out.stdout);
     let err = failure(&out);
     assert_eq!(stdout.lines().count(), 1, "{stdout}");
@@ -223,7 +339,11 @@ fn lesson_list_escapes_control_characters_in_titles() {
         r#"title = "Clear\u001b[2J\u001b[Hscreen\u0007""#,
     );
     std::fs::write(lessons.join("01-hostile.toml"), hostile).unwrap();
-    let out = texplore_in(dir.path(), &["lesson", "--list"]);
+    let out = lesson_cli(
+        dir.path(),
+        dir.path(),
+        &["lesson", "--list", "--dir", "lessons"],
+    );
     let stdout = success(&out);
     assert!(
         !stdout.contains('\u{1b}') && !stdout.contains('\u{7}'),

@@ -21,6 +21,7 @@ mod hostile_values;
 mod images;
 mod layering;
 mod lessons;
+mod lessons_claims;
 mod materials;
 mod memory;
 mod meshes;

@@ -259,6 +259,15 @@ fn the_north_pole_is_marked_where_the_spherical_map_reaches_v_1() {
     let iso = iso_lines(&field(&scene), 8);
     assert!(iso.at(20, 20) & ISO_POLE != 0, "the pole at the centre");
     assert_eq!(iso.at(5, 20) & ISO_POLE, 0, "not the rim");
+    // One pole marker, at the centre, for the overlay's ring; the seam runs from it.
+    assert_eq!(iso.poles.len(), 1, "{:?}", iso.poles);
+    let (px, py) = iso.poles[0];
+    assert!(
+        (px - 20.5).abs() < 1.5 && (py - 20.5).abs() < 1.5,
+        "{px}, {py}"
+    );
+    assert!(!iso.seam.is_empty());
+    assert!(iso.seam.iter().all(|&(x, y)| iso.at(x, y) & ISO_SEAM != 0));
     let v = scene.inspect(centre(20, 20)).unwrap().tex.unwrap().uv.y;
     assert!(v > 0.97, "{v}");
 }

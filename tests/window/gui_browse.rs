@@ -296,3 +296,42 @@ fn save_as_offers_to_edit_the_description() {
     assert_eq!(on_disk.description, "A smaller Earth for the tests");
     assert!(!h.state().is_dirty());
 }
+
+#[test]
+fn without_a_system_dialog_browse_opens_the_windows_own_path_dialog_and_says_why() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let chosen = dir.path().join("pictures/checker_512.png");
+    std::fs::create_dir_all(chosen.parent().expect("folder")).expect("folder");
+    std::fs::copy(root().join("assets/checker_512.png"), &chosen).expect("copy");
+    let why = "No desktop portal here: type the path instead.";
+    let options = AppOptions {
+        browser: Browser::without_dialog(why),
+        ..AppOptions::default()
+    };
+    let mut h = harness_with(small_earth(dir.path()), options);
+    h.get_by_label("Browse…").click();
+    h.run_steps(3);
+    let _ = h.get_by_label("Choose an image for the selected object");
+    let _ = h.get_by_label(why);
+    // The shipped images are offered.
+    let _ = h.get_by_label_contains("earth_2048x1024.jpg");
+    h.get_by_role_and_label(Role::TextInput, "Path")
+        .set_text_value_accesskit(&chosen.display().to_string());
+    h.step();
+    h.get_by_label("Use").click();
+    settle(&mut h);
+    assert!(h.state().error().is_none(), "{:?}", h.state().error());
+    assert_eq!(
+        image_path(h.state()).as_deref(),
+        Some("pictures/checker_512.png")
+    );
+    // The Open dialog says it too, and offers no Browse… of its own.
+    menu(&mut h, "File", "Open…");
+    let _ = h.get_by_label("Open a preset or a texplore PNG");
+    let _ = h.get_by_label(why);
+    assert_eq!(
+        h.query_all_by_label("Browse…").count(),
+        1,
+        "the scene panel's only"
+    );
+}

@@ -11,12 +11,12 @@ use texplore::gui::{AppOptions, ExplorerApp};
 use texplore::lesson::{Lesson, edit::value_at, load_dir};
 use texplore::scene::load_preset;
 
-fn root() -> &'static Path {
+pub fn root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
 }
 
 /// The app started on `lesson`, tall enough that the panel's buttons are all on screen.
-fn start(lesson: Lesson) -> Harness<'static, ExplorerApp> {
+pub fn start(lesson: Lesson) -> Harness<'static, ExplorerApp> {
     let mut h = Harness::builder()
         .with_size([1280.0, 1500.0])
         .build_eframe(move |_cc| {
@@ -33,7 +33,7 @@ fn start(lesson: Lesson) -> Harness<'static, ExplorerApp> {
 }
 
 /// Clicks the widget labelled `label` and lets the app react.
-fn press(h: &mut Harness<'_, ExplorerApp>, label: &str) {
+pub fn press(h: &mut Harness<'_, ExplorerApp>, label: &str) {
     h.get_by_label(label).scroll_to_me();
     // Scrolling animates: click once the widget has stopped moving.
     let mut last = None;
@@ -55,6 +55,7 @@ fn every_lesson_opens_and_every_experiment_applies_and_undoes() {
     let loaded = load_dir(&root().join("lessons")).unwrap();
     assert!(loaded.errors.is_empty(), "{:?}", loaded.errors);
     let lessons = loaded.lessons;
+    let shipped = crate::gui_lessons_class::shipped_files();
     let mut h = start(lessons[0].clone());
     for (i, lesson) in lessons.iter().enumerate() {
         let base = load_preset(&lesson.preset).unwrap();
@@ -66,12 +67,15 @@ fn every_lesson_opens_and_every_experiment_applies_and_undoes() {
         let last = lesson.experiments.len() - 1;
         for (k, x) in lesson.experiments.iter().enumerate() {
             press(&mut h, &x.label);
-            let expected = x.apply(&base).unwrap();
+            // Each experiment applies to the lesson's scene (or the one it builds on).
+            let expected = lesson.scene(k, &base).unwrap();
             let desc = h.state().desc().cloned().unwrap();
             assert_ne!(desc, base, "{}: {}", lesson.name, x.label);
             assert_eq!(desc, expected, "{}: {}", lesson.name, x.label);
             for e in &x.edits {
-                let mut want = base.clone();
+                let mut want = x
+                    .after
+                    .map_or_else(|| base.clone(), |a| lesson.scene(a, &base).unwrap());
                 want = texplore::lesson::edit::set_path(&want, &e.path, &e.value).unwrap();
                 assert_eq!(
                     value_at(&desc, &e.path),
@@ -85,14 +89,19 @@ fn every_lesson_opens_and_every_experiment_applies_and_undoes() {
             assert!(h.state().error().is_none(), "{:?}", h.state().error());
             if k < last || i + 1 == lessons.len() {
                 press(&mut h, "Undo");
+                let back = x
+                    .after
+                    .map_or_else(|| base.clone(), |a| lesson.scene(a, &base).unwrap());
                 assert_eq!(
                     h.state().desc(),
-                    Some(&base),
+                    Some(&back),
                     "{}: undo {}",
                     lesson.name,
                     x.label
                 );
-                assert!(!h.state().is_dirty(), "{}", lesson.name);
+                // Back to the lesson's scene (an experiment that builds on another goes back
+                // to that one's, a change of the scene still).
+                assert_eq!(h.state().is_dirty(), x.after.is_some(), "{}", lesson.name);
             }
         }
         assert!(
@@ -113,6 +122,10 @@ fn every_lesson_opens_and_every_experiment_applies_and_undoes() {
     // And back.
     press(&mut h, "Previous lesson");
     assert_eq!(h.state().path(), lessons[lessons.len() - 2].preset);
+    assert!(
+        crate::gui_lessons_class::shipped_files() == shipped,
+        "a shipped file changed on disk during the walk"
+    );
 }
 
 #[test]
@@ -162,10 +175,10 @@ fn a_dropped_lesson_appears_after_rescan_and_a_learners_edit_is_guarded() {
 }
 
 /// The viewport's image, as the accessibility tree names it.
-const IMAGE: &str = "Rendered image";
+pub const IMAGE: &str = "Rendered image";
 
 /// Presses the primary button at `from`, moves to `to` in a few steps and releases it there.
-fn drag(h: &mut Harness<'_, ExplorerApp>, from: egui::Pos2, to: egui::Pos2) {
+pub fn drag(h: &mut Harness<'_, ExplorerApp>, from: egui::Pos2, to: egui::Pos2) {
     h.hover_at(from);
     h.run_steps(3);
     h.drag_at(from);

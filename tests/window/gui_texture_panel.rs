@@ -207,3 +207,37 @@ fn the_iso_lines_checkbox_draws_lines_over_the_shaded_image() {
         "the lines go"
     );
 }
+
+#[test]
+fn the_pole_and_the_seam_are_drawn_large_enough_to_see_from_afar() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut h = harness(small_earth(dir.path()));
+    // Straight above the north pole, the seam running from it toward the camera's bottom.
+    h.state_mut().edit_scene(|d| {
+        d.camera.eye = [0.0, 3.6, 0.01].into();
+        d.objects[0].transform = texplore::scene::TransformDesc::default();
+    });
+    crate::gui_common::settle(&mut h);
+    let image = h.get_by_label(IMAGE).rect();
+    h.remove_cursor();
+    h.get_by_role_and_label(Role::CheckBox, "Iso-lines").click();
+    let pole_yellow = [255, 255, 0];
+    let started = Instant::now();
+    let (mut ring, mut seam) = (0, 0);
+    while started.elapsed() < Duration::from_mins(1) {
+        h.run_steps(3);
+        ring = count_colour(&mut h, image, pole_yellow);
+        seam = count_colour(&mut h, image, MAGENTA);
+        if ring > 150 && seam > 150 {
+            break;
+        }
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    if let Ok(shot) = h.render() {
+        let _ = shot.save(std::env::temp_dir().join("texplore-pole-seam.png"));
+    }
+    // A ring of radius 12 points, 3.5 wide, around the pole: hundreds of yellow pixels (a
+    // pixel-sized marker is a handful); the seam 4 points wide over half the sphere's height.
+    assert!(ring > 150, "{ring} yellow pixels at the pole");
+    assert!(seam > 150, "{seam} magenta pixels on the seam");
+}

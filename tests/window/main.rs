@@ -15,6 +15,7 @@ mod gui_frame_time;
 mod gui_labels;
 mod gui_layout;
 mod gui_lessons;
+mod gui_lessons_class;
 mod gui_materials;
 mod gui_texture_panel;
 mod gui_view;

@@ -1,6 +1,6 @@
 //! The window's arrangement: the image and the side panels are tiles (`egui_tiles`) the user
 //! drags into tabs, columns or rows, resizes and closes; the arrangement is kept between runs.
-//! The default gives the image 64% of the width whatever is open: right of it one column holds
+//! The default gives the image 68% of the width whatever is open: right of it one column holds
 //! the Lessons and scene panels as tabs above, the inspector and the texture panel as tabs
 //! below, so opening another panel adds a tab or a row instead of taking width from the image.
 //!
@@ -58,9 +58,9 @@ impl Pane {
 
 /// The image's share of the width in the default arrangement: at least 60% of the window
 /// whatever is open (the tab bars and gaps take a few points of it).
-const IMAGE_SHARE: f32 = 0.64;
+const IMAGE_SHARE: f32 = 0.68;
 /// The panels' column's share of the width.
-const PANELS_SHARE: f32 = 0.36;
+const PANELS_SHARE: f32 = 0.32;
 /// The share of the panels' column's height the upper group (the lesson and the scene) takes.
 const UPPER_SHARE: f32 = 0.6;
 

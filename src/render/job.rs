@@ -9,7 +9,8 @@ use super::{DisplayImage, Film, PREVIEW_BLOCKS, render_preview, render_scheduled
 use crate::scene::Scene;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
-use std::time::{Duration, Instant};
+use std::time::Duration;
+use web_time::Instant;
 
 /// A shared counter: a job runs while the counter equals the value it started with. An edit
 /// bumps it, and stale work stops within one tile.

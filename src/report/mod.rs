@@ -6,12 +6,17 @@
 //! writes them as CSV, Markdown tables and plots through [`write_outputs`]).
 
 pub mod metrics;
+// The files a report writes and their charts: the command line's (plotters has no font
+// registry on wasm32, and a page has no folder to write them to).
+#[cfg(not(target_arch = "wasm32"))]
 pub mod output;
+#[cfg(not(target_arch = "wasm32"))]
 pub mod plot;
 pub mod reference;
 pub mod table;
 
 pub use metrics::{EncodedImage, METRIC_DEFINITIONS, Metrics, compare};
+#[cfg(not(target_arch = "wasm32"))]
 pub use output::write_outputs;
 pub use reference::{CacheKey, CachedReference, REFERENCE_VERSION, cache_key, default_cache_dir};
 pub use table::{RMSE_TARGETS, pareto_front, time_to_reach};
@@ -23,7 +28,8 @@ use crate::scene::{AssetCache, Overrides, SceneDesc, apply_overrides, build_scen
 use crate::texture::Filter;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::time::{Duration, Instant};
+use std::time::Duration;
+use web_time::Instant;
 use strum::VariantArray;
 
 /// Why a report stopped.
@@ -501,13 +507,13 @@ pub fn run_scene(
             let desc = sized(scene, config, mode, spp);
             let built = build_scene(&desc, preset_path, &mut assets)?;
             let (row, flip_map) = target.measure(&built, mode, spp, &mut tally)?;
-            if config.heatmap_spp == Some(spp) {
+            if let Some(error) = flip_map.filter(|_| config.heatmap_spp == Some(spp)) {
                 error_maps.push(ErrorMap {
                     mode,
                     spp,
                     width,
                     height,
-                    error: flip_map,
+                    error,
                 });
             }
             rows.push(row);
@@ -613,14 +619,15 @@ struct Target<'a> {
 
 impl Target<'_> {
     /// One (mode, spp): a warm-up render (the image measured; renders are deterministic),
-    /// then the timed runs that fit the budget. Returns the row and FLIP's error map.
+    /// then the timed runs that fit the budget. Returns the row and FLIP's error map (`None`
+    /// without the `flip` feature).
     fn measure(
         &self,
         built: &crate::scene::Scene,
         mode: Mode,
         spp: u32,
         tally: &mut Tally<'_>,
-    ) -> Result<(Row, Vec<f32>), ReportError> {
+    ) -> Result<(Row, Option<Vec<f32>>), ReportError> {
         let (width, height) = (self.reference.width, self.reference.height);
         let cell = u64::from(width) * u64::from(height) * u64::from(spp);
         let repeat = self.config.repeat.max(1);

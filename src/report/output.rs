@@ -92,6 +92,8 @@ pub fn write_outputs(
             heat_maps: Vec::new(),
         };
         written.extend([svg, png_path]);
+        // Without FLIP (`flip` feature off) a report has no error maps.
+        #[cfg(feature = "flip")]
         for map in &rep.error_maps {
             let adaptive = if map.mode.adaptive { "_adaptive" } else { "" };
             let file = format!(

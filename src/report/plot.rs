@@ -433,6 +433,7 @@ pub fn error_vs_time(rep: &SceneReport) -> LogLogChart {
 pub const LEGEND_HEIGHT: u32 = 34;
 
 /// The magma colour map as 256 RGB entries (FLIP's own, from `nv-flip`).
+#[cfg(feature = "flip")]
 #[must_use]
 pub fn magma() -> Vec<Colour> {
     nv_flip::magma_lut()
@@ -448,6 +449,7 @@ pub fn magma() -> Vec<Colour> {
 ///
 /// # Errors
 /// The bundled font cannot be read, or plotters fails.
+#[cfg(feature = "flip")]
 pub fn heat_map(map: &ErrorMap) -> Result<(u32, u32, Vec<u8>), PlotError> {
     font()?;
     let lut = magma();
@@ -579,6 +581,7 @@ mod tests {
         }
     }
 
+    #[cfg(feature = "flip")]
     #[test]
     fn a_heat_map_is_the_error_in_magma_over_a_labelled_bar() {
         let map = ErrorMap {

@@ -383,7 +383,7 @@ mod tests {
         assert_eq!(m.rel_mse, 0.0);
         assert!((m.ssim - 1.0).abs() < 1e-12, "{}", m.ssim);
         assert_eq!(m.flip, Some(0.0));
-        assert!(map.iter().all(|e| *e == 0.0));
+        assert!(map.unwrap().iter().all(|e| *e == 0.0));
     }
 
     #[test]

@@ -18,6 +18,7 @@ pub mod table;
 pub use metrics::{EncodedImage, METRIC_DEFINITIONS, Metrics, compare};
 #[cfg(not(target_arch = "wasm32"))]
 pub use output::write_outputs;
+#[cfg(not(target_arch = "wasm32"))]
 pub use reference::{CacheKey, CachedReference, REFERENCE_VERSION, cache_key, default_cache_dir};
 pub use table::{RMSE_TARGETS, pareto_front, time_to_reach};
 
@@ -29,8 +30,8 @@ use crate::texture::Filter;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
-use web_time::Instant;
 use strum::VariantArray;
+use web_time::Instant;
 
 /// Why a report stopped.
 #[derive(Debug, thiserror::Error)]
@@ -228,7 +229,9 @@ pub struct ReferenceSettings {
     pub filter: Filter,
     /// Pixel sampler.
     pub sampler: PixelSampler,
-    /// Where references are cached (`None`: not cached).
+    /// Where references are cached (`None`: not cached). The command line's: a page has no
+    /// cache folder.
+    #[cfg(not(target_arch = "wasm32"))]
     pub cache_dir: Option<PathBuf>,
     /// An image made outside texplore (linear OpenEXR or Radiance HDR, the render's size) to
     /// judge against instead of rendering a reference: `report --reference FILE.exr`. The
@@ -246,6 +249,7 @@ impl Default for ReferenceSettings {
             spp: 4096,
             filter: Filter::Bilinear,
             sampler: PixelSampler::Jittered,
+            #[cfg(not(target_arch = "wasm32"))]
             cache_dir: None,
             file: None,
         }
@@ -455,19 +459,25 @@ pub fn run_scene(
     };
 
     // The reference: from the cache, or rendered now (and stored).
+    #[cfg(not(target_arch = "wasm32"))]
     let key = cache_key(&ref_desc, preset_path);
     // An external reference is never cached.
+    #[cfg(not(target_arch = "wasm32"))]
     let cached = r
         .cache_dir
         .as_ref()
         .filter(|_| r.file.is_none())
         .map(|dir| CachedReference::new(dir, &key));
     let t0 = Instant::now();
+    #[cfg(not(target_arch = "wasm32"))]
     let (stored, reference_problem) = match cached.as_ref().map(|c| c.load(&key, width, height)) {
         Some(Ok(img)) => (img, None),
         Some(Err(problem)) => (None, Some(problem)),
         None => (None, None),
     };
+    #[cfg(target_arch = "wasm32")]
+    let (stored, reference_problem) = (None, None);
+    #[cfg_attr(target_arch = "wasm32", allow(unused_mut))]
     let mut reference_not_stored = None;
     let (reference_linear, reference_cached) = if let Some(file) = &r.file {
         (reference::load_linear(file, width, height)?, false)
@@ -478,6 +488,7 @@ pub fn run_scene(
         let img = render_reference(&ref_scene, r.spp, &mut tally, cancel)?;
         // A cache that cannot keep it (a damaged entry that is a folder, a full disk) costs
         // only the next run's render: the report goes on, and says so.
+        #[cfg(not(target_arch = "wasm32"))]
         if let Some(c) = &cached
             && let Err(e) = c.store(&key, width, height, &img)
         {
@@ -525,11 +536,14 @@ pub fn run_scene(
         rows,
         reference: r.clone(),
         reference_cached,
+        #[cfg(not(target_arch = "wasm32"))]
         reference_file: r.file.clone().or_else(|| {
             cached
                 .filter(|_| reference_not_stored.is_none())
                 .map(|c| c.exr)
         }),
+        #[cfg(target_arch = "wasm32")]
+        reference_file: r.file.clone(),
         reference_problem,
         reference_not_stored,
         reference_time,

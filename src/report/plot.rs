@@ -3,7 +3,9 @@
 //! the sans-serif family, so no system font library is involved, and laid out glyph by glyph
 //! in the bitmap, see `Bitmap`), and error heat maps with a colour bar.
 
-use super::{ErrorMap, SceneReport, table};
+#[cfg(feature = "flip")]
+use super::ErrorMap;
+use super::{SceneReport, table};
 use ab_glyph::{Font as _, FontRef, PxScale, ScaleFont as _};
 use plotters::coord::Shift;
 use plotters::prelude::*;

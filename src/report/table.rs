@@ -414,6 +414,7 @@ mod tests {
             time_min: Duration::from_millis(ms_),
             metrics: Metrics {
                 rmse,
+                flip: Some(0.0),
                 ..Metrics::default()
             },
         }

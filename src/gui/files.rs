@@ -58,31 +58,37 @@ impl Browser {
         if let Some(f) = &self.0 {
             return f(what, start, name);
         }
-        let start = std::path::absolute(start).unwrap_or_else(|_| start.to_path_buf());
-        let d = rfd::FileDialog::new().set_directory(start);
-        match what {
-            BrowseFor::Image => d
-                .set_title("Choose an image")
-                .add_filter("Images", &IMAGE_EXTENSIONS)
-                .pick_file(),
-            BrowseFor::Mesh => d
-                .set_title("Choose a mesh")
-                .add_filter("Meshes (PLY, OBJ)", &["ply", "obj"])
-                .pick_file(),
-            BrowseFor::Scene => d
-                .set_title("Open a preset or a texplore PNG")
-                .add_filter("Presets and texplore PNGs", &["ron", "png"])
-                .pick_file(),
-            BrowseFor::Preset => d
-                .set_title("Save the scene as a preset")
-                .add_filter("Preset (.ron)", &["ron"])
-                .set_file_name(name)
-                .save_file(),
-            BrowseFor::Screenshot => d
-                .set_title("Save a screenshot")
-                .add_filter("PNG", &["png"])
-                .set_file_name(name)
-                .save_file(),
+        // The page's dialogs are asynchronous: what the user chooses arrives later, as a drop.
+        #[cfg(target_arch = "wasm32")]
+        return super::web::pick(what, start, name);
+        #[cfg(not(target_arch = "wasm32"))]
+        {
+            let start = std::path::absolute(start).unwrap_or_else(|_| start.to_path_buf());
+            let d = rfd::FileDialog::new().set_directory(start);
+            match what {
+                BrowseFor::Image => d
+                    .set_title("Choose an image")
+                    .add_filter("Images", &IMAGE_EXTENSIONS)
+                    .pick_file(),
+                BrowseFor::Mesh => d
+                    .set_title("Choose a mesh")
+                    .add_filter("Meshes (PLY, OBJ)", &["ply", "obj"])
+                    .pick_file(),
+                BrowseFor::Scene => d
+                    .set_title("Open a preset or a texplore PNG")
+                    .add_filter("Presets and texplore PNGs", &["ron", "png"])
+                    .pick_file(),
+                BrowseFor::Preset => d
+                    .set_title("Save the scene as a preset")
+                    .add_filter("Preset (.ron)", &["ron"])
+                    .set_file_name(name)
+                    .save_file(),
+                BrowseFor::Screenshot => d
+                    .set_title("Save a screenshot")
+                    .add_filter("PNG", &["png"])
+                    .set_file_name(name)
+                    .save_file(),
+            }
         }
     }
 }

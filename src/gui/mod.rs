@@ -17,12 +17,15 @@ mod scene_panel;
 mod texture_panel;
 mod viewer;
 mod viewport;
+#[cfg(target_arch = "wasm32")]
+pub mod web;
 mod widgets;
 
 pub use app::{AppOptions, ExplorerApp, Prefs};
 pub use files::{BrowseFor, Browser, config_dir, screenshot_default};
 pub use viewport::HINT as VIEW_HINT;
 
+#[cfg(not(target_arch = "wasm32"))]
 use std::path::PathBuf;
 
 /// The preset the window opens on.
@@ -34,6 +37,7 @@ pub const DEFAULT_PRESET: &str = "presets/earth.ron";
 ///
 /// # Errors
 /// The window cannot be created (no display, no GPU adapter).
+#[cfg(not(target_arch = "wasm32"))]
 pub fn run(open: Option<PathBuf>) -> anyhow::Result<()> {
     run_app(open, None)
 }
@@ -42,10 +46,12 @@ pub fn run(open: Option<PathBuf>) -> anyhow::Result<()> {
 ///
 /// # Errors
 /// The window cannot be created (no display, no GPU adapter).
+#[cfg(not(target_arch = "wasm32"))]
 pub fn run_lesson(lesson: crate::lesson::Lesson) -> anyhow::Result<()> {
     run_app(Some(lesson.preset.clone()), Some(lesson))
 }
 
+#[cfg(not(target_arch = "wasm32"))]
 fn run_app(open: Option<PathBuf>, lesson: Option<crate::lesson::Lesson>) -> anyhow::Result<()> {
     let options = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()

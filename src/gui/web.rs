@@ -257,5 +257,13 @@ pub async fn start(canvas_id: &str) -> Result<(), String> {
             }),
         )
         .await
-        .map_err(|e| js_error("cannot start the window", &e))
+        .map_err(|e| js_error("cannot start the window", &e))?;
+    // The window is up: the loading message goes.
+    if let Some(status) = web_sys::window()
+        .and_then(|w| w.document())
+        .and_then(|d| d.get_element_by_id("status"))
+    {
+        status.remove();
+    }
+    Ok(())
 }

@@ -120,6 +120,7 @@ fn arrived(name: &str, bytes: Vec<u8>) {
 
 /// The page's *Browse…*: a file to read opens the browser's dialog, and the file chosen arrives
 /// later as a drop (so `None` now); a file to save is named `name` and downloaded when saved.
+#[must_use]
 pub fn pick(what: BrowseFor, _start: &Path, name: &str) -> Option<PathBuf> {
     let dialog = rfd::AsyncFileDialog::new();
     let dialog = match what {

@@ -8,11 +8,49 @@
 //! memory is bounded by the bytes actually read (not by the size the metadata claims).
 
 use crate::error::{Error, Result};
+#[cfg(not(target_arch = "wasm32"))]
 use std::fs::File;
 use std::io::Read;
-use std::path::Path;
+use std::path::{Path, PathBuf};
+
+#[cfg(target_arch = "wasm32")]
+mod mounted;
+#[cfg(target_arch = "wasm32")]
+pub use mounted::{is_mounted, mount};
+
+/// An opened input: a file; in a page (wasm32), a mounted file's bytes.
+#[cfg(not(target_arch = "wasm32"))]
+pub type Input = File;
+/// An opened input: a file; in a page (wasm32), a mounted file's bytes ([`mount`]).
+#[cfg(target_arch = "wasm32")]
+pub type Input = std::io::Cursor<std::sync::Arc<[u8]>>;
+
+/// The size of an opened input, when it is known.
+#[must_use]
+pub fn input_len(file: &Input) -> Option<u64> {
+    #[cfg(not(target_arch = "wasm32"))]
+    return file.metadata().map(|m| m.len()).ok();
+    #[cfg(target_arch = "wasm32")]
+    Some(file.get_ref().len() as u64)
+}
+
+/// The entries of the folder `dir` (as `dir` joined with each name), in no particular order;
+/// in a page, the files mounted in it.
+///
+/// # Errors
+/// The folder cannot be read (`DIR: No such file or directory`).
+pub fn list_dir(dir: &Path) -> Result<Vec<PathBuf>> {
+    #[cfg(target_arch = "wasm32")]
+    return mounted::list(dir);
+    #[cfg(not(target_arch = "wasm32"))]
+    Ok(std::fs::read_dir(dir)
+        .map_err(|e| Error::io(dir, e))?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .collect())
+}
 
 /// What kind of non-regular file `meta` describes, for the refusal message.
+#[cfg(not(target_arch = "wasm32"))]
 fn kind(meta: &std::fs::Metadata) -> &'static str {
     let t = meta.file_type();
     if t.is_dir() {
@@ -57,7 +95,15 @@ pub fn human_bytes(bytes: u64) -> String {
 /// # Errors
 /// The file cannot be opened (`FILE: No such file or directory`), or it is not a regular file
 /// (`FILE: not a regular file (a FIFO)`).
-pub fn open_input(path: &Path) -> Result<File> {
+pub fn open_input(path: &Path) -> Result<Input> {
+    #[cfg(target_arch = "wasm32")]
+    return mounted::open(path);
+    #[cfg(not(target_arch = "wasm32"))]
+    open_file(path)
+}
+
+#[cfg(not(target_arch = "wasm32"))]
+fn open_file(path: &Path) -> Result<File> {
     let mut options = std::fs::OpenOptions::new();
     options.read(true);
     #[cfg(unix)]
@@ -84,7 +130,7 @@ pub fn open_input(path: &Path) -> Result<File> {
 ///
 /// # Errors
 /// A read fails, or the file holds more than `max_bytes` (`FILE: too large (larger than 16 MiB)`).
-pub fn read_opened(file: File, path: &Path, max_bytes: u64) -> Result<Vec<u8>> {
+pub fn read_opened(file: Input, path: &Path, max_bytes: u64) -> Result<Vec<u8>> {
     let too_large = || {
         let why = format!("too large (larger than {})", human_bytes(max_bytes));
         Error::io(
@@ -93,7 +139,7 @@ pub fn read_opened(file: File, path: &Path, max_bytes: u64) -> Result<Vec<u8>> {
         )
     };
     // A quick refusal when the size is known; the bound on the read below is what holds.
-    if file.metadata().is_ok_and(|m| m.len() > max_bytes) {
+    if input_len(&file).is_some_and(|len| len > max_bytes) {
         return Err(too_large());
     }
     let mut bytes = Vec::new();
@@ -121,6 +167,7 @@ pub fn read_input(path: &Path, max_bytes: u64) -> Result<Vec<u8>> {
 ///
 /// # Errors
 /// As [`read_input`], or `FILE: a symbolic link (not followed)`.
+#[cfg(not(target_arch = "wasm32"))]
 pub fn read_own_input(path: &Path, max_bytes: u64) -> Result<Vec<u8>> {
     let link = || {
         Error::io(

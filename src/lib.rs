@@ -7,6 +7,8 @@
 //! [`sampler`] placed.
 
 pub mod camera;
+// The command line (and its `bench`) has no meaning in a page.
+#[cfg(not(target_arch = "wasm32"))]
 pub mod cli;
 pub mod coverage;
 pub mod error;

@@ -26,16 +26,25 @@
 
 use crate::error::{Error, Result};
 use std::fs::{Metadata, Permissions};
-use std::io::{self, BufWriter, Seek, Write};
+#[cfg(not(target_arch = "wasm32"))]
+use std::io::BufWriter;
+use std::io::{self, Seek, Write};
 use std::path::{Path, PathBuf};
 
 /// A writer that can also seek (some image encoders, TIFF and EXR, seek back).
 pub trait WriteSeek: Write + Seek {}
+
+#[cfg(target_arch = "wasm32")]
+mod saved;
+#[cfg(target_arch = "wasm32")]
+pub use saved::{SaveHook, set_save_hook};
 impl<T: Write + Seek> WriteSeek for T {}
 
 /// Where an output really goes: the path after following a symbolic link, and the existing
 /// file's permissions (`None`: a new file).
 #[derive(Debug)]
+// A page only checks the name (`check_output`): it writes through no file.
+#[cfg_attr(target_arch = "wasm32", allow(dead_code))]
 struct Target {
     path: PathBuf,
     existing: Option<Permissions>,
@@ -109,6 +118,7 @@ enum Links {
 
 /// The target of a file of texplore's own: `path` itself, never a link's target. A directory
 /// is refused (the rename could not replace it); a link or any other special file is replaced.
+#[cfg(not(target_arch = "wasm32"))]
 fn resolve_own(path: &Path) -> Result<Target> {
     if path.as_os_str().is_empty() {
         return Err(refuse(path, "the file name is empty"));
@@ -293,6 +303,16 @@ pub fn write_own_file(path: &Path, bytes: &[u8]) -> Result<()> {
     write_with(path, &[], Links::Replace, |w| w.write_all(bytes))
 }
 
+/// In a page there are no files to protect: every save goes to the page's hook (a download).
+#[cfg(target_arch = "wasm32")]
+fn write_with<F>(path: &Path, _inputs: &[&Path], _links: Links, write: F) -> Result<()>
+where
+    F: FnOnce(&mut dyn WriteSeek) -> io::Result<()>,
+{
+    saved::write(path, write)
+}
+
+#[cfg(not(target_arch = "wasm32"))]
 fn write_with<F>(path: &Path, inputs: &[&Path], links: Links, write: F) -> Result<()>
 where
     F: FnOnce(&mut dyn WriteSeek) -> io::Result<()>,

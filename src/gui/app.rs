@@ -40,7 +40,7 @@ pub struct AppOptions {
 }
 
 /// What the window remembers between runs besides its size (which eframe keeps) and the
-/// arrangement of its panels ([`Layout`]): the scene it had open, the unsaved-changes rule and
+/// arrangement of its panels (the layout): the scene it had open, the unsaved-changes rule and
 /// the UI scale.
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(default)]
@@ -97,7 +97,7 @@ pub struct ExplorerApp {
     pub(super) image_space: Option<egui::Rect>,
     pub(super) error: Option<String>,
     /// A confirmation shown for a few seconds ("Screenshot saved to ...") and when it came.
-    notice: Option<(String, std::time::Instant)>,
+    notice: Option<(String, web_time::Instant)>,
     pub(super) scene_panel: ScenePanel,
     pub(super) inspector: Inspector,
     pub(super) texture_panel: TexturePanel,
@@ -314,7 +314,7 @@ impl ExplorerApp {
     /// # Errors
     /// The render failed, or the build or the render was still running at the deadline.
     pub fn wait_for_render(&self, deadline: std::time::Duration) -> Result<(), String> {
-        let start = std::time::Instant::now();
+        let start = web_time::Instant::now();
         self.doc.wait(deadline)?;
         self.viewer.wait(deadline.saturating_sub(start.elapsed()))
     }
@@ -343,13 +343,13 @@ impl ExplorerApp {
 
     /// Shows `text` in the status line for a few seconds.
     pub(super) fn notify(&mut self, text: String) {
-        self.notice = Some((text, std::time::Instant::now()));
+        self.notice = Some((text, web_time::Instant::now()));
     }
 }
 
 impl eframe::App for ExplorerApp {
     fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
-        let started = std::time::Instant::now();
+        let started = web_time::Instant::now();
         self.viewer.latency.frame_started();
         self.frame(ui);
         self.viewer.latency.frame_laid_out();
@@ -401,7 +401,7 @@ impl ExplorerApp {
     fn gesture(&mut self, ctx: &egui::Context) -> Option<Gesture> {
         ctx.input(|i| {
             self.gestures.update(
-                std::time::Instant::now(),
+                web_time::Instant::now(),
                 i.pointer.any_pressed(),
                 i.pointer.any_down() || i.pointer.any_released(),
                 i.smooth_scroll_delta != egui::Vec2::ZERO

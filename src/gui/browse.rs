@@ -51,6 +51,7 @@ impl std::fmt::Debug for Browser {
 
 /// A system dialog that answers faster than this did not open: nobody cancels a dialog in
 /// under a quarter of a second.
+#[cfg(not(target_arch = "wasm32"))]
 const NO_DIALOG: std::time::Duration = std::time::Duration::from_millis(250);
 
 fn lock<T>(m: &Mutex<T>) -> std::sync::MutexGuard<'_, T> {
@@ -97,24 +98,33 @@ impl Browser {
         if let Some(f) = &self.replaced {
             return f(what, start, name);
         }
-        if self.missing().is_none() {
-            let asked = std::time::Instant::now();
-            let picked = native_pick(what, start, name);
-            if picked.is_some() || asked.elapsed() >= NO_DIALOG {
-                return picked;
-            }
-            *lock(&self.missing) = Some(
-                "The system's file dialog did not open (no XDG desktop portal answered): \
-                 type the path here instead."
-                    .to_owned(),
-            );
+        // The page's dialogs are asynchronous: what the user chooses arrives later, as a drop.
+        #[cfg(target_arch = "wasm32")]
+        {
+            super::web::pick(what, start, name)
         }
-        *lock(&self.fallback) = Some((what, start.to_path_buf()));
-        None
+        #[cfg(not(target_arch = "wasm32"))]
+        {
+            if self.missing().is_none() {
+                let asked = web_time::Instant::now();
+                let picked = native_pick(what, start, name);
+                if picked.is_some() || asked.elapsed() >= NO_DIALOG {
+                    return picked;
+                }
+                *lock(&self.missing) = Some(
+                    "The system's file dialog did not open (no XDG desktop portal answered): \
+                     type the path here instead."
+                        .to_owned(),
+                );
+            }
+            *lock(&self.fallback) = Some((what, start.to_path_buf()));
+            None
+        }
     }
 }
 
 /// The system's dialog (`rfd`).
+#[cfg(not(target_arch = "wasm32"))]
 fn native_pick(what: BrowseFor, start: &Path, name: &str) -> Option<PathBuf> {
     let start = std::path::absolute(start).unwrap_or_else(|_| start.to_path_buf());
     let d = rfd::FileDialog::new().set_directory(start);

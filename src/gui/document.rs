@@ -383,7 +383,7 @@ impl Document {
     /// # Errors
     /// The build was still running at the deadline.
     pub fn wait(&self, deadline: std::time::Duration) -> Result<(), String> {
-        let start = std::time::Instant::now();
+        let start = web_time::Instant::now();
         while let Some(p) = &self.pending {
             if !p.task.is_running() {
                 break;

@@ -32,7 +32,7 @@ pub const WHEEL_RUN_GAP: std::time::Duration = std::time::Duration::from_millis(
 pub struct Gestures {
     presses: u64,
     runs: u64,
-    last_wheel: Option<std::time::Instant>,
+    last_wheel: Option<web_time::Instant>,
 }
 
 impl Gestures {
@@ -40,7 +40,7 @@ impl Gestures {
     /// released this frame (a click lands on release), `scrolled` the wheel moved.
     pub fn update(
         &mut self,
-        now: std::time::Instant,
+        now: web_time::Instant,
         pressed: bool,
         held: bool,
         scrolled: bool,
@@ -403,7 +403,7 @@ mod tests {
     #[test]
     fn a_press_and_a_wheel_run_are_gestures_and_a_pause_ends_a_run() {
         let mut g = Gestures::default();
-        let t0 = std::time::Instant::now();
+        let t0 = web_time::Instant::now();
         let ms = |n| t0 + std::time::Duration::from_millis(n);
         assert_eq!(g.update(t0, false, false, false), None);
         let press = g.update(ms(10), true, true, false);

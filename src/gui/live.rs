@@ -3,7 +3,7 @@
 
 use crate::render::RenderJob;
 use std::sync::{Arc, OnceLock};
-use std::time::Instant;
+use web_time::Instant;
 
 /// The texture showing a job's latest image.
 pub struct LiveImage {

@@ -18,26 +18,35 @@ mod overlay;
 mod panes;
 mod resolution;
 mod scene_panel;
+#[cfg(not(target_arch = "wasm32"))]
 mod storage;
 mod texture_panel;
 mod viewer;
 mod viewport;
+#[cfg(target_arch = "wasm32")]
+pub mod web;
 mod widgets;
 
 pub use app::{AppOptions, ExplorerApp, Prefs};
 pub use files::{BrowseFor, Browser, config_dir, screenshot_default};
+#[cfg(not(target_arch = "wasm32"))]
 pub use storage::{Guarded, app_ron, guard as guard_storage};
 pub use viewport::HINT as VIEW_HINT;
 
+#[cfg(not(target_arch = "wasm32"))]
 use std::path::PathBuf;
 
 /// The preset the window opens on (in the shipped presets, [`default_preset`]).
 pub const DEFAULT_PRESET: &str = "presets/earth.ron";
 
 /// [`DEFAULT_PRESET`] in the copy of the shipped files, so the window opens on the Earth
-/// wherever it is started (in the working folder if the copy cannot be made).
+/// wherever it is started (in the working folder if the copy cannot be made; in the page, where
+/// the shipped files are mounted at their own paths, as it is).
 #[must_use]
-pub fn default_preset() -> PathBuf {
+pub fn default_preset() -> std::path::PathBuf {
+    #[cfg(target_arch = "wasm32")]
+    return std::path::PathBuf::from(DEFAULT_PRESET);
+    #[cfg(not(target_arch = "wasm32"))]
     crate::shipped::root().map_or_else(
         |_| PathBuf::from(DEFAULT_PRESET),
         |r| r.join(DEFAULT_PRESET),
@@ -50,6 +59,7 @@ pub fn default_preset() -> PathBuf {
 ///
 /// # Errors
 /// The window cannot be created (no display, no GPU adapter).
+#[cfg(not(target_arch = "wasm32"))]
 pub fn run(open: Option<PathBuf>) -> anyhow::Result<()> {
     run_app(open, None)
 }
@@ -58,10 +68,12 @@ pub fn run(open: Option<PathBuf>) -> anyhow::Result<()> {
 ///
 /// # Errors
 /// The window cannot be created (no display, no GPU adapter).
+#[cfg(not(target_arch = "wasm32"))]
 pub fn run_lesson(lesson: crate::lesson::Lesson) -> anyhow::Result<()> {
     run_app(Some(lesson.preset.clone()), Some(lesson))
 }
 
+#[cfg(not(target_arch = "wasm32"))]
 fn run_app(open: Option<PathBuf>, lesson: Option<crate::lesson::Lesson>) -> anyhow::Result<()> {
     // The window's memory is checked before eframe reads it (see `storage`).
     let memory = app_ron();

@@ -4,7 +4,8 @@
 //! scale renders a fraction of either (a view setting, never saved in the scene).
 
 use crate::math::Vec2;
-use std::time::{Duration, Instant};
+use std::time::Duration;
+use web_time::Instant;
 
 /// How long the pane's size must hold before the render follows it (a drag of a divider does
 /// not restart the render on every frame).

@@ -78,7 +78,7 @@ impl Viewer {
             // repaints faster than that).
             let woken = std::sync::atomic::AtomicBool::new(false);
             job.on_publish(move || {
-                published.get_or_init(std::time::Instant::now);
+                published.get_or_init(web_time::Instant::now);
                 if !woken.swap(true, std::sync::atomic::Ordering::Relaxed) {
                     ctx.request_repaint();
                 }
@@ -111,7 +111,7 @@ impl Viewer {
     /// # Errors
     /// The render failed, or it was still running at the deadline.
     pub fn wait(&self, deadline: std::time::Duration) -> Result<(), String> {
-        let start = std::time::Instant::now();
+        let start = web_time::Instant::now();
         while let Some(job) = &self.job {
             if let Some(failure) = job.failure() {
                 return Err(failure);

@@ -439,9 +439,8 @@ pub struct Lessons {
 /// # Errors
 /// The folder cannot be read.
 pub fn load_dir(dir: &Path) -> Result<Lessons> {
-    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
-        .map_err(|e| Error::io(dir, e))?
-        .filter_map(|e| e.ok().map(|e| e.path()))
+    let mut files: Vec<PathBuf> = crate::input::list_dir(dir)?
+        .into_iter()
         .filter(|p| p.extension().is_some_and(|e| e == "toml"))
         .collect();
     files.sort();

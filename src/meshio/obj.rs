@@ -127,7 +127,7 @@ fn keyword(line: &str) -> (&str, &str) {
 /// joined, tabs after `usemtl` and `mtllib` accepted, every library of a `mtllib` line kept.
 fn prepare(path: &Path, dir: &Path) -> Result<Prepared> {
     let file = crate::input::open_input(path)?;
-    if file.metadata().is_ok_and(|m| m.len() > MAX_MESH_FILE_BYTES) {
+    if crate::input::input_len(&file).is_some_and(|len| len > MAX_MESH_FILE_BYTES) {
         return Err(Error::invalid(
             path,
             format!(

@@ -3,13 +3,18 @@
 //! after each; bumping a generation counter cancels it within one tile, and dropping the job
 //! cancels it without blocking the caller.
 
-use super::pool::{PoolError, thread_pool};
-use super::task::Task;
-use super::{DisplayImage, Film, PREVIEW_BLOCKS, render_preview, render_scheduled_pass};
+use super::pool::PoolError;
+#[cfg(target_arch = "wasm32")]
+use super::slices::{self, SlicedRender};
+use super::{DisplayImage, Film};
+#[cfg(not(target_arch = "wasm32"))]
+use super::{PREVIEW_BLOCKS, pool::thread_pool, render_preview, render_scheduled_pass, task::Task};
 use crate::scene::Scene;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
-use std::time::{Duration, Instant};
+use std::time::Duration;
+#[cfg(not(target_arch = "wasm32"))]
+use web_time::Instant;
 
 /// A shared counter: a job runs while the counter equals the value it started with. An edit
 /// bumps it, and stale work stops within one tile.
@@ -78,30 +83,48 @@ pub struct Progress {
 }
 
 #[derive(Default)]
-struct Published {
+pub(super) struct Published {
     image: Option<Arc<DisplayImage>>,
-    film: Option<Arc<Film>>,
-    progress: Progress,
-    serial: u64,
+    pub(super) film: Option<Arc<Film>>,
+    pub(super) progress: Progress,
+    pub(super) serial: u64,
     /// Called after each publication (a viewer asking for a repaint).
     on_publish: Option<Arc<dyn Fn() + Send + Sync>>,
 }
 
 /// What a job and its viewers share: the published state.
 #[derive(Default)]
-struct Shared {
+pub(super) struct Shared {
     published: Mutex<Published>,
 }
 
 impl Shared {
-    fn lock(&self) -> MutexGuard<'_, Published> {
+    pub(super) fn lock(&self) -> MutexGuard<'_, Published> {
         self.published
             .lock()
             .unwrap_or_else(PoisonError::into_inner)
     }
+
+    /// Publishes `image` (and `film`, when given) with `progress`, and tells the viewer.
+    pub(super) fn publish(&self, image: DisplayImage, film: Option<Arc<Film>>, progress: Progress) {
+        let mut p = self.lock();
+        p.image = Some(Arc::new(image));
+        if film.is_some() {
+            p.film = film;
+        }
+        p.progress = progress;
+        p.serial += 1;
+        let notify = p.on_publish.clone();
+        drop(p);
+        if let Some(f) = notify {
+            f();
+        }
+    }
 }
 
-/// A progressive render running as a [`Task`] on the shared worker pool ([`thread_pool`]).
+/// A progressive render running as a [`Task`](super::Task) on the shared worker pool
+/// ([`thread_pool`](super::thread_pool)); on wasm32, in slices between the page's frames
+/// (`render::run_slices`).
 ///
 /// Dropping a job cancels it without waiting: its task notices within one tile and returns, and
 /// everything it writes belongs to the job's shared state. [`RenderJob::wait`] and
@@ -109,7 +132,10 @@ impl Shared {
 /// worker of the same pool.
 pub struct RenderJob {
     shared: Arc<Shared>,
+    #[cfg(not(target_arch = "wasm32"))]
     task: Task<()>,
+    #[cfg(target_arch = "wasm32")]
+    slices: Arc<Mutex<SlicedRender>>,
     generation: Generation,
     started_at: u64,
 }
@@ -125,18 +151,32 @@ impl RenderJob {
         options: RenderOptions,
         generation: &Generation,
     ) -> Result<Self, PoolError> {
-        let pool = thread_pool(options.threads)?;
         let shared = Arc::new(Shared::default());
         let started_at = generation.current();
         let (task_shared, task_generation) = (shared.clone(), generation.clone());
-        // The job stops on its generation, not on the task's flag.
-        let task = Task::spawn_on(&pool, move |_| {
-            run(&scene, options, &task_generation, started_at, &task_shared);
-            Some(())
-        });
+        #[cfg(not(target_arch = "wasm32"))]
+        let task = {
+            let pool = thread_pool(options.threads)?;
+            // The job stops on its generation, not on the task's flag.
+            Task::spawn_on(&pool, move |_| {
+                run(&scene, options, &task_generation, started_at, &task_shared);
+                Some(())
+            })
+        };
+        #[cfg(target_arch = "wasm32")]
+        let slices = slices::register(SlicedRender::new(
+            scene,
+            options,
+            task_generation,
+            started_at,
+            task_shared,
+        ));
         Ok(Self {
             shared,
+            #[cfg(not(target_arch = "wasm32"))]
             task,
+            #[cfg(target_arch = "wasm32")]
+            slices,
             generation: generation.clone(),
             started_at,
         })
@@ -152,9 +192,14 @@ impl RenderJob {
     #[must_use]
     pub fn failure(&self) -> Option<String> {
         // A bug in the renderer, reported to the viewer instead of aborting the process.
-        self.task
+        #[cfg(not(target_arch = "wasm32"))]
+        return self
+            .task
             .failure()
-            .map(|what| format!("the render stopped: {what}"))
+            .map(|what| format!("the render stopped: {what}"));
+        // A panic aborts a wasm32 page: there is nothing to report.
+        #[cfg(target_arch = "wasm32")]
+        None
     }
 
     /// The latest display image and a serial number that changes whenever a new one is
@@ -194,7 +239,10 @@ impl RenderJob {
     }
 
     fn wait_for_task(&self) {
+        #[cfg(not(target_arch = "wasm32"))]
         self.task.wait();
+        #[cfg(target_arch = "wasm32")]
+        slices::finish(&self.slices);
     }
 
     /// Waits for the job to finish or stop and returns the final film (`None` if cancelled).
@@ -218,6 +266,7 @@ impl Drop for RenderJob {
     }
 }
 
+#[cfg(not(target_arch = "wasm32"))]
 fn run(
     scene: &Scene,
     options: RenderOptions,
@@ -228,20 +277,7 @@ fn run(
     let start = Instant::now();
     let cancelled = || generation.current() != started_at;
     let s = scene.settings;
-    let publish = |image: DisplayImage, film: Option<Arc<Film>>, progress: Progress| {
-        let mut p = out.lock();
-        p.image = Some(Arc::new(image));
-        if film.is_some() {
-            p.film = film;
-        }
-        p.progress = progress;
-        p.serial += 1;
-        let notify = p.on_publish.clone();
-        drop(p);
-        if let Some(f) = notify {
-            f();
-        }
-    };
+    let publish = |image, film, progress| out.publish(image, film, progress);
     let mut progress = Progress {
         spp_target: s.max_spp(),
         ..Progress::default()

@@ -7,6 +7,9 @@ mod job;
 mod lanes;
 mod packet;
 mod pool;
+// The page's renderer; natively only its tests (they compare it with the threaded one).
+#[cfg(any(target_arch = "wasm32", test))]
+mod slices;
 mod task;
 
 pub use adaptive::{CONTRAST_FACTOR, adaptive_mask, display_luminance};
@@ -16,6 +19,9 @@ pub use lanes::LANES;
 pub use packet::{Ineligible, SimdMode, packet_eligibility, simd_level};
 pub use pool::{MAX_THREADS, PoolError, thread_pool};
 pub use task::Task;
+
+#[cfg(target_arch = "wasm32")]
+pub use slices::run_slices;
 
 use crate::math::{Rgb, Vec2, hash3};
 use crate::sampler::{PixelFilter, permute};
@@ -141,6 +147,32 @@ pub fn render_pass_with(
     mode: SimdMode,
     cancelled: &(dyn Fn() -> bool + Sync),
 ) -> Result<(), Cancelled> {
+    let tiles = 0..tile_count(film.height());
+    render_tiles_with(scene, film, sample, mask, mode, tiles, cancelled)
+}
+
+/// The tiles of a film `height` rows high ([`TILE_ROWS`] rows each, the last one shorter).
+#[must_use]
+pub const fn tile_count(height: u32) -> usize {
+    (height as usize).div_ceil(TILE_ROWS)
+}
+
+/// [`render_pass_with`] over the tiles `tiles` only (tile t holds rows t * [`TILE_ROWS`] ..):
+/// a pass cut into slices, which the page renders between frames (it has no threads). Each
+/// tile's pixels depend on nothing but the tile, so a pass rendered in slices is the pass
+/// rendered at once, bit for bit.
+///
+/// # Errors
+/// [`Cancelled`] if `cancelled` returned true.
+pub fn render_tiles_with(
+    scene: &Scene,
+    film: &mut Film,
+    sample: u32,
+    mask: Option<&[bool]>,
+    mode: SimdMode,
+    tiles: std::ops::Range<usize>,
+    cancelled: &(dyn Fn() -> bool + Sync),
+) -> Result<(), Cancelled> {
     let s = &scene.settings;
     let width = film.width() as usize;
     let stats_on = s.adaptive.is_some();
@@ -148,16 +180,18 @@ pub fn render_pass_with(
     let plan = packet::PacketPlan::new(scene, mode).ok();
     let arch = pulp::Arch::new();
     let (sums, stats, keys) = film.buffers_mut();
-    let result: Result<(), Cancelled> = sums
+    let end = (tiles.end * rows).min(sums.len());
+    let start = (tiles.start * rows).min(end);
+    let result: Result<(), Cancelled> = sums[start..end]
         .par_chunks_mut(rows)
-        .zip(stats.par_chunks_mut(rows))
-        .zip(keys.par_chunks_mut(rows))
+        .zip(stats[start..end].par_chunks_mut(rows))
+        .zip(keys[start..end].par_chunks_mut(rows))
         .enumerate()
-        .try_for_each(|(tile, ((chunk, stat), key))| {
+        .try_for_each(|(i, ((chunk, stat), key))| {
             if cancelled() {
                 return Err(Cancelled);
             }
-            let y0 = tile * TILE_ROWS;
+            let y0 = (tiles.start + i) * TILE_ROWS;
             // Row by row: no integer division per pixel to find its coordinates.
             let rows_here = chunk
                 .chunks_mut(width)
@@ -390,23 +424,46 @@ pub fn render_scheduled_pass_with(
     mode: SimdMode,
     cancelled: &(dyn Fn() -> bool + Sync),
 ) -> Result<usize, Cancelled> {
+    match pass_pixels(scene, film, pass) {
+        PassPixels::All => {
+            render_pass_with(scene, film, pass, None, mode, cancelled)?;
+            Ok(film.pixels().len())
+        }
+        PassPixels::Masked(mask, n) => {
+            render_pass_with(scene, film, pass, Some(&mask), mode, cancelled)?;
+            Ok(n)
+        }
+        PassPixels::None => Ok(0),
+    }
+}
+
+/// The pixels a scheduled pass samples.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum PassPixels {
+    /// Every pixel: the first `spp` passes.
+    All,
+    /// The adaptive mask's pixels (true: sample it), and how many there are (at least one).
+    Masked(Vec<bool>, usize),
+    /// None: the render is done (past `max_spp`, or every pixel has converged).
+    None,
+}
+
+/// Which pixels [`render_scheduled_pass`] samples in pass `pass` of `film`: all of them in the
+/// first `spp` passes, then (adaptive rendering) those [`adaptive_mask`] picks from the film.
+#[must_use]
+pub fn pass_pixels(scene: &Scene, film: &Film, pass: u32) -> PassPixels {
     let s = &scene.settings;
     if pass < s.spp {
-        render_pass_with(scene, film, pass, None, mode, cancelled)?;
-        return Ok(film.pixels().len());
+        return PassPixels::All;
     }
-    let Some(a) = s.adaptive else {
-        return Ok(0);
+    let Some(a) = s.adaptive.filter(|_| pass < s.max_spp()) else {
+        return PassPixels::None;
     };
-    if pass >= s.max_spp() {
-        return Ok(0);
-    }
     let mask = adaptive_mask(film, &a);
-    let n = mask.iter().filter(|m| **m).count();
-    if n > 0 {
-        render_pass_with(scene, film, pass, Some(&mask), mode, cancelled)?;
+    match mask.iter().filter(|m| **m).count() {
+        0 => PassPixels::None,
+        n => PassPixels::Masked(mask, n),
     }
-    Ok(n)
 }
 
 /// Radiance through film position `pos` (pixels), with ray differentials for samples spaced

@@ -46,9 +46,22 @@ pub fn thread_pool(threads: usize) -> Result<Arc<ThreadPool>, PoolError> {
     if let Some((_, pool)) = pools.iter().find(|(n, _)| *n == threads) {
         return Ok(pool.clone());
     }
-    let pool = rayon::ThreadPoolBuilder::new()
+    #[cfg(not(target_arch = "wasm32"))]
+    let builder = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
-        .thread_name(|i| format!("texplore-worker-{i}"))
+        .thread_name(|i| format!("texplore-worker-{i}"));
+    // A page has one thread: the pool is that thread, so `install` and parallel iterators run
+    // their work in place. One such pool serves every count (a thread joins one pool only).
+    #[cfg(target_arch = "wasm32")]
+    let builder = {
+        if let Some((_, pool)) = pools.first() {
+            return Ok(pool.clone());
+        }
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(1)
+            .use_current_thread()
+    };
+    let pool = builder
         .build()
         .map_err(|source| PoolError::Build { threads, source })?;
     let pool = Arc::new(pool);

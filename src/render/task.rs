@@ -4,7 +4,9 @@
 //! its flag set and its result is thrown away. A panic inside the work is caught and reported
 //! (rayon would abort the process).
 
-use super::pool::{PoolError, thread_pool};
+use super::pool::PoolError;
+#[cfg(not(target_arch = "wasm32"))]
+use super::pool::thread_pool;
 use rayon::ThreadPool;
 use std::panic::AssertUnwindSafe;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -42,29 +44,46 @@ impl<T> std::fmt::Debug for Task<T> {
 
 impl<T: Send + 'static> Task<T> {
     /// Runs `work` on the shared pool of one thread per core; `work` should return `None` soon
-    /// after its flag is set.
+    /// after its flag is set. On wasm32 (no threads) the work is queued and runs whole on the
+    /// page's thread between frames (`render::run_slices`).
     ///
     /// # Errors
     /// No worker pool could be had.
     pub fn spawn(
         work: impl FnOnce(&AtomicBool) -> Option<T> + Send + 'static,
     ) -> Result<Self, PoolError> {
-        let pool = thread_pool(0)?;
-        Ok(Self::spawn_on(&pool, work))
+        #[cfg(not(target_arch = "wasm32"))]
+        return thread_pool(0).map(|pool| Self::spawn_on(&pool, work));
+        #[cfg(target_arch = "wasm32")]
+        {
+            let (task, run) = Self::new(work);
+            super::slices::queue(Box::new(run));
+            Ok(task)
+        }
     }
 
-    /// Runs `work` on `pool` (a pool of [`thread_pool`]).
+    /// Runs `work` on `pool` (a pool of [`thread_pool`](super::thread_pool)).
     pub fn spawn_on(
         pool: &ThreadPool,
         work: impl FnOnce(&AtomicBool) -> Option<T> + Send + 'static,
     ) -> Self {
+        let (task, run) = Self::new(work);
+        pool.spawn(run);
+        task
+    }
+
+    /// The task of `work` and what runs it: the work, then its result recorded and the viewer
+    /// woken.
+    fn new(
+        work: impl FnOnce(&AtomicBool) -> Option<T> + Send + 'static,
+    ) -> (Self, impl FnOnce() + Send + 'static) {
         let cancel = Arc::new(AtomicBool::new(false));
         let shared = Arc::new(Shared {
             state: Mutex::new(State::Running),
             ended: Condvar::new(),
         });
         let (c, s) = (cancel.clone(), shared.clone());
-        pool.spawn(move || {
+        let run = move || {
             let out = std::panic::catch_unwind(AssertUnwindSafe(|| work(&c)));
             let mut state = s.state.lock().unwrap_or_else(PoisonError::into_inner);
             *state = match out {
@@ -80,8 +99,8 @@ impl<T: Send + 'static> Task<T> {
             };
             drop(state);
             s.ended.notify_all();
-        });
-        Self { cancel, shared }
+        };
+        (Self { cancel, shared }, run)
     }
 }
 
@@ -96,6 +115,9 @@ impl<T> Task<T> {
     /// Blocks until the work has returned (or unwound). Do not call it from a worker of the
     /// task's own pool.
     pub fn wait(&self) {
+        // Without threads, waiting is running the queued work up to this task's.
+        #[cfg(target_arch = "wasm32")]
+        while self.is_running() && super::slices::run_one() {}
         let mut s = self.lock();
         while matches!(*s, State::Running) {
             s = self

@@ -135,28 +135,32 @@ pub struct Metrics {
     pub rel_mse: f64,
     /// Mean structural similarity of the luma (1 for identical images).
     pub ssim: f64,
-    /// Mean LDR-FLIP error (0 for identical images).
-    pub flip: f64,
+    /// Mean LDR-FLIP error (0 for identical images); `None` in a build without the `flip`
+    /// feature (the browser's, which cannot compile FLIP's C++).
+    pub flip: Option<f64>,
     /// RMSE of the linear radiance (before exposure, not clipped), over every pixel and R, G,
     /// B: the metric of the peer renderers (`report --reference FILE.exr`).
     pub rmse_linear: f64,
 }
 
 /// Compares `test` with `reference`; also returns FLIP's per-pixel error map (row-major, values
-/// in [0, 1]) for heat maps.
+/// in [0, 1]) for heat maps, `None` without the `flip` feature.
 ///
 /// # Panics
 /// If the images differ in size (a programming error: the caller renders both).
 #[must_use]
-pub fn compare(reference: &EncodedImage, test: &EncodedImage) -> (Metrics, Vec<f32>) {
+pub fn compare(reference: &EncodedImage, test: &EncodedImage) -> (Metrics, Option<Vec<f32>>) {
     assert_eq!(
         (reference.width, reference.height),
         (test.width, test.height),
         "images differ in size"
     );
     let mse = mse(&reference.srgb, &test.srgb);
-    let flip_map = flip_error_map(reference, test);
-    let flip = mean_f32(&flip_map);
+    #[cfg(feature = "flip")]
+    let flip_map = Some(flip_error_map(reference, test));
+    #[cfg(not(feature = "flip"))]
+    let flip_map = None;
+    let flip = flip_map.as_deref().map(mean_f32);
     let metrics = Metrics {
         rmse: mse.sqrt(),
         psnr: psnr(mse),
@@ -327,6 +331,7 @@ pub fn ssim(width: usize, height: usize, a: &[f64], b: &[f64]) -> f64 {
 }
 
 /// FLIP's per-pixel error map (LDR-FLIP on the 8-bit sRGB images), row-major.
+#[cfg(feature = "flip")]
 #[must_use]
 pub fn flip_error_map(reference: &EncodedImage, test: &EncodedImage) -> Vec<f32> {
     let r = nv_flip::FlipImageRgb8::with_data(reference.width, reference.height, &reference.srgb8);
@@ -377,8 +382,8 @@ mod tests {
         assert_eq!(m.psnr, f64::INFINITY);
         assert_eq!(m.rel_mse, 0.0);
         assert!((m.ssim - 1.0).abs() < 1e-12, "{}", m.ssim);
-        assert_eq!(m.flip, 0.0);
-        assert!(map.iter().all(|e| *e == 0.0));
+        assert_eq!(m.flip, Some(0.0));
+        assert!(map.unwrap().iter().all(|e| *e == 0.0));
     }
 
     #[test]
@@ -394,7 +399,8 @@ mod tests {
         // Flat images: no variance, so SSIM is the luminance term alone:
         // (2 0.5 0.6 + C1) / (0.25 + 0.36 + C1) = 0.6001 / 0.6101.
         assert!((m.ssim - 0.6001 / 0.6101).abs() < 1e-6, "{}", m.ssim);
-        assert!(m.flip > 0.0 && m.flip < 1.0, "{}", m.flip);
+        let flip = m.flip.unwrap();
+        assert!(flip > 0.0 && flip < 1.0, "{flip}");
     }
 
     #[test]
@@ -424,7 +430,7 @@ mod tests {
             s1.ssim,
             s2.ssim
         );
-        assert!(s2.rmse > s1.rmse && s2.flip > s1.flip);
+        assert!(s2.rmse > s1.rmse && s2.flip.unwrap() > s1.flip.unwrap());
     }
 
     #[test]

@@ -6,13 +6,19 @@
 //! writes them as CSV, Markdown tables and plots through [`write_outputs`]).
 
 pub mod metrics;
+// The files a report writes and their charts: the command line's (plotters has no font
+// registry on wasm32, and a page has no folder to write them to).
+#[cfg(not(target_arch = "wasm32"))]
 pub mod output;
+#[cfg(not(target_arch = "wasm32"))]
 pub mod plot;
 pub mod reference;
 pub mod table;
 
 pub use metrics::{EncodedImage, METRIC_DEFINITIONS, Metrics, compare};
+#[cfg(not(target_arch = "wasm32"))]
 pub use output::write_outputs;
+#[cfg(not(target_arch = "wasm32"))]
 pub use reference::{CacheKey, CachedReference, REFERENCE_VERSION, cache_key, default_cache_dir};
 pub use table::{RMSE_TARGETS, pareto_front, time_to_reach};
 
@@ -23,8 +29,9 @@ use crate::scene::{AssetCache, Overrides, SceneDesc, apply_overrides, build_scen
 use crate::texture::Filter;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 use strum::VariantArray;
+use web_time::Instant;
 
 /// Why a report stopped.
 #[derive(Debug, thiserror::Error)]
@@ -222,7 +229,9 @@ pub struct ReferenceSettings {
     pub filter: Filter,
     /// Pixel sampler.
     pub sampler: PixelSampler,
-    /// Where references are cached (`None`: not cached).
+    /// Where references are cached (`None`: not cached). The command line's: a page has no
+    /// cache folder.
+    #[cfg(not(target_arch = "wasm32"))]
     pub cache_dir: Option<PathBuf>,
     /// An image made outside texplore (linear OpenEXR or Radiance HDR, the render's size) to
     /// judge against instead of rendering a reference: `report --reference FILE.exr`. The
@@ -240,6 +249,7 @@ impl Default for ReferenceSettings {
             spp: 4096,
             filter: Filter::Bilinear,
             sampler: PixelSampler::Jittered,
+            #[cfg(not(target_arch = "wasm32"))]
             cache_dir: None,
             file: None,
         }
@@ -449,19 +459,25 @@ pub fn run_scene(
     };
 
     // The reference: from the cache, or rendered now (and stored).
+    #[cfg(not(target_arch = "wasm32"))]
     let key = cache_key(&ref_desc, preset_path);
     // An external reference is never cached.
+    #[cfg(not(target_arch = "wasm32"))]
     let cached = r
         .cache_dir
         .as_ref()
         .filter(|_| r.file.is_none())
         .map(|dir| CachedReference::new(dir, &key));
     let t0 = Instant::now();
+    #[cfg(not(target_arch = "wasm32"))]
     let (stored, reference_problem) = match cached.as_ref().map(|c| c.load(&key, width, height)) {
         Some(Ok(img)) => (img, None),
         Some(Err(problem)) => (None, Some(problem)),
         None => (None, None),
     };
+    #[cfg(target_arch = "wasm32")]
+    let (stored, reference_problem) = (None, None);
+    #[cfg_attr(target_arch = "wasm32", allow(unused_mut))]
     let mut reference_not_stored = None;
     let (reference_linear, reference_cached) = if let Some(file) = &r.file {
         (reference::load_linear(file, width, height)?, false)
@@ -472,6 +488,7 @@ pub fn run_scene(
         let img = render_reference(&ref_scene, r.spp, &mut tally, cancel)?;
         // A cache that cannot keep it (a damaged entry that is a folder, a full disk) costs
         // only the next run's render: the report goes on, and says so.
+        #[cfg(not(target_arch = "wasm32"))]
         if let Some(c) = &cached
             && let Err(e) = c.store(&key, width, height, &img)
         {
@@ -501,13 +518,13 @@ pub fn run_scene(
             let desc = sized(scene, config, mode, spp);
             let built = build_scene(&desc, preset_path, &mut assets)?;
             let (row, flip_map) = target.measure(&built, mode, spp, &mut tally)?;
-            if config.heatmap_spp == Some(spp) {
+            if let Some(error) = flip_map.filter(|_| config.heatmap_spp == Some(spp)) {
                 error_maps.push(ErrorMap {
                     mode,
                     spp,
                     width,
                     height,
-                    error: flip_map,
+                    error,
                 });
             }
             rows.push(row);
@@ -519,11 +536,14 @@ pub fn run_scene(
         rows,
         reference: r.clone(),
         reference_cached,
+        #[cfg(not(target_arch = "wasm32"))]
         reference_file: r.file.clone().or_else(|| {
             cached
                 .filter(|_| reference_not_stored.is_none())
                 .map(|c| c.exr)
         }),
+        #[cfg(target_arch = "wasm32")]
+        reference_file: r.file.clone(),
         reference_problem,
         reference_not_stored,
         reference_time,
@@ -613,14 +633,15 @@ struct Target<'a> {
 
 impl Target<'_> {
     /// One (mode, spp): a warm-up render (the image measured; renders are deterministic),
-    /// then the timed runs that fit the budget. Returns the row and FLIP's error map.
+    /// then the timed runs that fit the budget. Returns the row and FLIP's error map (`None`
+    /// without the `flip` feature).
     fn measure(
         &self,
         built: &crate::scene::Scene,
         mode: Mode,
         spp: u32,
         tally: &mut Tally<'_>,
-    ) -> Result<(Row, Vec<f32>), ReportError> {
+    ) -> Result<(Row, Option<Vec<f32>>), ReportError> {
         let (width, height) = (self.reference.width, self.reference.height);
         let cell = u64::from(width) * u64::from(height) * u64::from(spp);
         let repeat = self.config.repeat.max(1);

@@ -2,7 +2,6 @@
 //! plot (SVG and PNG) and the heat maps.
 
 use super::{ReportError, SceneReport, plot, table};
-use crate::names::Named as _;
 use std::path::{Path, PathBuf};
 
 /// A name safe as a file name: letters, digits, `-`, `_` and `.` kept, anything else `_`.
@@ -86,28 +85,17 @@ pub fn write_outputs(
         let png_path = sub.join("error_vs_time.png");
         let rgb = chart.to_rgb().map_err(|e| plotting(&png_path, &e))?;
         png(&png_path, plot::CHART_WIDTH, plot::CHART_HEIGHT, &rgb)?;
-        let mut files = table::SceneFiles {
+        written.extend([svg, png_path]);
+        #[cfg(feature = "flip")]
+        let heat_maps = heat_maps(rep, &sub, &name, &mut written)?;
+        // Without FLIP (`flip` feature off) a report has no error maps.
+        #[cfg(not(feature = "flip"))]
+        let heat_maps = Vec::new();
+        let files = table::SceneFiles {
             plot_svg: Some(format!("{name}/error_vs_time.svg")),
             plot_png: Some(format!("{name}/error_vs_time.png")),
-            heat_maps: Vec::new(),
+            heat_maps,
         };
-        written.extend([svg, png_path]);
-        for map in &rep.error_maps {
-            let adaptive = if map.mode.adaptive { "_adaptive" } else { "" };
-            let file = format!(
-                "heat_{}_{}{adaptive}_{}spp.png",
-                map.mode.filter.name(),
-                map.mode.sampler.name(),
-                map.spp
-            );
-            let path = sub.join(&file);
-            let (w, h, rgb) = plot::heat_map(map).map_err(|e| plotting(&path, &e))?;
-            png(&path, w, h, &rgb)?;
-            files
-                .heat_maps
-                .push((map.mode, map.spp, format!("{name}/{file}")));
-            written.push(path);
-        }
         md.push_str(&table::markdown_scene(rep, &files));
     }
     md.push_str(&table::metrics_section());
@@ -115,6 +103,34 @@ pub fn write_outputs(
     write(&md_path, md.as_bytes())?;
     written.push(md_path);
     Ok(written)
+}
+
+/// Writes the heat maps of `rep`'s error maps into `sub` (the scene's folder, `name`), adding
+/// each file to `written`; returns each map's mode, spp and path relative to the report.
+#[cfg(feature = "flip")]
+fn heat_maps(
+    rep: &SceneReport,
+    sub: &Path,
+    name: &str,
+    written: &mut Vec<PathBuf>,
+) -> Result<Vec<(super::Mode, u32, String)>, ReportError> {
+    use crate::names::Named as _;
+    let mut out = Vec::new();
+    for map in &rep.error_maps {
+        let adaptive = if map.mode.adaptive { "_adaptive" } else { "" };
+        let file = format!(
+            "heat_{}_{}{adaptive}_{}spp.png",
+            map.mode.filter.name(),
+            map.mode.sampler.name(),
+            map.spp
+        );
+        let path = sub.join(&file);
+        let (w, h, rgb) = plot::heat_map(map).map_err(|e| plotting(&path, &e))?;
+        png(&path, w, h, &rgb)?;
+        out.push((map.mode, map.spp, format!("{name}/{file}")));
+        written.push(path);
+    }
+    Ok(out)
 }
 
 #[cfg(test)]

@@ -3,7 +3,9 @@
 //! the sans-serif family, so no system font library is involved, and laid out glyph by glyph
 //! in the bitmap, see `Bitmap`), and error heat maps with a colour bar.
 
-use super::{ErrorMap, SceneReport, table};
+#[cfg(feature = "flip")]
+use super::ErrorMap;
+use super::{SceneReport, table};
 use ab_glyph::{Font as _, FontRef, PxScale, ScaleFont as _};
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -433,6 +435,7 @@ pub fn error_vs_time(rep: &SceneReport) -> LogLogChart {
 pub const LEGEND_HEIGHT: u32 = 34;
 
 /// The magma colour map as 256 RGB entries (FLIP's own, from `nv-flip`).
+#[cfg(feature = "flip")]
 #[must_use]
 pub fn magma() -> Vec<Colour> {
     nv_flip::magma_lut()
@@ -448,6 +451,7 @@ pub fn magma() -> Vec<Colour> {
 ///
 /// # Errors
 /// The bundled font cannot be read, or plotters fails.
+#[cfg(feature = "flip")]
 pub fn heat_map(map: &ErrorMap) -> Result<(u32, u32, Vec<u8>), PlotError> {
     font()?;
     let lut = magma();
@@ -579,6 +583,7 @@ mod tests {
         }
     }
 
+    #[cfg(feature = "flip")]
     #[test]
     fn a_heat_map_is_the_error_in_magma_over_a_labelled_bar() {
         let map = ErrorMap {

@@ -185,8 +185,8 @@ pub struct CsvRow<'a> {
     pub rel_mse: Fixed<6>,
     /// Mean SSIM.
     pub ssim: Fixed<6>,
-    /// Mean FLIP.
-    pub flip: Fixed<6>,
+    /// Mean FLIP (empty without the `flip` feature).
+    pub flip: Option<Fixed<6>>,
     /// RMSE of the linear radiance.
     pub rmse_linear: Fixed<7>,
     /// 1 on the Pareto front of (time, RMSE), else 0.
@@ -216,7 +216,7 @@ impl<'a> CsvRow<'a> {
             psnr_db: Fixed(m.psnr),
             rel_mse: Fixed(m.rel_mse),
             ssim: Fixed(m.ssim),
-            flip: Fixed(m.flip),
+            flip: m.flip.map(Fixed),
             rmse_linear: Fixed(m.rmse_linear),
             pareto: u8::from(on_front),
         }
@@ -316,7 +316,7 @@ pub fn markdown_scene(rep: &SceneReport, files: &SceneFiles) -> String {
         let m = r.metrics;
         let _ = writeln!(
             s,
-            "| {} | {} | {} | {} | {:.1} | {:.4} | {:.2} | {:.5} | {:.4} | {:.4} | {:.5} |",
+            "| {} | {} | {} | {} | {:.1} | {:.4} | {:.2} | {:.5} | {:.4} | {} | {:.5} |",
             if front[i] { "★" } else { "" },
             r.mode.name(),
             r.spp,
@@ -326,7 +326,7 @@ pub fn markdown_scene(rep: &SceneReport, files: &SceneFiles) -> String {
             m.psnr,
             m.rel_mse,
             m.ssim,
-            m.flip,
+            m.flip.map_or_else(|| "–".to_owned(), |f| format!("{f:.4}")),
             m.rmse_linear
         );
     }
@@ -414,6 +414,7 @@ mod tests {
             time_min: Duration::from_millis(ms_),
             metrics: Metrics {
                 rmse,
+                flip: Some(0.0),
                 ..Metrics::default()
             },
         }

@@ -649,7 +649,11 @@ fn limits() -> image::Limits {
 /// Decodes an opened image file into its storage: the format from its first bytes (else from
 /// `path`'s extension), Radiance HDR in any of its eight orientations and with any `#?`
 /// signature.
-fn decode(mut file: std::io::BufReader<std::fs::File>, path: &Path, srgb: bool) -> Result<Storage> {
+fn decode(
+    mut file: std::io::BufReader<crate::input::Input>,
+    path: &Path,
+    srgb: bool,
+) -> Result<Storage> {
     use std::io::BufRead;
     let err = |message: String| Error::Image {
         path: path.to_path_buf(),

@@ -369,15 +369,15 @@ fn crate_edges(root: &Path) -> (Vec<Edge>, BTreeSet<String>) {
     let top_modules: BTreeSet<String> = files
         .iter()
         .filter_map(|p| module_path(p.strip_prefix(root).ok()?).first().cloned())
-        .filter(|m| m != "main")
+        .filter(|m| m != "main" && m != "bin")
         .collect();
     let mut edges = Vec::new();
     // Files of `#[cfg(test)] mod x;` declarations: `dir/x.rs` and everything under `dir/x/`.
     let mut test_only: Vec<PathBuf> = Vec::new();
     for p in &files {
         let rel = p.strip_prefix(root).expect("under the root");
-        if rel == Path::new("src/main.rs") {
-            continue; // the binary sits above every layer
+        if rel == Path::new("src/main.rs") || rel.starts_with("src/bin") {
+            continue; // the binaries (the desktop's, the page's) sit above every layer
         }
         let text = std::fs::read_to_string(p).unwrap_or_else(|e| panic!("{}: {e}", p.display()));
         let file = rel.to_string_lossy().replace('\\', "/");

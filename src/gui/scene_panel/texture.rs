@@ -22,11 +22,10 @@ fn asset_dirs(preset: &Path) -> Vec<PathBuf> {
 fn list_images(dirs: &[PathBuf]) -> Vec<PathBuf> {
     let mut out: Vec<PathBuf> = Vec::new();
     for dir in dirs {
-        let Ok(rd) = std::fs::read_dir(dir) else {
+        let Ok(entries) = crate::input::list_dir(dir) else {
             continue;
         };
-        for e in rd.flatten() {
-            let p = e.path();
+        for p in entries {
             let ok = p
                 .extension()
                 .and_then(|e| e.to_str())

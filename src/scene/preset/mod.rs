@@ -106,9 +106,8 @@ pub fn build_scene(desc: &SceneDesc, preset_path: &Path, cache: &mut AssetCache)
 /// # Errors
 /// The directory cannot be read.
 pub fn list_presets(dir: &Path) -> Result<Vec<PathBuf>> {
-    let mut v: Vec<PathBuf> = std::fs::read_dir(dir)
-        .map_err(|e| Error::io(dir, e))?
-        .filter_map(|e| e.ok().map(|e| e.path()))
+    let mut v: Vec<PathBuf> = crate::input::list_dir(dir)?
+        .into_iter()
         .filter(|p| p.extension().is_some_and(|e| e == "ron"))
         .collect();
     v.sort();

@@ -456,6 +456,34 @@ fn a_mesh_without_uv_takes_a_generated_mapping() {
         e.contains("plain.ply has no texture coordinates; choose a generated mapping (spherical, cylindrical, rectangular)"),
         "{e}"
     );
+    // The maps read (u, v) too: a clip, bump or normal map under `Uv` is refused the same way,
+    // naming its field.
+    let generated = torus_scene(&path).replace("UvGrid(mapping: Uv", "UvGrid(mapping: Spherical");
+    for (map, field) in [
+        (
+            "alpha: (texture: Image(path: \"../alpha.png\", mapping: Uv), channel: Alpha)",
+            "alpha.texture",
+        ),
+        (
+            "bump: (height: Image(path: \"h.png\", mapping: Uv), scale: 0.01)",
+            "bump.height",
+        ),
+        (
+            "normal: (map: Image(path: \"n.png\", mapping: Uv))",
+            "normal.map",
+        ),
+    ] {
+        let text = generated.replace(
+            "filter: Bilinear)))",
+            &format!("filter: Bilinear)), {map})"),
+        );
+        let e = scene(&text, &preset).unwrap_err().to_string();
+        assert!(
+            e.contains(&format!("objects[0].{field}: "))
+                && e.contains("plain.ply has no texture coordinates"),
+            "{map}: {e}"
+        );
+    }
     // A checker under the spherical map of the fitted model: both colours cover the torus.
     let text = torus_scene(&path).replace(
         "Matte(cd: UvGrid(mapping: Uv, filter: Bilinear))",

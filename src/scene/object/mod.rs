@@ -320,6 +320,20 @@ pub(super) fn build_object(
         .map_err(|m| bad(format!("{what}.material: {m}")))?;
     if let Some(mesh) = mesh {
         check_uv_mapping(&material_desc, mesh).map_err(|m| bad(format!("{what}.material: {m}")))?;
+        // The maps read (u, v) the same way: a clip, bump or normal map under `Uv` on a mesh
+        // without it is refused like the material's textures.
+        if !mesh.has_uv()
+            && let Some((field, _)) = o.textures().into_iter().find(|(f, t)| {
+                !f.to_string().starts_with("material")
+                    && t.mapping() == Some(crate::mapping::Mapping::Uv)
+            })
+        {
+            return Err(bad(format!(
+                "{what}.{field}: {} has no texture coordinates; choose a generated mapping \
+                 (spherical, cylindrical, rectangular)",
+                mesh.path().display()
+            )));
+        }
     }
     let material = material(&material_desc, base, cache).map_err(within(".material: "))?;
     let name = match (&o.shape, o.name.is_empty()) {

@@ -137,6 +137,14 @@ pub fn set_path(desc: &SceneDesc, path: &str, ron_value: &str) -> Result<SceneDe
     })
     .map_err(|e| format!("`{path}` = {ron_value}: {}", e.0))?;
     check_numbers(&new).map_err(|m| format!("`{path}` = {ron_value}: {m}"))?;
+    // What the preset reader refuses, an edit may not make: another format version.
+    if new.version != crate::scene::PRESET_VERSION {
+        return Err(format!(
+            "`{path}` = {ron_value}: version {} is not supported (this texplore reads version {})",
+            new.version,
+            crate::scene::PRESET_VERSION
+        ));
+    }
     Ok(new)
 }
 
@@ -464,6 +472,16 @@ mod tests {
                 .unwrap_err()
                 .contains("not a field name")
         );
+    }
+
+    #[test]
+    fn an_edit_to_another_format_version_is_refused_as_the_preset_reader_refuses_it() {
+        let e = set_path(&earth(), "version", "7").unwrap_err();
+        assert!(
+            e.contains("`version` = 7: version 7 is not supported (this texplore reads version 1)"),
+            "{e}"
+        );
+        assert!(set_path(&earth(), "version", "1").is_ok());
     }
 
     #[test]

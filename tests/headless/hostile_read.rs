@@ -602,3 +602,30 @@ fn snapshot_check_with_an_unknown_name_fails_naming_it_before_any_render() {
     );
     assert!(start.elapsed() < Duration::from_secs(20));
 }
+
+#[test]
+fn a_preset_chunk_that_is_not_utf8_is_named_as_broken_not_missing() {
+    let dir = tempfile::tempdir().unwrap();
+    let key = texplore::scene::PRESET_CHUNK;
+    // iTXt: keyword, 0, compression flag 0, method 0, empty language, 0, empty translated
+    // keyword, 0, then text that is not UTF-8.
+    let mut data = key.as_bytes().to_vec();
+    data.extend_from_slice(&[0, 0, 0, 0, 0]);
+    data.extend_from_slice(b"(version: 1, \xff\xfe broken)");
+    let p = dir.path().join("broken.png");
+    std::fs::write(&p, png_with(|_| {}, &[chunk(*b"iTXt", &data)])).unwrap();
+    let e = texplore::scene::read_png_preset(&p)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("broken.png") && e.contains("iTXt chunk is not valid text"),
+        "{e}"
+    );
+    // Without the chunk: missing, as before.
+    let q = dir.path().join("plain.png");
+    std::fs::write(&q, png_with(|_| {}, &[])).unwrap();
+    let e = texplore::scene::read_png_preset(&q)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("has no 'texplore-preset' text chunk"), "{e}");
+}

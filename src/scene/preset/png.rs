@@ -65,12 +65,62 @@ pub fn read_png_preset(path: &Path) -> Result<String> {
     }
     // Text chunks may also follow the image data.
     reader.finish().map_err(image_err)?;
-    preset_text(reader.info(), path)?.ok_or_else(|| {
-        Error::invalid(
+    if let Some(text) = preset_text(reader.info(), path)? {
+        return Ok(text);
+    }
+    // The decoder drops a text chunk it cannot read (an iTXt chunk that is not UTF-8): say that
+    // the chunk is there but broken, rather than missing.
+    if let Some(kind) = raw_text_chunk(path)? {
+        return Err(Error::invalid(
             path,
-            format!("this PNG has no '{PRESET_CHUNK}' text chunk (it was not saved by texplore)"),
-        )
-    })
+            format!(
+                "its '{PRESET_CHUNK}' {kind} chunk is not valid text (an iTXt chunk must be UTF-8, \
+                 a tEXt or zTXt chunk Latin-1): the preset cannot be read"
+            ),
+        ));
+    }
+    Err(Error::invalid(
+        path,
+        format!("this PNG has no '{PRESET_CHUNK}' text chunk (it was not saved by texplore)"),
+    ))
+}
+
+/// The type of a text chunk (`tEXt`, `zTXt`, `iTXt`) whose keyword is [`PRESET_CHUNK`], found
+/// by walking the file's chunk headers (each chunk's data is skipped, not read; the walk ends
+/// at `IEND`, at the end of the file or at a header that runs past it).
+fn raw_text_chunk(path: &Path) -> Result<Option<&'static str>> {
+    use std::io::{Read, Seek, SeekFrom};
+    let mut file = crate::input::open_input(path)?;
+    let io = |e: std::io::Error| Error::io(path, e);
+    let len = file.metadata().map_err(io)?.len();
+    let mut pos = 8u64;
+    let key = PRESET_CHUNK.as_bytes();
+    while pos + 12 <= len {
+        file.seek(SeekFrom::Start(pos)).map_err(io)?;
+        let mut header = [0u8; 8];
+        file.read_exact(&mut header).map_err(io)?;
+        let size = u64::from(u32::from_be_bytes([
+            header[0], header[1], header[2], header[3],
+        ]));
+        let kind = match &header[4..] {
+            b"tEXt" => Some("tEXt"),
+            b"zTXt" => Some("zTXt"),
+            b"iTXt" => Some("iTXt"),
+            b"IEND" => return Ok(None),
+            _ => None,
+        };
+        if let Some(kind) = kind
+            && size > key.len() as u64
+        {
+            let mut keyword = vec![0u8; key.len() + 1];
+            file.read_exact(&mut keyword).map_err(io)?;
+            if &keyword[..key.len()] == key && keyword[key.len()] == 0 {
+                return Ok(Some(kind));
+            }
+        }
+        pos += 12 + size;
+    }
+    Ok(None)
 }
 
 /// The preset in `info`'s text chunks, inflated under 16 MiB (`MAX_PRESET_BYTES`).

@@ -32,7 +32,7 @@ mod stages;
 use super::lanes::{self, F, Flat, LANES, V3};
 use crate::camera::Projection;
 use crate::geometry::Shape;
-use crate::mapping::{Mapping, UvAffine};
+use crate::mapping::{AnyMapping, Mapping, UvAffine};
 use crate::material::{Colour, Material, Scalar};
 use crate::math::{Affine3A, INV_PI, Mat3A, Rgb, max_abs};
 use crate::scene::{Scene, natural_mapping};
@@ -240,7 +240,9 @@ fn shading<'a>(material: &'a Material, shape: &Shape) -> Option<Shading<'a>> {
     }
     let mapping = match texture.mapping() {
         None => None,
-        Some(m) => Some(LaneMapping::of(m, shape)?),
+        Some(AnyMapping::Builtin(m)) => Some(LaneMapping::of(*m, shape)?),
+        // A student's formulas run on the scalar path (exmex evaluates one point at a time).
+        Some(AnyMapping::Formula(_)) => return None,
     };
     Some(Shading {
         texture,

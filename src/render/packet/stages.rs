@@ -281,13 +281,17 @@ impl PacketPlan<'_> {
             if !mine[i] || (sh.nearest.is_some() & uv.is_some()) {
                 continue;
             }
+            let p = Vec3A::new(lp.x[i], lp.y[i], lp.z[i]);
             let c = match &uv {
-                Some((u, v)) => sh.texture.eval_tex_coord(TexCoord {
-                    uv: Vec2::new(u[i], v[i]),
-                    duvdx: Vec2::ZERO,
-                    duvdy: Vec2::ZERO,
-                }),
-                None => sh.texture.eval_tex_coord(TexCoord::default()),
+                Some((u, v)) => sh.texture.eval_tex_coord(
+                    TexCoord {
+                        uv: Vec2::new(u[i], v[i]),
+                        duvdx: Vec2::ZERO,
+                        duvdy: Vec2::ZERO,
+                    },
+                    p,
+                ),
+                None => sh.texture.eval_tex_coord(TexCoord::default(), p),
             };
             (tex[0][i], tex[1][i], tex[2][i]) = (c.0, c.1, c.2);
         }

@@ -3,7 +3,8 @@
 //! with their hint; hostile formulas give clear errors or marked pixels; presets and the
 //! command line carry formulas.
 
-use crate::common::{build_with, filtered, render_on, root, sized};
+use crate::common::texplore_json as json;
+use crate::common::{build_with, failure, filtered, render_on, root, sized, success, texplore};
 use glam::{DVec2, DVec3};
 use std::path::Path;
 use std::time::{Duration, Instant};
@@ -199,6 +200,82 @@ fn each_common_mistake_gets_its_hint_and_a_correct_formula_none() {
     let noise = FormulaMapping::new("x * y", "z").expect("compiles");
     assert!(mistakes(&noise, Mapping::Spherical, &sphere, tol).is_empty());
     assert!(agreement(&noise, Mapping::Spherical, &sphere, tol).share() < 0.05);
+}
+
+#[test]
+fn map_formula_prints_the_worked_values_and_compares() {
+    let (u, v) = lecture_formula(Mapping::Spherical).expect("spherical");
+    let own = json(&[
+        "map", "formula", "--u", u, "--v", v, "0.6", "0", "-0.8", "--json",
+    ]);
+    let builtin = json(&["map", "spherical", "0.6", "0", "-0.8", "--json"]);
+    for key in ["u", "v"] {
+        assert!((own[key].as_f64().unwrap() - builtin[key].as_f64().unwrap()).abs() < 1e-12);
+    }
+    assert_eq!(own["column"], builtin["column"]);
+    assert_eq!(own["row"], builtin["row"]);
+    assert_eq!(own["formula"]["derivatives"], "finite-differences");
+    let text = success(&texplore(&[
+        "map",
+        "formula",
+        "--u",
+        u,
+        "--v",
+        "acos(y) / pi",
+        "0.6",
+        "0",
+        "-0.8",
+        "--compare",
+        "spherical",
+    ]));
+    assert!(
+        text.contains(
+            "u = fract(atan2(x, z) / tau) = fract(atan2(0.6000, (-0.8000)) / tau) = 0.3976"
+        ),
+        "{text}"
+    );
+    assert!(
+        text.contains("compared with the spherical mapping:"),
+        "{text}"
+    );
+    assert!(text.contains("theta = acos(y)"), "{text}");
+    assert!(
+        text.contains("difference: |du| = 0.0000, |dv| = 0.0000"),
+        "{text}"
+    );
+    // At the equator the flip changes nothing; over the sphere it does.
+    assert!(text.contains("% agree within one texel"), "{text}");
+    assert!(text.contains("hint: v is upside down"), "{text}");
+    let right = success(&texplore(&[
+        "map",
+        "formula",
+        "--u",
+        u,
+        "--v",
+        v,
+        "0.6",
+        "0.3",
+        "-0.8",
+        "--compare",
+        "spherical",
+    ]));
+    assert!(right.contains("100.0 % agree"), "{right}");
+    assert!(!right.contains("hint:"), "{right}");
+}
+
+#[test]
+fn map_formula_errors_show_the_column_and_a_caret() {
+    let err = failure(&texplore(&[
+        "map", "formula", "--u", "x + w", "--v", "y", "0", "0", "1",
+    ]));
+    assert!(err.contains("--u: column 5: unknown name `w`"), "{err}");
+    assert!(err.contains("x + w\n      ^"), "{err}");
+    let err = failure(&texplore(&["map", "formula", "--u", "x", "0", "0", "1"]));
+    assert!(err.contains("needs both --u and --v"), "{err}");
+    let err = failure(&texplore(&["map", "spherical", "--u", "x", "0", "0", "1"]));
+    assert!(err.contains("--u and --v are for `formula`"), "{err}");
+    let err = failure(&texplore(&["map", "formulae", "0", "0", "1"]));
+    assert!(err.contains("or formula"), "{err}");
 }
 
 /// A preset with a formula mapping and a formula texture saves and loads back the same, and

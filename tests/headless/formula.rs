@@ -129,19 +129,31 @@ fn the_lecture_formulas_render_as_the_builtin_mappings_under_every_filter() {
     }
 }
 
-/// A formula mapping takes the scalar path, and the scene renders the same either way.
+/// A formula mapping runs per lane on the packet path: the image is the scalar path's, the
+/// marked pixels (NaN below the equator, where sqrt(y) is) included.
 #[test]
-fn a_formula_mapping_takes_the_scalar_path_and_renders_the_same() {
+fn a_formula_mapping_renders_the_same_on_the_packet_and_scalar_paths() {
     let path = root().join("presets/earth.ron");
     let (_, own) = preset_pair("earth", Mapping::Spherical);
-    let scene = build_with(&own, &path, sized(64, 48, 1), &mut AssetCache::new());
+    let mut half = own.clone();
+    half.objects[0]
+        .material
+        .texture_mut()
+        .set_mapping(formula("fract(atan2(x, z) / tau) + sqrt(y) * 0", "sqrt(y)"));
     let pool = thread_pool(2).expect("pool");
-    let auto = pool.install(|| render_blocking_with(&scene, SimdMode::Auto, |_| {}));
-    let scalar = pool.install(|| render_blocking_with(&scene, SimdMode::Scalar, |_| {}));
-    let display = |f: &texplore::render::Film| f.to_display(scene.settings.exposure_scale).rgb();
-    assert_eq!(display(&auto), display(&scalar));
-    // The plan still takes the packet path for the rays; the formula's lanes are traced again.
-    assert!(packet_eligibility(&scene, SimdMode::Auto).is_ok());
+    for (desc, marked) in [(own, false), (half, true)] {
+        let scene = build_with(&desc, &path, sized(64, 48, 1), &mut AssetCache::new());
+        assert!(packet_eligibility(&scene, SimdMode::Auto).is_ok());
+        let auto = pool.install(|| render_blocking_with(&scene, SimdMode::Auto, |_| {}));
+        let counted = scene.materials[0].texture().non_finite_count();
+        assert_eq!(counted > 0, marked, "{counted} hits counted");
+        let scalar = pool.install(|| render_blocking_with(&scene, SimdMode::Scalar, |_| {}));
+        let display =
+            |f: &texplore::render::Film| f.to_display(scene.settings.exposure_scale).rgb();
+        assert_eq!(display(&auto), display(&scalar));
+        // Both paths count the same hits.
+        assert_eq!(scene.materials[0].texture().non_finite_count(), 2 * counted);
+    }
 }
 
 /// Each common mistake, written as a student would, gets its hint and no other; the correct

@@ -57,6 +57,23 @@ fn number_end(bytes: &[u8], mut i: usize) -> usize {
     i
 }
 
+/// What is wrong with the number `number` (a value was wanted there if `want_value`).
+fn check_number(number: &str, want_value: bool) -> Result<(), String> {
+    if number.parse::<f64>().is_err() || number.starts_with('.') || number.ends_with('.') {
+        return Err(format!("`{number}` is not a number"));
+    }
+    if number.contains(['e', 'E']) {
+        return Err(format!(
+            "write `{number}` without an exponent (exmex reads plain decimals)"
+        ));
+    }
+    if want_value {
+        Ok(())
+    } else {
+        Err(format!("missing an operator before `{number}`"))
+    }
+}
+
 /// The tokens of `text` over the inputs `vars`, or its first mistake.
 pub(super) fn scan(text: &str, vars: &[&str]) -> Result<Vec<Token>, Mistake> {
     let column = |byte: usize| text[..byte].chars().count() + 1;
@@ -74,16 +91,7 @@ pub(super) fn scan(text: &str, vars: &[&str]) -> Result<Vec<Token>, Mistake> {
         }
         if c.is_ascii_digit() || c == '.' {
             i = number_end(bytes, i);
-            let number = &text[start..i];
-            if number.parse::<f64>().is_err() || number.starts_with('.') || number.ends_with('.') {
-                return Err((column(start), format!("`{number}` is not a number")));
-            }
-            if !want_value {
-                return Err((
-                    column(start),
-                    format!("missing an operator before `{number}`"),
-                ));
-            }
+            check_number(&text[start..i], want_value).map_err(|m| (column(start), m))?;
             want_value = false;
             tokens.push(Token {
                 name: None,
@@ -105,6 +113,20 @@ pub(super) fn scan(text: &str, vars: &[&str]) -> Result<Vec<Token>, Mistake> {
             let name = classify(word, vars).ok_or_else(|| (column(start), unknown(word, vars)))?;
             match name {
                 Name::Function(arity) => {
+                    if let (2, Some((_, Some((outer, _)), _))) = (
+                        arity,
+                        open.iter().find(|(_, call, commas)| {
+                            call.is_some_and(|(_, a)| a == 2) && *commas > 0
+                        }),
+                    ) {
+                        return Err((
+                            column(start),
+                            format!(
+                                "exmex cannot read {word} inside the second argument of {outer}: make it the first \
+                                 (min and max take theirs in either order), e.g. min(max(y, z), x)"
+                            ),
+                        ));
+                    }
                     let rest = text[i..].trim_start();
                     if !rest.starts_with('(') {
                         return Err((

@@ -17,6 +17,7 @@
 mod check;
 pub mod compare;
 mod ops;
+mod program;
 
 pub use check::MAX_NESTING;
 pub use ops::{BINARY, CONSTANTS, FormulaOps, UNARY};
@@ -26,6 +27,8 @@ use crate::math::{Vec2, Vec3A};
 use check::{Name, Token};
 use exmex::prelude::*;
 use glam::{DVec2, DVec3};
+use ops::{Sym, SymOps};
+use program::Program;
 use std::sync::atomic::{AtomicU64, Ordering};
 
 /// The longest formula, in bytes.
@@ -84,6 +87,8 @@ pub struct Expr {
     flat: FlatEx<f64, FormulaOps>,
     /// For each of exmex's variables (alphabetical), the index of the input it reads.
     slots: Vec<usize>,
+    /// What the renderer runs: exmex's evaluation, compiled.
+    program: Program,
     tokens: Vec<Token>,
 }
 
@@ -144,10 +149,28 @@ impl Expr {
                     .ok_or_else(|| format!("unknown name `{n}`"))
             })
             .collect::<Result<Vec<_>, _>>()?;
+        // exmex evaluating the formula over symbols records the tree it evaluates.
+        let symbolic = FlatEx::<Sym, SymOps>::parse(text)
+            .map_err(|e| format!("exmex cannot parse it: {}", e.msg()))?;
+        let sym_slots = symbolic
+            .var_names()
+            .iter()
+            .map(|n| {
+                vars.iter()
+                    .position(|v| v == n)
+                    .ok_or_else(|| format!("unknown name `{n}`"))
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let inputs: Vec<Sym> = (0..sym_slots.len()).map(Sym::Var).collect();
+        let tree = symbolic
+            .eval(&inputs)
+            .map_err(|e| format!("exmex cannot evaluate it: {}", e.msg()))?;
+        let program = Program::compile(&tree, &sym_slots);
         Ok(Self {
             text: text.to_owned(),
             flat,
             slots,
+            program,
             tokens,
         })
     }
@@ -163,6 +186,12 @@ impl Expr {
     #[must_use]
     #[inline]
     pub fn eval(&self, inputs: &[f64]) -> f64 {
+        self.program.eval(inputs)
+    }
+
+    /// The value as exmex itself evaluates it (the program's reference).
+    #[must_use]
+    pub fn eval_exmex(&self, inputs: &[f64]) -> f64 {
         let mut values = [0.0; MAPPING_VARS.len()];
         for (value, &slot) in values.iter_mut().zip(&self.slots) {
             *value = inputs.get(slot).copied().unwrap_or(f64::NAN);
@@ -383,6 +412,27 @@ impl FormulaMapping {
                 };
                 (diff(a.x, b.x), diff(a.y, b.y))
             }
+        }
+    }
+
+    /// (u, v) at the object-space point `p` with the shape's own (u, v) `mesh`, without
+    /// derivatives; NaN (and counted) where not finite.
+    #[must_use]
+    #[inline]
+    pub fn map_uv(&self, p: Vec3A, mesh: Vec2) -> Vec2 {
+        let inputs = [
+            f64::from(p.x),
+            f64::from(p.y),
+            f64::from(p.z),
+            f64::from(mesh.x),
+            f64::from(mesh.y),
+        ];
+        let uv = self.eval(&inputs);
+        if uv.is_finite() {
+            uv.as_vec2()
+        } else {
+            self.non_finite.fetch_add(1, Ordering::Relaxed);
+            Vec2::NAN
         }
     }
 

@@ -28,6 +28,12 @@ fn mistakes_are_found_with_their_column() {
         ("PI * x", 1, "(write pi)"),
         ("min(x, )", 8, "missing a value before `)`"),
         ("x, y", 2, "outside a function's arguments"),
+        ("x * 1e-3", 5, "write `1e-3` without an exponent"),
+        (
+            "min(x, 1 + max(y, z))",
+            12,
+            "exmex cannot read max inside the second argument of min",
+        ),
     ] {
         let e = err(text);
         assert_eq!(e.column, Some(column), "{text}: {e}");
@@ -203,4 +209,48 @@ fn the_worked_formula_substitutes_the_point() {
         "u = fract(atan2(x, z) / tau) = fract(atan2((-0.6000), 0.8000) / tau) = 0.8976"
     );
     assert_eq!(lines[1], "v = (y + 1) / 2 = (0.5000 + 1) / 2 = 0.7500");
+}
+
+/// The compiled program gives exmex's own value, bit for bit, on formulas of every operator,
+/// precedence and unary minus (exmex's rules: `-x^2` is (-x)^2), and on their derivatives.
+#[test]
+fn the_program_is_exmex_bit_for_bit() {
+    let formulas = [
+        "fract(atan2(x, z) / tau)",
+        "1 - acos(y / sqrt(x*x + y*y + z*z)) / pi",
+        "-x^2 + 2^3^2 - y / z / 2 * 3",
+        "x - -y * -z",
+        "min(max(y, z), x) + abs(sign(x - y)) * clamp(z * 3)",
+        "floor(8 * x) + ceil(y) - round(z * 2.5) + fract(-x)",
+        "sin(x) * cos(y) / tan(z + 2) + exp(-x * x) - ln(2 + y) + atan(z) + asin(x / 2)",
+        "(((x + 1) * (y - 1)) / ((z + 2) * 0.5)) ^ 2",
+        "0.001 * x + 250.5 * mesh_u - mesh_v / 10",
+        "pi * tau - 2 * pi * x",
+        "1 / 0 + acos(2)",
+    ];
+    let points = [
+        [0.3, -0.4, 0.5, 0.2, 0.7],
+        [-0.6, 0.1, 0.2, 0.9, 0.1],
+        [0.0, 0.0, 0.0, 0.0, 0.0],
+        [1.7, -2.5, 0.75, -3.0, 12.0],
+    ];
+    for text in formulas {
+        let e = Expr::compile("u", text, &MAPPING_VARS).expect(text);
+        let mut exprs = vec![e.clone()];
+        for k in 0..5 {
+            if let Ok(Some(d)) = e.partial(k, &MAPPING_VARS) {
+                exprs.push(d);
+            }
+        }
+        for d in &exprs {
+            for p in &points {
+                let (a, b) = (d.eval(p), d.eval_exmex(p));
+                assert!(
+                    a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan()),
+                    "{} at {p:?}: program {a}, exmex {b}",
+                    d.text()
+                );
+            }
+        }
+    }
 }

@@ -270,12 +270,21 @@ impl PacketPlan<'_> {
         // baseline instead of the dispatched level.
         #[allow(clippy::manual_map)]
         let uv = match sh.mapping {
-            Some(m) => Some(map_lanes(self, m, sh.affine.as_ref(), lp)),
+            Some(m) => Some(map_lanes(self, m, sh.affine.as_ref(), lp, mine)),
             None => None,
         };
         let mut tex = [[0.0; LANES]; 3];
         if let (Some(n), Some((u, v))) = (&sh.nearest, &uv) {
             tex = n.sample(u, v, mine);
+            if matches!(sh.mapping, Some(super::LaneMapping::Formula(..))) {
+                // Where a formula is not finite: the mark, as `ImageTexture::eval` gives it.
+                let mark = crate::texture::mark();
+                for i in 0..LANES {
+                    if mine[i] && (u[i].is_nan() || v[i].is_nan()) {
+                        (tex[0][i], tex[1][i], tex[2][i]) = (mark.0, mark.1, mark.2);
+                    }
+                }
+            }
         }
         for i in 0..LANES {
             if !mine[i] || (sh.nearest.is_some() & uv.is_some()) {

@@ -1,9 +1,10 @@
 //! Formulas a student writes: a mapping `u = ..., v = ...` over the local hit point, or a
-//! texture's colour over (u, v). Parsed, evaluated and differentiated by exmex ([`ops`] lists
-//! the operators), compiled once when the scene is built, never per ray.
+//! texture's colour over (u, v). Parsed, evaluated and differentiated by exmex (`ops.rs` lists
+//! the operators), compiled once when the scene is built into a flat program (`program.rs`),
+//! never per ray.
 //!
 //! A formula is at most [`MAX_FORMULA_BYTES`] long and nested at most [`MAX_NESTING`] deep;
-//! its mistakes come back as a [`FormulaError`] with the column ([`check`] scans the tokens
+//! its mistakes come back as a [`FormulaError`] with the column (`check.rs` scans the tokens
 //! before exmex parses). A point where it gives NaN or an infinity is counted
 //! ([`FormulaMapping::non_finite_count`]) and the texture marks the pixel
 //! ([`NON_FINITE_MARK`]).

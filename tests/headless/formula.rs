@@ -413,6 +413,31 @@ fn hostile_formulas_give_clear_errors_or_marked_pixels() {
     }
 }
 
+/// `texplore render` says where a formula was not finite.
+#[test]
+fn render_warns_of_a_formula_that_is_not_finite() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let preset = dir.path().join("nan.ron");
+    std::fs::write(
+        &preset,
+        r#"(version: 1, camera: (eye: (0, 0, 3)), render: (width: 16, height: 16, spp: 1),
+          objects: [(name: "ball", shape: Sphere, material: Matte(cd: Formula(grey: "sqrt(y)")))])"#,
+    )
+    .expect("write");
+    let out = texplore(&[
+        "render",
+        preset.to_str().expect("utf-8"),
+        "-o",
+        dir.path().join("nan.png").to_str().expect("utf-8"),
+    ]);
+    let err = String::from_utf8_lossy(&out.stderr).into_owned();
+    success(&out);
+    assert!(
+        err.contains("warning: objects[0] (ball): its texture's formula was NaN or infinite at"),
+        "{err}"
+    );
+}
+
 /// A formula texture: the lecture's checker written with floor matches the built-in checker.
 #[test]
 fn the_checker_written_with_floor_is_the_builtin_checker() {

@@ -108,7 +108,7 @@ fn filters(c: &mut Criterion) {
     for &filter in Filter::VARIANTS {
         let tex = ImageTexture {
             image: image.clone(),
-            mapping: Mapping::Spherical,
+            mapping: Mapping::Spherical.into(),
             filter,
             lookup: Lookup::Centred,
             wrap: Wrap::Repeat,

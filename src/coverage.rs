@@ -11,7 +11,7 @@
 //! footprint filters (trilinear, EWA) the texels of level 0 under the pixel's footprint.
 
 use crate::geometry::Shape;
-use crate::mapping::{Mapping, TexCoord};
+use crate::mapping::{AnyMapping, Mapping, TexCoord};
 use crate::math::Vec2;
 use crate::render::{Cancelled, PoolError, thread_pool};
 use crate::scene::Scene;
@@ -52,7 +52,7 @@ pub struct UvField {
     pub pixels: Vec<Option<PixelUv>>,
     /// Each object's mapping in effect (after `uv` falls back to the shape's natural one) for
     /// the pixels that hit it; `None` for constant colours.
-    pub mappings: Vec<Option<Mapping>>,
+    pub mappings: Vec<Option<AnyMapping>>,
 }
 
 /// The texture an object's material reads (its diffuse or emitted colour).
@@ -88,8 +88,8 @@ impl UvField {
     /// [`FieldError::Pool`] when no worker pool could be had.
     pub fn compute(scene: &Scene, cancel: &AtomicBool) -> Result<Self, FieldError> {
         let (w, h) = (scene.settings.width, scene.settings.height);
-        let mappings: Vec<Option<Mapping>> = (0..scene.objects.len())
-            .map(|i| object_texture(scene, i).and_then(Texture::mapping))
+        let mappings: Vec<Option<AnyMapping>> = (0..scene.objects.len())
+            .map(|i| object_texture(scene, i).and_then(Texture::mapping).cloned())
             .collect();
         let pool = thread_pool(0).map_err(FieldError::Pool)?;
         let mut pixels = vec![None; w as usize * h as usize];
@@ -112,10 +112,10 @@ impl UvField {
             .iter()
             .zip(&scene.objects)
             .map(|(m, obj)| {
-                m.map(|m| match (m, &obj.shape) {
-                    (Mapping::Uv, Shape::Mesh(mesh)) if mesh.mesh.has_uv() => Mapping::Uv,
-                    (Mapping::Uv, shape) => crate::scene::natural_mapping(shape),
-                    (m, _) => m,
+                m.as_ref().map(|m| match (m.builtin(), &obj.shape) {
+                    (Some(Mapping::Uv), Shape::Mesh(mesh)) if mesh.mesh.has_uv() => m.clone(),
+                    (Some(Mapping::Uv), shape) => crate::scene::natural_mapping(shape).into(),
+                    _ => m.clone(),
                 })
             })
             .collect();
@@ -150,11 +150,11 @@ pub enum FieldError {
 
 /// The ray through the centre of pixel (x, y), as [`Scene::inspect`] casts it: the object hit
 /// and its texture coordinates with the footprint's derivatives.
-fn pixel_uv(scene: &Scene, mappings: &[Option<Mapping>], x: u32, y: u32) -> Option<PixelUv> {
+fn pixel_uv(scene: &Scene, mappings: &[Option<AnyMapping>], x: u32, y: u32) -> Option<PixelUv> {
     let pixel = Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
     let (ray, diff) = scene.camera.ray(pixel, 1.0)?;
     let hit = scene.hit(&ray)?;
-    let mapping = (*mappings.get(hit.object)?)?;
+    let mapping = mappings.get(hit.object)?.as_ref()?;
     let obj = &scene.objects[hit.object];
     let d = if obj.identity {
         diff
@@ -493,8 +493,9 @@ pub fn iso_lines(field: &UvField, divisions: u32) -> IsoLines {
     for y in 0..h {
         for x in 0..w {
             let Some(p) = field.at(x, y) else { continue };
-            let mapping = field.mappings.get(p.object).copied().flatten();
-            let periodic = mapping.is_some_and(Mapping::u_is_periodic);
+            let mapping = field.mappings.get(p.object).and_then(Option::as_ref);
+            // A formula's u may wrap with fract: a jump of more than half is its seam too.
+            let periodic = mapping.is_some_and(|m| m.u_is_periodic() || m.builtin().is_none());
             let mut f = 0;
             for (nx, ny) in [(x + 1, y), (x, y + 1)] {
                 let Some(q) = field.at(nx, ny).filter(|q| q.object == p.object) else {
@@ -512,7 +513,7 @@ pub fn iso_lines(field: &UvField, divisions: u32) -> IsoLines {
                     runs.entry((false, k)).or_default().push((x, y));
                 }
             }
-            if mapping.is_some_and(Mapping::v_clamps) {
+            if mapping.is_some_and(AnyMapping::v_clamps) {
                 // The footprint's reach in v, or (without ray differentials: nearest and
                 // bilinear lookups) the step in v to the neighbouring pixels, so a pole between
                 // pixel centres still marks the pixel nearest it.

@@ -6,7 +6,7 @@
 
 use crate::geometry::Shape;
 use crate::mapping::explain_number;
-use crate::mapping::{Mapping, TexCoord, explain_mapping};
+use crate::mapping::{AnyMapping, Mapping, TexCoord, explain_mapping};
 use crate::math::Vec3;
 use crate::math::{Rgb, Vec2, Vec3A};
 use crate::names::Named as _;
@@ -97,10 +97,11 @@ pub struct Inspection {
     pub mapping_point: Vec3A,
     /// The kind of texture ("constant", "image", "checker").
     pub texture_kind: &'static str,
-    /// The mapping in effect (after `uv` falls back to the shape's natural one); `None` for a
-    /// constant colour.
+    /// The built-in mapping in effect (after `uv` falls back to the shape's natural one);
+    /// `None` for a constant colour or a formula mapping.
     pub mapping: Option<Mapping>,
-    /// The mapping's formula with this hit's numbers.
+    /// The mapping's formula with this hit's numbers (a formula mapping's own formulas with
+    /// the numbers substituted, and which derivatives it uses).
     pub mapping_lines: Vec<String>,
     /// Texture coordinates and their screen-space derivatives.
     pub tex: Option<TexCoord>,
@@ -144,29 +145,23 @@ impl Scene {
         let ctx = self.texture_context_at(&hit, dpdx, dpdy);
         let material = &self.materials[obj.material];
         let texture = material.texture();
-        let (kind, mapping, image) = match texture {
-            Texture::Constant(_) => ("constant", None, None),
-            Texture::Checker(c) => ("checker", Some(c.mapping), None),
-            Texture::Image(t) => (
-                "image",
-                Some(t.mapping),
-                Some(ImageRead {
-                    image: t.image.clone(),
-                    filter: t.filter,
-                    lookup: t.lookup,
-                    wraps: t.wraps(),
-                }),
-            ),
-        };
+        let (kind, mapping, image) = texture_parts(texture);
         // `uv` without coordinates of the shape's own means its natural mapping.
-        let effective = mapping.map(|m| match (m, ctx.shape_uv) {
-            (Mapping::Uv, None) => ctx.natural,
-            (m, _) => m,
-        });
+        let effective = mapping
+            .and_then(AnyMapping::builtin)
+            .map(|m| match (m, ctx.shape_uv) {
+                (Mapping::Uv, None) => ctx.natural,
+                (m, _) => m,
+            });
+        let formula = match mapping {
+            Some(AnyMapping::Formula(f)) => Some(f),
+            _ => None,
+        };
         let tex = texture.tex_coord(&ctx);
         // A mesh under a generated mapping: the model is fitted into [-1, 1]^3 first.
-        let fit_lines = match (&obj.shape, effective) {
-            (Shape::Mesh(m), Some(e)) if e != Mapping::Uv => {
+        let generated = formula.is_some() || effective.is_some_and(|e| e != Mapping::Uv);
+        let fit_lines = match &obj.shape {
+            Shape::Mesh(m) if generated => {
                 let (c, s) = m.mesh.mapping_frame();
                 let v3 = |v: Vec3A| {
                     format!(
@@ -188,7 +183,12 @@ impl Scene {
             }
             _ => Vec::new(),
         };
-        let mapping_lines = match (effective, mapping) {
+        let mapping_lines = match (effective, mapping.and_then(AnyMapping::builtin)) {
+            _ if let Some(f) = formula => {
+                let mut lines = fit_lines;
+                lines.extend(formula_lines(f, &ctx));
+                lines
+            }
             (Some(Mapping::Uv), _) => vec!["(u, v) carried by the shape's vertices".to_owned()],
             (Some(e), Some(m)) => {
                 // The point the mapping reads: for meshes, the fitted one.
@@ -289,6 +289,52 @@ impl Scene {
     }
 }
 
+/// A texture's kind in a word, its mapping and the image it reads (if any).
+fn texture_parts(texture: &Texture) -> (&'static str, Option<&AnyMapping>, Option<ImageRead>) {
+    match texture {
+        Texture::Constant(_) => ("constant", None, None),
+        Texture::Checker(c) => ("checker", Some(&c.mapping), None),
+        Texture::Formula(f) => ("formula", Some(&f.mapping), None),
+        Texture::Image(t) => (
+            "image",
+            Some(&t.mapping),
+            Some(ImageRead {
+                image: t.image.clone(),
+                filter: t.filter,
+                lookup: t.lookup,
+                wraps: t.wraps(),
+            }),
+        ),
+    }
+}
+
+/// A formula mapping's worked formulas at the hit of `ctx`: each with the point's numbers (and
+/// the shape's own (u, v) as mesh_u, mesh_v) substituted, and which derivatives it uses.
+fn formula_lines(
+    f: &crate::mapping::FormulaMapping,
+    ctx: &crate::texture::TextureContext,
+) -> Vec<String> {
+    let own = Mapping::Uv.map_with_differentials(
+        ctx.p,
+        Vec3A::ZERO,
+        Vec3A::ZERO,
+        ctx.shape_uv,
+        ctx.natural,
+    );
+    let p = ctx.p.as_dvec3();
+    let inputs = [p.x, p.y, p.z, f64::from(own.uv.x), f64::from(own.uv.y)];
+    let mut lines = Vec::new();
+    if f.reads_mesh() {
+        lines.push(format!(
+            "mesh_u = {}, mesh_v = {} (the shape's own (u, v))",
+            explain_number(inputs[3]),
+            explain_number(inputs[4])
+        ));
+    }
+    lines.extend(f.explain(&inputs).0);
+    lines
+}
+
 /// The angles of the lecture's mapping formulas at one point, for the mapping diagram: what the
 /// generic object's drawing marks. Each is `None` where the mapping has no such angle.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -371,8 +417,8 @@ pub fn mapping_hints(scene: &Scene, object: usize) -> Vec<String> {
     let aspect = f64::from(w) / f64::from(h);
     let ratio = ratio_words(w, h);
     let mut hints = Vec::new();
-    match t.mapping {
-        Mapping::Spherical if (aspect - 2.0).abs() > 0.02 => hints.push(format!(
+    match t.mapping.builtin() {
+        Some(Mapping::Spherical) if (aspect - 2.0).abs() > 0.02 => hints.push(format!(
             "this image is {ratio} ({w} x {h}), but the spherical map spreads its width over \
              360 degrees of longitude and its height over 180 of latitude: only a 2:1 image \
              keeps its shapes (its shapes come out {:.2} times {})",
@@ -383,13 +429,13 @@ pub fn mapping_hints(scene: &Scene, object: usize) -> Vec<String> {
                 "too narrow"
             }
         )),
-        Mapping::LightProbe => hints.push(
+        Some(Mapping::LightProbe) => hints.push(
             "the light probe looks along +z: alpha = acos(z) is 0 at the image centre. A \
              probe made for a panorama looks along -z; its variant `panoramic` flips z (alpha \
              = acos(-z)), so the centre of the image lands behind the viewer"
                 .to_owned(),
         ),
-        Mapping::Panoramic => hints.push(
+        Some(Mapping::Panoramic) => hints.push(
             "panoramic: the light probe with z flipped (alpha = acos(-z)): the image centre \
              is the direction -z. Switch to `light-probe` to see the lecture's +z convention"
                 .to_owned(),
@@ -397,8 +443,8 @@ pub fn mapping_hints(scene: &Scene, object: usize) -> Vec<String> {
         _ => {}
     }
     if matches!(
-        t.mapping,
-        Mapping::LightProbe | Mapping::Panoramic | Mapping::MirrorBall
+        t.mapping.builtin(),
+        Some(Mapping::LightProbe | Mapping::Panoramic | Mapping::MirrorBall)
     ) && (aspect - 1.0).abs() > 0.02
     {
         hints.push(format!(
@@ -406,7 +452,7 @@ pub fn mapping_hints(scene: &Scene, object: usize) -> Vec<String> {
              the disc is squeezed into an ellipse"
         ));
     }
-    if t.mapping == Mapping::Rectangular && (aspect - 1.0).abs() > 0.02 {
+    if t.mapping.builtin() == Some(Mapping::Rectangular) && (aspect - 1.0).abs() > 0.02 {
         hints.push(format!(
             "the rectangular map puts the whole {ratio} image on the square [-1, 1]^2: its \
              aspect is kept only if the object is scaled {ratio} too"
@@ -609,7 +655,7 @@ mod tests {
         desc.render.height = 60;
         for o in &mut desc.objects {
             if let crate::scene::TextureDesc::Image { mapping, .. } = o.material.texture_mut() {
-                *mapping = Mapping::Rectangular;
+                *mapping = Mapping::Rectangular.into();
             }
         }
         let scene = build_scene(&desc, &path, &mut AssetCache::new()).expect("build");

@@ -160,7 +160,14 @@ mod tests {
         );
         assert_eq!(
             round_trips::<TextureKind>(),
-            ["Constant", "Image", "Checker", "UV grid", "Mesh material"]
+            [
+                "Constant",
+                "Image",
+                "Checker",
+                "UV grid",
+                "Mesh material",
+                "Formula"
+            ]
         );
         assert_eq!(
             round_trips::<MaterialKind>(),

@@ -58,10 +58,7 @@ pub fn run(command: Command) -> Result<()> {
     match command {
         Command::Render(a) => render::run(&a),
         Command::Snapshot(a) => snapshot::run(&a),
-        Command::Map(a) => {
-            map::run(&a);
-            Ok(())
-        }
+        Command::Map(a) => map::run(&a),
         Command::Probe(a) => probe::run(&a),
         Command::Bench(a) => bench::run(&a),
         Command::MeshInfo(a) => mesh_info::run(&a),

@@ -145,6 +145,16 @@ pub fn run(a: &RenderArgs) -> Result<()> {
             pool.current_num_threads()
         );
     }
+    // A student's formula that is NaN or infinite somewhere: the pixels are magenta; say why.
+    for (i, obj) in scene.objects.iter().enumerate() {
+        let n = scene.materials[obj.material].texture().non_finite_count();
+        if n > 0 {
+            eprintln!(
+                "warning: objects[{i}] ({}): its texture's formula was NaN or infinite at {n} hits, drawn magenta",
+                obj.name
+            );
+        }
+    }
     Ok(())
 }
 

@@ -194,7 +194,7 @@ impl<T: Clone + PartialEq> History<T> {
 
 fn filter_of(t: &TextureDesc) -> Option<Filter> {
     match t {
-        TextureDesc::Constant(_) => None,
+        TextureDesc::Constant(_) | TextureDesc::Formula { .. } => None,
         TextureDesc::Image { filter, .. }
         | TextureDesc::Checker { filter, .. }
         | TextureDesc::MeshMaterial { filter, .. }
@@ -460,7 +460,7 @@ mod tests {
         b.objects[0]
             .material
             .texture_mut()
-            .set_mapping(Mapping::Cylindrical);
+            .set_mapping(Mapping::Cylindrical.into());
         assert_eq!(describe(&a, &b), format!("mapping of {name}"));
 
         let mut b = a.clone();

@@ -489,14 +489,14 @@ mod tests {
         let d = set_path(&earth(), "objects[0].material.cd.mapping", "Cylindrical").unwrap();
         assert_eq!(
             d.objects[0].material.texture().mapping(),
-            Some(crate::mapping::Mapping::Cylindrical)
+            Some(&crate::mapping::Mapping::Cylindrical.into())
         );
         // Nothing else changed.
         let mut back = d.clone();
         back.objects[0]
             .material
             .texture_mut()
-            .set_mapping(crate::mapping::Mapping::Spherical);
+            .set_mapping(crate::mapping::Mapping::Spherical.into());
         assert_eq!(back, earth());
     }
 

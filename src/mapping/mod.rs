@@ -7,11 +7,97 @@
 //! dp/dx and dp/dy. No finite differences: those jump across the seam (u going 1 -> 0).
 
 mod explain;
+pub mod formula;
 
 pub use explain::{explain_mapping, explain_mapping_f64, explain_number, map_uv_f64};
+pub use formula::{DerivativeKind, FormulaError, FormulaMapping};
 
 use crate::math::{PI, TAU, Vec2, Vec3A, atan2};
 use serde::{Deserialize, Serialize};
+use std::sync::Arc;
+
+/// A texture's mapping at run time: a built-in [`Mapping`] or a student's formulas, compiled
+/// once when the scene is built.
+#[derive(Clone, Debug, PartialEq)]
+pub enum AnyMapping {
+    /// One of the lecture's mappings.
+    Builtin(Mapping),
+    /// `u = ..., v = ...` as written (see [`formula`]).
+    Formula(Arc<FormulaMapping>),
+}
+
+impl From<Mapping> for AnyMapping {
+    fn from(m: Mapping) -> Self {
+        Self::Builtin(m)
+    }
+}
+
+impl AnyMapping {
+    /// The menu name: the built-in mapping's, or `formula`.
+    #[must_use]
+    pub fn name(&self) -> &'static str {
+        match self {
+            Self::Builtin(m) => crate::names::Named::name(*m),
+            Self::Formula(_) => "formula",
+        }
+    }
+
+    /// The built-in mapping, `None` for a formula.
+    #[must_use]
+    pub const fn builtin(&self) -> Option<Mapping> {
+        match self {
+            Self::Builtin(m) => Some(*m),
+            Self::Formula(_) => None,
+        }
+    }
+
+    /// Whether u wraps around a seam regardless of the texture's wrap mode (a formula's
+    /// coordinates follow the texture's own wrap mode).
+    #[must_use]
+    pub const fn u_is_periodic(&self) -> bool {
+        match self {
+            Self::Builtin(m) => m.u_is_periodic(),
+            Self::Formula(_) => false,
+        }
+    }
+
+    /// Whether v clamps regardless of the wrap mode.
+    #[must_use]
+    pub const fn v_clamps(&self) -> bool {
+        match self {
+            Self::Builtin(m) => m.v_clamps(),
+            Self::Formula(_) => false,
+        }
+    }
+
+    /// Texture coordinates of a hit with their screen-space derivatives, as
+    /// [`Mapping::map_with_differentials`]. A formula reads the shape's own (u, v) as mesh_u,
+    /// mesh_v (a mesh's vertex coordinates, else the `natural` mapping); where it is not
+    /// finite, (u, v) is NaN (the texture marks the pixel).
+    #[must_use]
+    #[inline]
+    pub fn map_with_differentials(
+        &self,
+        p: Vec3A,
+        dpdx: Vec3A,
+        dpdy: Vec3A,
+        shape_uv: Option<(Vec2, Option<(Vec3A, Vec3A)>)>,
+        natural: Mapping,
+    ) -> TexCoord {
+        match self {
+            Self::Builtin(m) => m.map_with_differentials(p, dpdx, dpdy, shape_uv, natural),
+            Self::Formula(f) => {
+                let mesh = if f.reads_mesh() {
+                    let tc = Mapping::Uv.map_with_differentials(p, dpdx, dpdy, shape_uv, natural);
+                    (tc.uv, tc.duvdx, tc.duvdy)
+                } else {
+                    (Vec2::ZERO, Vec2::ZERO, Vec2::ZERO)
+                };
+                f.tex_coord(p, dpdx, dpdy, mesh)
+            }
+        }
+    }
+}
 
 /// How a hit point becomes texture coordinates.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]

@@ -2,8 +2,8 @@
 //! gradient" form): the height's gradient on the surface, from its filtered (u, v) derivatives
 //! chained through the mapping's gradients of u and v, is subtracted from the normal.
 
-use crate::mapping::Mapping;
 use crate::mapping::TexCoord;
+use crate::mapping::{AnyMapping, Mapping};
 use crate::math::Vec3A;
 use crate::texture::{Texture, TextureContext};
 
@@ -36,7 +36,7 @@ impl Bump {
             let mut t = tc;
             t.uv.x += du;
             t.uv.y += dv;
-            self.height.eval_tex_coord(t).luminance()
+            self.height.eval_tex_coord(t, ctx.p).luminance()
         };
         let h0 = h(0.0, 0.0);
         // Differences at the level of f32 rounding (a filter averaging a flat texture) are no
@@ -64,17 +64,40 @@ pub fn uv_gradients(texture: &Texture, ctx: &TextureContext) -> Option<(TexCoord
     let (Some(mapping), Some(tc)) = (texture.mapping(), texture.tex_coord(ctx)) else {
         return None;
     };
-    // Gradients of the mapping's u and v with respect to the object-space point.
-    let (gu, gv) = match (mapping, ctx.shape_uv) {
-        (Mapping::Uv, Some((_, Some((dpdu, dpdv))))) => dual_basis(dpdu, dpdv),
-        (Mapping::Uv, Some((_, None))) => return None,
-        (Mapping::Uv, None) => {
+    // Gradients of the shape's own (u, v) with respect to the object-space point.
+    let own = || match ctx.shape_uv {
+        Some((_, Some((dpdu, dpdv)))) => Some(dual_basis(dpdu, dpdv)),
+        Some((_, None)) => None,
+        None => {
             let m = ctx.natural.map_point(ctx.p);
-            (m.grad_u, m.grad_v)
+            Some((m.grad_u, m.grad_v))
         }
-        (m, _) => {
+    };
+    // Gradients of the mapping's u and v with respect to the object-space point.
+    let (gu, gv) = match mapping {
+        AnyMapping::Builtin(Mapping::Uv) => own()?,
+        AnyMapping::Builtin(m) => {
             let m = m.map_point(ctx.p);
             (m.grad_u, m.grad_v)
+        }
+        AnyMapping::Formula(f) => {
+            // The chain rule through mesh_u, mesh_v where the formula reads them.
+            let (mu, mv) = if f.reads_mesh() {
+                own()?
+            } else {
+                (Vec3A::ZERO, Vec3A::ZERO)
+            };
+            let mesh = Mapping::Uv
+                .map_with_differentials(ctx.p, Vec3A::ZERO, Vec3A::ZERO, ctx.shape_uv, ctx.natural)
+                .uv;
+            let p = ctx.p.as_dvec3();
+            let g = f.gradients(&[p.x, p.y, p.z, f64::from(mesh.x), f64::from(mesh.y)]);
+            let grad = |r: &[f64; 5]| {
+                let direct = Vec3A::new(r[0] as f32, r[1] as f32, r[2] as f32);
+                let g = direct + r[3] as f32 * mu + r[4] as f32 * mv;
+                if g.is_finite() { g } else { Vec3A::ZERO }
+            };
+            (grad(&g[0]), grad(&g[1]))
         }
     };
     // Through the texture's (u, v) transform: u' = a u + b v, v' = c u + d v.

@@ -62,7 +62,7 @@ impl NormalMap {
         if t == Vec3A::ZERO || b == Vec3A::ZERO {
             return n;
         }
-        let m = decode_normal(self.map.eval_tex_coord(tc));
+        let m = decode_normal(self.map.eval_tex_coord(tc, ctx.p));
         let m = Vec3A::new(m.x * self.strength, m.y * self.strength, m.z);
         if m.x.abs() <= FLAT && m.y.abs() <= FLAT {
             // A flat texel (up to the rounding of 128 / 255): the normal exactly as it was.

@@ -10,6 +10,7 @@ mod assets;
 mod camera;
 mod field;
 mod light;
+mod mapping;
 mod material;
 mod object;
 mod preset;
@@ -22,6 +23,7 @@ pub use assets::{AssetCache, DISPLACED_KEPT, UV_GRID_SIZE};
 pub use camera::{CameraDesc, ProjectionDesc, ProjectionKind};
 pub use field::{FieldPath, Step};
 pub use light::{AmbientDesc, LightDesc, LightKind};
+pub use mapping::MappingDesc;
 pub use material::{
     ChannelDesc, ColorDesc, MaterialDesc, MaterialKind, ParamMut, ParamRef, ScalarDesc,
 };

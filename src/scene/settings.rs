@@ -301,7 +301,8 @@ pub fn apply_overrides(desc: &mut SceneDesc, o: Overrides) {
                     *max_anisotropy = o.max_anisotropy.unwrap_or(*max_anisotropy);
                 }
                 TextureDesc::Checker { filter, .. } => *filter = o.filter.unwrap_or(*filter),
-                TextureDesc::Constant(_) => {}
+                // Point-sampled formulas have no filter.
+                TextureDesc::Constant(_) | TextureDesc::Formula { .. } => {}
             }
         }
     }

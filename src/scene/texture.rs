@@ -2,6 +2,7 @@
 //! build of the runtime [`Texture`] (images through the [`AssetCache`]).
 
 use super::assets::AssetCache;
+use super::mapping::MappingDesc;
 use super::values::{finite_non_negative, one, yes};
 use crate::error::{Error, Result};
 use crate::mapping::{Mapping, UvAffine, UvTransform};
@@ -10,8 +11,10 @@ use crate::texture::{
     Checker, DEFAULT_MAX_ANISOTROPY, Filter, ImageTexture, Lookup, MAX_ANISOTROPY_LIMIT, Texture,
     Wrap,
 };
+use crate::texture::{FormulaColour, FormulaTexture};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
+use std::sync::Arc;
 
 /// Where a material's colour comes from. Colours and texel values are linear RGB.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -25,7 +28,7 @@ pub enum TextureDesc {
         path: String,
         /// How hit points become (u, v).
         #[serde(default)]
-        mapping: Mapping,
+        mapping: MappingDesc,
         /// How texels are combined.
         #[serde(default)]
         filter: Filter,
@@ -52,7 +55,7 @@ pub enum TextureDesc {
     Checker {
         /// How hit points become (u, v).
         #[serde(default)]
-        mapping: Mapping,
+        mapping: MappingDesc,
         /// Squares along u and along v over [0, 1].
         #[serde(default = "default_squares")]
         squares: (f32, f32),
@@ -73,7 +76,7 @@ pub enum TextureDesc {
     MeshMaterial {
         /// How hit points become (u, v).
         #[serde(default = "uv_mapping")]
-        mapping: Mapping,
+        mapping: MappingDesc,
         /// How texels are combined.
         #[serde(default)]
         filter: Filter,
@@ -94,7 +97,7 @@ pub enum TextureDesc {
     UvGrid {
         /// How hit points become (u, v).
         #[serde(default)]
-        mapping: Mapping,
+        mapping: MappingDesc,
         /// How texels are combined.
         #[serde(default)]
         filter: Filter,
@@ -108,11 +111,37 @@ pub enum TextureDesc {
         #[serde(default, skip_serializing_if = "UvTransform::is_identity")]
         uv: UvTransform,
     },
+    /// Colour formulas over u, v and the local hit point x, y, z (see `mapping::formula`):
+    /// one `grey`, or `r`, `g` and `b` (linear). Point-sampled; where a formula is NaN or
+    /// infinite the pixel is magenta.
+    Formula {
+        /// How hit points become (u, v).
+        #[serde(default)]
+        mapping: MappingDesc,
+        /// One formula for all three channels (leave r, g, b empty).
+        #[serde(default, skip_serializing_if = "String::is_empty")]
+        grey: String,
+        /// The red channel's formula (with g and b, instead of grey).
+        #[serde(default, skip_serializing_if = "String::is_empty")]
+        r: String,
+        /// The green channel's formula.
+        #[serde(default, skip_serializing_if = "String::is_empty")]
+        g: String,
+        /// The blue channel's formula.
+        #[serde(default, skip_serializing_if = "String::is_empty")]
+        b: String,
+        /// (u, v) scale, rotation and offset after the mapping; default none.
+        #[serde(default, skip_serializing_if = "UvTransform::is_identity")]
+        uv: UvTransform,
+    },
 }
 
-fn uv_mapping() -> Mapping {
-    Mapping::Uv
+fn uv_mapping() -> MappingDesc {
+    MappingDesc::Builtin(Mapping::Uv)
 }
+
+/// The formula texture a menu pick starts from: the lecture's checker, written with `floor`.
+pub const DEFAULT_GREY_FORMULA: &str = "0.05 + 0.75 * 2 * fract((floor(8 * u) + floor(8 * v)) / 2)";
 
 fn default_max_anisotropy() -> f32 {
     DEFAULT_MAX_ANISOTROPY
@@ -129,13 +158,14 @@ fn default_checker_colors() -> (Rgb, Rgb) {
 impl TextureDesc {
     /// The mapping, for textures that have one.
     #[must_use]
-    pub fn mapping(&self) -> Option<Mapping> {
+    pub const fn mapping(&self) -> Option<&MappingDesc> {
         match self {
             Self::Constant(_) => None,
             Self::Image { mapping, .. }
             | Self::Checker { mapping, .. }
             | Self::MeshMaterial { mapping, .. }
-            | Self::UvGrid { mapping, .. } => Some(*mapping),
+            | Self::UvGrid { mapping, .. }
+            | Self::Formula { mapping, .. } => Some(mapping),
         }
     }
 
@@ -143,7 +173,7 @@ impl TextureDesc {
     /// checker).
     pub fn set_filter(&mut self, f: Filter) {
         match self {
-            Self::Constant(_) => {}
+            Self::Constant(_) | Self::Formula { .. } => {}
             Self::Image { filter, .. }
             | Self::Checker { filter, .. }
             | Self::MeshMaterial { filter, .. }
@@ -159,7 +189,8 @@ impl TextureDesc {
             Self::Image { uv, .. }
             | Self::Checker { uv, .. }
             | Self::MeshMaterial { uv, .. }
-            | Self::UvGrid { uv, .. } => Some(*uv),
+            | Self::UvGrid { uv, .. }
+            | Self::Formula { uv, .. } => Some(*uv),
         }
     }
 
@@ -170,18 +201,20 @@ impl TextureDesc {
             Self::Image { uv, .. }
             | Self::Checker { uv, .. }
             | Self::MeshMaterial { uv, .. }
-            | Self::UvGrid { uv, .. } => Some(uv),
+            | Self::UvGrid { uv, .. }
+            | Self::Formula { uv, .. } => Some(uv),
         }
     }
 
     /// Sets the mapping of a texture that has one.
-    pub fn set_mapping(&mut self, m: Mapping) {
+    pub fn set_mapping(&mut self, m: MappingDesc) {
         match self {
             Self::Constant(_) => {}
             Self::Image { mapping, .. }
             | Self::Checker { mapping, .. }
             | Self::MeshMaterial { mapping, .. }
-            | Self::UvGrid { mapping, .. } => *mapping = m,
+            | Self::UvGrid { mapping, .. }
+            | Self::Formula { mapping, .. } => *mapping = m,
         }
     }
 }
@@ -212,6 +245,9 @@ pub enum TextureKind {
         message = "The image or colour the mesh file's material names (OBJ .mtl); meshes only."
     )]
     MeshMaterial,
+    /// [`TextureDesc::Formula`].
+    #[strum(message = "Colour formulas over (u, v) and the hit point, written by you.")]
+    Formula,
 }
 
 impl crate::names::Named for TextureKind {
@@ -227,7 +263,7 @@ impl TextureKind {
             Self::Constant => TextureDesc::Constant(Rgb::grey(0.7)),
             Self::Image => TextureDesc::Image {
                 path: String::new(),
-                mapping: Mapping::default(),
+                mapping: MappingDesc::default(),
                 filter: Filter::default(),
                 lookup: Lookup::default(),
                 wrap: Wrap::default(),
@@ -237,17 +273,25 @@ impl TextureKind {
                 uv: UvTransform::IDENTITY,
             },
             Self::Checker => TextureDesc::Checker {
-                mapping: Mapping::default(),
+                mapping: MappingDesc::default(),
                 squares: default_squares(),
                 colors: default_checker_colors(),
                 filter: Filter::default(),
                 uv: UvTransform::IDENTITY,
             },
             Self::UvGrid => TextureDesc::UvGrid {
-                mapping: Mapping::default(),
+                mapping: MappingDesc::default(),
                 filter: Filter::default(),
                 wrap: Wrap::default(),
                 max_anisotropy: default_max_anisotropy(),
+                uv: UvTransform::IDENTITY,
+            },
+            Self::Formula => TextureDesc::Formula {
+                mapping: MappingDesc::default(),
+                grey: DEFAULT_GREY_FORMULA.into(),
+                r: String::new(),
+                g: String::new(),
+                b: String::new(),
                 uv: UvTransform::IDENTITY,
             },
             Self::MeshMaterial => TextureDesc::MeshMaterial {
@@ -272,6 +316,7 @@ impl TextureDesc {
             Self::Checker { .. } => TextureKind::Checker,
             Self::UvGrid { .. } => TextureKind::UvGrid,
             Self::MeshMaterial { .. } => TextureKind::MeshMaterial,
+            Self::Formula { .. } => TextureKind::Formula,
         }
     }
 
@@ -281,7 +326,7 @@ impl TextureDesc {
     pub fn converted(&self, kind: TextureKind) -> Self {
         let mut t = kind.default_desc();
         if let (Some(mapping), false) = (self.mapping(), kind == TextureKind::MeshMaterial) {
-            t.set_mapping(mapping);
+            t.set_mapping(mapping.clone());
         }
         if let (Some(uv), Some(to)) = (self.uv_transform(), t.uv_transform_mut()) {
             *to = uv;
@@ -342,11 +387,14 @@ pub(super) fn alpha_texture(
     check_anisotropy("Image", *max_anisotropy).map_err(|m| Error::invalid(base, m))?;
     let transform = uv_transform("Image", uv).map_err(|m| Error::invalid(base, m))?;
     check_path(path).map_err(|m| Error::invalid(base, m))?;
+    let mapping = mapping
+        .build("Image.mapping")
+        .map_err(|m| Error::invalid(base, m))?;
     let image = cache.alpha(&base.join(path))?;
     let mip = filter.needs_mip().then(|| cache.mip(&image));
     Ok(Texture::Image(ImageTexture {
         image,
-        mapping: *mapping,
+        mapping,
         filter: *filter,
         lookup: *lookup,
         wrap: *wrap,
@@ -379,11 +427,12 @@ pub(super) fn texture(t: &TextureDesc, base: &Path, cache: &mut AssetCache) -> R
             let transform = uv_transform("Image", uv).map_err(invalid)?;
             check_anisotropy("Image", *max_anisotropy).map_err(invalid)?;
             check_path(path).map_err(invalid)?;
+            let mapping = mapping.build("Image.mapping").map_err(invalid)?;
             let image = cache.image(&base.join(path), *srgb)?;
             let mip = filter.needs_mip().then(|| cache.mip(&image));
             Texture::Image(ImageTexture {
                 image,
-                mapping: *mapping,
+                mapping,
                 filter: *filter,
                 lookup: *lookup,
                 wrap: *wrap,
@@ -413,7 +462,7 @@ pub(super) fn texture(t: &TextureDesc, base: &Path, cache: &mut AssetCache) -> R
             )
             .map_err(invalid)?;
             Texture::Checker(Checker {
-                mapping: *mapping,
+                mapping: mapping.build("Checker.mapping").map_err(invalid)?,
                 squares: *squares,
                 colors: *colors,
                 filter: *filter,
@@ -434,11 +483,12 @@ pub(super) fn texture(t: &TextureDesc, base: &Path, cache: &mut AssetCache) -> R
         } => {
             check_anisotropy("UvGrid", *max_anisotropy).map_err(invalid)?;
             let transform = uv_transform("UvGrid", uv).map_err(invalid)?;
+            let mapping = mapping.build("UvGrid.mapping").map_err(invalid)?;
             let image = cache.uv_grid();
             let mip = filter.needs_mip().then(|| cache.mip(&image));
             Texture::Image(ImageTexture {
                 image,
-                mapping: *mapping,
+                mapping,
                 filter: *filter,
                 lookup: Lookup::Centred,
                 wrap: *wrap,
@@ -448,7 +498,59 @@ pub(super) fn texture(t: &TextureDesc, base: &Path, cache: &mut AssetCache) -> R
                 transform,
             })
         }
+        TextureDesc::Formula {
+            mapping,
+            grey,
+            r,
+            g,
+            b,
+            uv,
+        } => {
+            let transform = uv_transform("Formula", uv).map_err(invalid)?;
+            let mapping = mapping.build("Formula.mapping").map_err(invalid)?;
+            let colour = formula_colour(grey, [r, g, b]).map_err(invalid)?;
+            Texture::Formula(FormulaTexture {
+                mapping,
+                colour: Arc::new(colour),
+                transform,
+            })
+        }
     })
+}
+
+/// The colour formulas: `grey` alone, or all three channels.
+fn formula_colour(
+    grey: &str,
+    [r, g, b]: [&String; 3],
+) -> std::result::Result<FormulaColour, String> {
+    let channels = [("r", r), ("g", g), ("b", b)];
+    let given: Vec<&str> = channels
+        .iter()
+        .filter(|(_, t)| !t.trim().is_empty())
+        .map(|(n, _)| *n)
+        .collect();
+    let colour = match (grey.trim().is_empty(), given.len()) {
+        (false, 0) => FormulaColour::grey(grey),
+        (true, 3) => FormulaColour::rgb(r, g, b),
+        (false, _) => {
+            return Err(format!(
+                "Formula: grey and {} both given; write grey alone, or r, g and b",
+                given.join(", ")
+            ));
+        }
+        (true, _) => {
+            let missing: Vec<&str> = channels
+                .iter()
+                .filter(|(_, t)| t.trim().is_empty())
+                .map(|(n, _)| *n)
+                .collect();
+            return Err(format!(
+                "Formula: {} missing; write grey alone, or r, g and b",
+                missing.join(", ")
+            ));
+        }
+    };
+    colour.map_err(|e| format!("Formula.{e}"))
 }
 
 /// The runtime (u, v) transform (`None` for the identity); the scale must be finite and at

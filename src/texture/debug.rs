@@ -103,7 +103,8 @@ impl Texture {
     /// squares over [0, 1]; `None` for a constant.
     fn resolution(&self) -> Option<(f32, f32)> {
         match self {
-            Self::Constant(_) => None,
+            // A formula texture has no texels either.
+            Self::Constant(_) | Self::Formula(_) => None,
             Self::Image(t) => Some((t.image.width() as f32, t.image.height() as f32)),
             Self::Checker(c) => Some(c.squares),
         }
@@ -202,7 +203,7 @@ mod tests {
 
     fn checker() -> Texture {
         Texture::Checker(Checker {
-            mapping: Mapping::Spherical,
+            mapping: Mapping::Spherical.into(),
             squares: (16.0, 8.0),
             colors: (Rgb::WHITE, Rgb::BLACK),
             filter: Filter::Nearest,

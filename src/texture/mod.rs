@@ -7,12 +7,14 @@
 mod debug;
 mod explain;
 mod footprint;
+mod formula;
 mod image;
 mod mip;
 mod procedural;
 
 pub use debug::{View, mip_level_color};
 pub use explain::{explain_lookup, explain_wrap};
+pub use formula::{FormulaColour, FormulaTexture, mark};
 pub(crate) use image::tiled_index;
 pub use image::{
     ImageData, MAX_IMAGE_BYTES, MAX_IMAGE_DIMENSION, TILE, Texels, load_alpha, load_image,
@@ -21,7 +23,7 @@ pub use image::{
 pub use mip::{DEFAULT_MAX_ANISOTROPY, EWA_FOOTPRINT_SCALE, MAX_ANISOTROPY_LIMIT, MipPyramid};
 pub use procedural::{Checker, uv_grid_image};
 
-use crate::mapping::{Mapping, TexCoord, UvAffine};
+use crate::mapping::{AnyMapping, Mapping, TexCoord, UvAffine};
 use crate::math::{Rgb, Vec2, Vec3A};
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;
@@ -42,10 +44,10 @@ pub struct TextureContext {
 }
 
 impl TextureContext {
-    /// Coordinates and derivatives under `mapping`.
+    /// Coordinates and derivatives under `mapping` (NaN (u, v) where a formula is not finite).
     #[must_use]
     #[inline]
-    pub fn tex_coord(&self, mapping: Mapping) -> TexCoord {
+    pub fn tex_coord(&self, mapping: &AnyMapping) -> TexCoord {
         mapping.map_with_differentials(self.p, self.dpdx, self.dpdy, self.shape_uv, self.natural)
     }
 }
@@ -59,6 +61,8 @@ pub enum Texture {
     Image(ImageTexture),
     /// A procedural checkerboard in (u, v).
     Checker(Checker),
+    /// A student's colour formulas over (u, v) and the hit point.
+    Formula(FormulaTexture),
 }
 
 impl Texture {
@@ -70,6 +74,7 @@ impl Texture {
             Self::Constant(c) => *c,
             Self::Image(t) => t.eval(ctx),
             Self::Checker(c) => c.eval(ctx),
+            Self::Formula(f) => f.eval(ctx),
         }
     }
 
@@ -77,7 +82,7 @@ impl Texture {
     #[must_use]
     pub fn needs_differentials(&self) -> bool {
         match self {
-            Self::Constant(_) => false,
+            Self::Constant(_) | Self::Formula(_) => false,
             Self::Checker(c) => c.filter.needs_footprint(),
             Self::Image(t) => t.filter.needs_footprint(),
         }
@@ -91,15 +96,25 @@ impl Texture {
             Self::Constant(_) => None,
             Self::Image(t) => Some(t.tex_coord(ctx)),
             Self::Checker(c) => Some(c.tex_coord(ctx)),
+            Self::Formula(f) => Some(f.tex_coord(ctx)),
         }
     }
 
     /// The colour at texture coordinates already mapped and transformed (as
-    /// [`Texture::tex_coord`] gives them), through the texture's filter and wrap.
+    /// [`Texture::tex_coord`] gives them), through the texture's filter and wrap; `p` is the
+    /// object-space hit point (a formula texture may read it). NaN (u, v) (a formula mapping
+    /// that is not finite there) gives the [`mark`].
     #[must_use]
-    pub fn eval_tex_coord(&self, tc: TexCoord) -> Rgb {
+    pub fn eval_tex_coord(&self, tc: TexCoord, p: Vec3A) -> Rgb {
+        if !tc.uv.is_finite() && !matches!(self, Self::Constant(_)) {
+            return mark();
+        }
         match self {
             Self::Constant(c) => *c,
+            Self::Formula(f) => {
+                let p = p.as_dvec3();
+                f.at(tc.uv, [p.x, p.y, p.z])
+            }
             Self::Image(t) => t.sample(tc) * t.scale,
             Self::Checker(c) => {
                 if c.filter.needs_footprint() {
@@ -118,17 +133,34 @@ impl Texture {
             Self::Constant(_) => None,
             Self::Image(t) => t.transform,
             Self::Checker(c) => c.transform,
+            Self::Formula(f) => f.transform,
         }
     }
 
     /// The mapping, for textures that have one.
     #[must_use]
-    pub const fn mapping(&self) -> Option<Mapping> {
+    pub const fn mapping(&self) -> Option<&AnyMapping> {
         match self {
             Self::Constant(_) => None,
-            Self::Image(t) => Some(t.mapping),
-            Self::Checker(c) => Some(c.mapping),
+            Self::Image(t) => Some(&t.mapping),
+            Self::Checker(c) => Some(&c.mapping),
+            Self::Formula(f) => Some(&f.mapping),
         }
+    }
+
+    /// How many hits a formula (mapping or colour) in this texture gave NaN or an infinity
+    /// for (each such pixel is [`mark`]ed).
+    #[must_use]
+    pub fn non_finite_count(&self) -> u64 {
+        let mapping = match self.mapping() {
+            Some(AnyMapping::Formula(f)) => f.non_finite_count(),
+            _ => 0,
+        };
+        let colour = match self {
+            Self::Formula(f) => f.colour.non_finite_count(),
+            _ => 0,
+        };
+        mapping + colour
     }
 }
 
@@ -396,7 +428,7 @@ pub struct ImageTexture {
     /// same file with the same `srgb` setting.
     pub image: Arc<ImageData>,
     /// How hit points become (u, v).
-    pub mapping: Mapping,
+    pub mapping: AnyMapping,
     /// How texels are combined.
     pub filter: Filter,
     /// Which texel the nearest filter picks.
@@ -423,10 +455,9 @@ impl ImageTexture {
     /// A texture with a (u, v) transform uses its own wrap mode on both axes: tiled or rotated,
     /// its coordinates no longer follow the mapping's seam and poles.
     pub fn wraps(&self) -> (Wrap, Wrap) {
-        if self.transform.is_some() {
-            (self.wrap, self.wrap)
-        } else {
-            Wrap::for_mapping(self.mapping, self.wrap)
+        match (&self.transform, &self.mapping) {
+            (None, AnyMapping::Builtin(m)) => Wrap::for_mapping(*m, self.wrap),
+            _ => (self.wrap, self.wrap),
         }
     }
 
@@ -434,18 +465,23 @@ impl ImageTexture {
     #[must_use]
     #[inline]
     pub fn tex_coord(&self, ctx: &TextureContext) -> TexCoord {
-        let tc = ctx.tex_coord(self.mapping);
+        let tc = ctx.tex_coord(&self.mapping);
         match &self.transform {
-            None => tc,
-            Some(a) => a.apply(tc),
+            Some(a) if tc.uv.is_finite() => a.apply(tc),
+            _ => tc,
         }
     }
 
-    /// The colour at a hit.
+    /// The colour at a hit; the [`mark`] where a formula mapping is not finite.
     #[must_use]
     #[inline]
     pub fn eval(&self, ctx: &TextureContext) -> Rgb {
-        self.sample(self.tex_coord(ctx)) * self.scale
+        let tc = self.tex_coord(ctx);
+        if tc.uv.is_finite() {
+            self.sample(tc) * self.scale
+        } else {
+            mark()
+        }
     }
 
     /// The filtered colour at texture coordinates (before `scale`).

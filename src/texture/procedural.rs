@@ -1,15 +1,15 @@
 //! Procedural textures: a checkerboard in (u, v) and the labelled UV test grid.
 
 use super::{Filter, ImageData, TextureContext};
-use crate::mapping::{Mapping, TexCoord, UvAffine};
+use crate::mapping::{AnyMapping, TexCoord, UvAffine};
 use crate::math::{Rgb, srgb_to_linear};
 
 /// A checkerboard of `squares.0 x squares.1` squares over the unit (u, v) square, repeating
 /// outside it.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Checker {
     /// How hit points become (u, v).
-    pub mapping: Mapping,
+    pub mapping: AnyMapping,
     /// Squares along u and along v.
     pub squares: (f32, f32),
     /// The two colours (linear).
@@ -27,6 +27,9 @@ impl Checker {
     #[inline]
     pub fn eval(&self, ctx: &TextureContext) -> Rgb {
         let tc = self.tex_coord(ctx);
+        if !tc.uv.is_finite() {
+            return super::mark();
+        }
         if self.filter.needs_footprint() {
             self.box_filtered(&tc)
         } else {
@@ -38,10 +41,10 @@ impl Checker {
     #[must_use]
     #[inline]
     pub fn tex_coord(&self, ctx: &TextureContext) -> TexCoord {
-        let tc = ctx.tex_coord(self.mapping);
+        let tc = ctx.tex_coord(&self.mapping);
         match &self.transform {
-            None => tc,
-            Some(a) => a.apply(tc),
+            Some(a) if tc.uv.is_finite() => a.apply(tc),
+            _ => tc,
         }
     }
 
@@ -222,7 +225,7 @@ mod tests {
     fn checker(filter: Filter) -> Checker {
         Checker {
             transform: None,
-            mapping: Mapping::Rectangular,
+            mapping: crate::mapping::Mapping::Rectangular.into(),
             squares: (4.0, 4.0),
             colors: (Rgb::grey(1.0), Rgb::grey(0.0)),
             filter,

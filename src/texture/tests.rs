@@ -128,7 +128,7 @@ fn srgb8_storage_decodes_to_linear() {
 fn periodic_mappings_override_the_wrap_on_u() {
     let tex = ImageTexture {
         image: std::sync::Arc::new(ramp()),
-        mapping: Mapping::Spherical,
+        mapping: Mapping::Spherical.into(),
         filter: Filter::Bilinear,
         lookup: Lookup::Centred,
         wrap: Wrap::Black,
@@ -316,7 +316,7 @@ fn huge_coordinates_wrap_exactly_under_every_filter() {
         for &wrap in Wrap::VARIANTS {
             let tex = ImageTexture {
                 image: image.clone(),
-                mapping: Mapping::Rectangular,
+                mapping: Mapping::Rectangular.into(),
                 filter,
                 lookup: Lookup::Centred,
                 wrap,

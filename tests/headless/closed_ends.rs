@@ -42,7 +42,7 @@ fn rendered_texel(
 ) -> Option<(u32, u32)> {
     let texture = ImageTexture {
         image: image.clone(),
-        mapping,
+        mapping: mapping.into(),
         filter: Filter::Nearest,
         lookup,
         wrap,

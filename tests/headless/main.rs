@@ -10,6 +10,7 @@ mod cli;
 mod closed_ends;
 mod displacement;
 mod footprint;
+mod formula;
 mod fuzz;
 mod hard_cases;
 mod hostile;

@@ -834,7 +834,7 @@ fn bumped_normals_are_finite_and_unit_at_poles_seams_and_degenerate_triangles() 
     };
     let mut uv_bump = uv_bump;
     if let texplore::texture::Texture::Image(t) = &mut uv_bump.height {
-        t.mapping = Mapping::Uv;
+        t.mapping = Mapping::Uv.into();
     }
     assert_eq!(uv_bump.perturb(&ctx, Vec3A::Z), Vec3A::Z);
     // Rendered: every pixel finite, also where the bumped normal would face away.
@@ -1037,7 +1037,7 @@ fn normal_mapped_normals_are_finite_and_unit_at_poles_seams_and_degenerate_trian
         strength: 3.0,
     };
     if let texplore::texture::Texture::Image(t) = &mut uv_map.map {
-        t.mapping = Mapping::Uv;
+        t.mapping = Mapping::Uv.into();
     }
     for (dpdu, dpdv) in [
         (Vec3A::X, Vec3A::X),

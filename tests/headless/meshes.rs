@@ -617,7 +617,7 @@ fn mesh_uv_derivatives_come_when_a_footprint_filter_asks_and_match_neighbouring_
         assert_eq!(m.mesh.uv_derivatives(hit.local.prim), eager.dpduv);
         let tc = scene
             .texture_context(&hit, Some(&diff))
-            .tex_coord(Mapping::Uv);
+            .tex_coord(&Mapping::Uv.into());
         let uv_at = |p: Vec2| {
             let h = scene.hit(&scene.camera.primary_ray(p).unwrap())?;
             (h.local.prim == hit.local.prim).then_some(h.local.uv.unwrap())

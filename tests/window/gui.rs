@@ -23,7 +23,11 @@ fn choose_cylindrical_mapping(h: &mut Harness<'_, ExplorerApp>) {
 }
 
 fn texture_mapping(app: &ExplorerApp) -> Option<Mapping> {
-    app.desc()?.objects[0].material.texture().mapping()
+    app.desc()?.objects[0]
+        .material
+        .texture()
+        .mapping()
+        .and_then(texplore::scene::MappingDesc::builtin)
 }
 
 fn image_bytes(app: &ExplorerApp) -> Vec<u8> {
@@ -132,7 +136,7 @@ fn saving_then_reopening_a_screenshot_restores_the_preset() {
     let restored = again.state().desc().cloned().expect("scene restored");
     assert_eq!(
         restored.objects[0].material.texture().mapping(),
-        Some(Mapping::Cylindrical)
+        Some(&Mapping::Cylindrical.into())
     );
     assert_eq!(restored.camera, desc.camera);
     assert_eq!(restored.render, desc.render);
@@ -321,7 +325,7 @@ fn picking_a_texture_kind_gives_its_defaults_and_keeps_the_mapping() {
         .texture()
         .clone();
     let mut expected = TextureKind::Checker.default_desc();
-    expected.set_mapping(Mapping::Spherical);
+    expected.set_mapping(Mapping::Spherical.into());
     assert_eq!(texture, expected);
     // The checker's own settings replace the image's.
     assert!(h.query_by_label("squares along u").is_some());

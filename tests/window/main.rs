@@ -11,6 +11,7 @@ mod gui_browse;
 mod gui_displace;
 mod gui_edit;
 mod gui_files;
+mod gui_formula;
 mod gui_frame_time;
 mod gui_labels;
 mod gui_layout;

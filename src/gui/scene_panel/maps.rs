@@ -228,7 +228,7 @@ fn folder(preset: &Path) -> &Path {
 /// The filter of a texture that has one.
 const fn filter_of(t: &TextureDesc) -> Option<Filter> {
     match t {
-        TextureDesc::Constant(_) => None,
+        TextureDesc::Constant(_) | TextureDesc::Formula { .. } => None,
         TextureDesc::Image { filter, .. }
         | TextureDesc::Checker { filter, .. }
         | TextureDesc::MeshMaterial { filter, .. }

@@ -197,8 +197,8 @@ pub(super) fn texture_settings_ui(
         changed |= uv_transform(ui, uv);
     }
     if let Some(current) = t.mapping() {
-        let mut m = current;
-        if enum_combo(ui, "mapping", &mut m) {
+        let mut m = current.clone();
+        if super::texture::mapping_ui(ui, "mapping", &mut m) {
             t.set_mapping(m);
             changed = true;
         }
@@ -229,6 +229,9 @@ pub(super) fn texture_settings_ui(
             changed |= enum_combo(ui, "wrap", wrap);
         }
         TextureDesc::Constant(c) => changed |= colour(ui, "colour", c),
+        TextureDesc::Formula { grey, r, g, b, .. } => {
+            changed |= super::texture::colour_formulas_ui(ui, grey, [r, g, b]);
+        }
     }
     changed
 }

@@ -5,7 +5,10 @@
 use super::{PathText, ScenePanel, browse_button};
 use crate::gui::files::{BrowseFor, IMAGE_EXTENSIONS};
 use crate::gui::widgets::{colour, enum_combo, number, number_tip, uv_transform};
-use crate::scene::{TextureDesc, TextureKind, relative_asset_path};
+use crate::mapping::formula::compare::lecture_formula;
+use crate::mapping::{FormulaError, FormulaMapping, Mapping};
+use crate::names::Named as _;
+use crate::scene::{MappingDesc, TextureDesc, TextureKind, relative_asset_path};
 use crate::texture::{Filter, MAX_ANISOTROPY_LIMIT};
 use std::path::{Path, PathBuf};
 
@@ -59,8 +62,8 @@ impl ScenePanel {
             changed = true;
         }
         if let Some(current) = tex.mapping() {
-            let mut m = current;
-            if enum_combo(ui, "Mapping", &mut m) {
+            let mut m = current.clone();
+            if mapping_ui(ui, "Mapping", &mut m) {
                 tex.set_mapping(m);
                 changed = true;
             }
@@ -135,6 +138,9 @@ impl ScenePanel {
                 changed |= anisotropy(ui, *filter, max_anisotropy);
                 changed |= enum_combo(ui, "Wrap", wrap);
             }
+            TextureDesc::Formula { grey, r, g, b, .. } => {
+                changed |= colour_formulas_ui(ui, grey, [r, g, b]);
+            }
         }
         changed
     }
@@ -161,7 +167,7 @@ impl ScenePanel {
         }
         if let Some(mut earlier) = self.last_image.get(&self.key).cloned() {
             if let Some(m) = new.mapping() {
-                earlier.set_mapping(m);
+                earlier.set_mapping(m.clone());
             }
             if let TextureDesc::Image { path, .. } = &mut earlier {
                 *path = relative_asset_path(Path::new(path.as_str()), dir);
@@ -307,4 +313,112 @@ fn anisotropy(ui: &mut egui::Ui, filter: Filter, value: &mut f32) -> bool {
         .changed()
     })
     .inner
+}
+
+/// The mapping menu: the built-in mappings and `formula`, whose two text fields follow, each
+/// with its mistake underneath (compiled here on each edit: microseconds; the scene itself is
+/// rebuilt off the UI thread through the document, like every edit). Returns whether it changed.
+pub(super) fn mapping_ui(ui: &mut egui::Ui, label: &str, desc: &mut MappingDesc) -> bool {
+    let mut changed = false;
+    let selected = desc.builtin().map_or("formula", |m| m.name());
+    ui.horizontal(|ui| {
+        let l = ui.label(label);
+        egui::ComboBox::from_id_salt(label)
+            .selected_text(selected)
+            .show_ui(ui, |ui| {
+                for &m in <Mapping as strum::VariantArray>::VARIANTS {
+                    if ui
+                        .selectable_label(desc.builtin() == Some(m), m.name())
+                        .on_hover_text(m.description())
+                        .clicked()
+                    {
+                        *desc = MappingDesc::Builtin(m);
+                        changed = true;
+                    }
+                }
+                if ui
+                    .selectable_label(desc.builtin().is_none(), "formula")
+                    .on_hover_text(
+                        "Your own u and v, written over x, y, z (the local hit point), mesh_u, \
+                         mesh_v, pi and tau",
+                    )
+                    .clicked()
+                    && let Some(m) = desc.builtin()
+                {
+                    // Start from the chosen mapping's formulas where the lecture writes them.
+                    let (u, v) = lecture_formula(m)
+                        .or_else(|| lecture_formula(Mapping::Spherical))
+                        .unwrap_or(("x", "y"));
+                    *desc = MappingDesc::Formula {
+                        u: u.into(),
+                        v: v.into(),
+                    };
+                    changed = true;
+                }
+            })
+            .response
+            .labelled_by(l.id);
+    });
+    if let MappingDesc::Formula { u, v } = desc {
+        changed |= formula_field(ui, "u =", u);
+        changed |= formula_field(ui, "v =", v);
+        match FormulaMapping::new(u, v) {
+            Ok(f) => {
+                ui.label(egui::RichText::new(f.derivative_note()).weak());
+            }
+            Err(e) => formula_error(ui, &e),
+        }
+    }
+    changed
+}
+
+/// The colour formulas of a formula texture: grey, or r, g and b.
+pub(super) fn colour_formulas_ui(
+    ui: &mut egui::Ui,
+    grey: &mut String,
+    rgb: [&mut String; 3],
+) -> bool {
+    let mut changed = formula_field(ui, "grey =", grey);
+    ui.label(egui::RichText::new("or, with grey empty, one formula per channel:").weak());
+    let [r, g, b] = rgb;
+    changed |= formula_field(ui, "r =", r);
+    changed |= formula_field(ui, "g =", g);
+    changed |= formula_field(ui, "b =", b);
+    let vars = crate::mapping::formula::TEXTURE_VARS;
+    let check = if grey.trim().is_empty() {
+        [("r", &*r), ("g", &*g), ("b", &*b)]
+            .into_iter()
+            .find_map(|(name, t)| crate::mapping::formula::Expr::compile(name, t, &vars).err())
+    } else {
+        crate::mapping::formula::Expr::compile("grey", grey, &vars).err()
+    };
+    if let Some(e) = check {
+        formula_error(ui, &e);
+    }
+    changed
+}
+
+/// One formula's text field; returns whether it changed.
+fn formula_field(ui: &mut egui::Ui, label: &str, text: &mut String) -> bool {
+    ui.horizontal(|ui| {
+        let l = ui.label(label);
+        ui.add(
+            egui::TextEdit::singleline(text)
+                .font(egui::TextStyle::Monospace)
+                .desired_width(f32::INFINITY),
+        )
+        .labelled_by(l.id)
+        .changed()
+    })
+    .inner
+}
+
+/// A formula's mistake under its field: the message, and the formula with a caret under the
+/// column.
+fn formula_error(ui: &mut egui::Ui, e: &FormulaError) {
+    let red = ui.visuals().error_fg_color;
+    ui.label(egui::RichText::new(e.to_string()).color(red));
+    if let Some(p) = e.pointer() {
+        ui.label(egui::RichText::new(p).monospace().color(red));
+    }
 }

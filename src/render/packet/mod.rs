@@ -32,7 +32,7 @@ mod stages;
 use super::lanes::{self, F, Flat, LANES, V3};
 use crate::camera::Projection;
 use crate::geometry::Shape;
-use crate::mapping::{Mapping, UvAffine};
+use crate::mapping::{AnyMapping, FormulaMapping, Mapping, UvAffine};
 use crate::material::{Colour, Material, Scalar};
 use crate::math::{Affine3A, INV_PI, Mat3A, Rgb, max_abs};
 use crate::scene::{Scene, natural_mapping};
@@ -132,21 +132,24 @@ struct Shading<'a> {
     /// The lane-wise nearest lookup, where the texture is an image read that way.
     nearest: Option<Nearest<'a>>,
     /// The mapping after `Uv` falls back to the shape's own (`None` for a constant).
-    mapping: Option<LaneMapping>,
+    mapping: Option<LaneMapping<'a>>,
     affine: Option<UvAffine>,
     response: Response,
 }
 
 /// The mappings the packet path computes lane-wise ([`nearest::map_lanes`]); a texture under
 /// any other mapping is shaded by the scalar path.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum LaneMapping {
+#[derive(Clone, Copy, Debug)]
+enum LaneMapping<'a> {
     Spherical,
     Cylindrical,
     Rectangular,
+    /// A student's formulas, run per lane on the compiled program (`FormulaMapping::map_uv`),
+    /// with the shape's natural mapping as mesh_u, mesh_v.
+    Formula(&'a FormulaMapping, Mapping),
 }
 
-impl LaneMapping {
+impl LaneMapping<'_> {
     /// The lane-wise form of `mapping` on `shape` (`Uv` is the shape's own mapping), or `None`.
     /// Exhaustive on purpose: a new mapping must say here whether the packet path maps it.
     fn of(mapping: Mapping, shape: &Shape) -> Option<Self> {
@@ -240,7 +243,8 @@ fn shading<'a>(material: &'a Material, shape: &Shape) -> Option<Shading<'a>> {
     }
     let mapping = match texture.mapping() {
         None => None,
-        Some(m) => Some(LaneMapping::of(m, shape)?),
+        Some(AnyMapping::Builtin(m)) => Some(LaneMapping::of(*m, shape)?),
+        Some(AnyMapping::Formula(f)) => Some(LaneMapping::Formula(f, natural_mapping(shape))),
     };
     Some(Shading {
         texture,

@@ -1,6 +1,6 @@
 //! The packet path's texel lookups and mappings: the lane-wise nearest lookup of an image
 //! texture, and the (u, v) of a lane's object-space point under the mappings the packet path
-//! computes lane-wise ([`LaneMapping`]).
+//! computes lane-wise ([`LaneMapping`]; a formula mapping runs per lane).
 
 // Lane loops index several arrays by the lane, the form the vectoriser reads best.
 #![allow(clippy::needless_range_loop)]
@@ -129,21 +129,66 @@ pub(super) fn map_lanes(
     mapping: LaneMapping,
     affine: Option<&UvAffine>,
     p: &V3,
+    mine: M,
 ) -> (F, F) {
     let (mut u, mut v) = match mapping {
         LaneMapping::Spherical => plan.spherical(p),
         LaneMapping::Cylindrical => lanes::cylindrical(p),
         LaneMapping::Rectangular => lanes::rectangular(p),
+        LaneMapping::Formula(f, natural) => formula_lanes(f, natural, p, mine),
     };
+    // A formula's NaN (u, v) stays NaN through the transform: the texel is marked, as on the
+    // scalar path (`ImageTexture::tex_coord` skips the transform there).
+    let formula = matches!(mapping, LaneMapping::Formula(..));
     if let Some(a) = affine {
         let (mx, my) = (a.matrix.x_axis, a.matrix.y_axis);
         for i in 0..LANES {
             let nu = (mx.x * u[i] + my.x * v[i]) + a.offset.x;
             let nv = (mx.y * u[i] + my.y * v[i]) + a.offset.y;
             let ok = nu.is_finite() & nv.is_finite();
-            u[i] = if ok { nu } else { 0.0 };
-            v[i] = if ok { nv } else { 0.0 };
+            let marked = formula & (u[i].is_nan() | v[i].is_nan());
+            u[i] = if ok {
+                nu
+            } else if marked {
+                f32::NAN
+            } else {
+                0.0
+            };
+            v[i] = if ok {
+                nv
+            } else if marked {
+                f32::NAN
+            } else {
+                0.0
+            };
         }
+    }
+    (u, v)
+}
+
+/// A formula mapping per lane: the scalar program (the lanes' mesh_u, mesh_v from the shape's
+/// natural mapping, as `AnyMapping::map_with_differentials` reads them); NaN where not finite.
+#[inline(always)]
+fn formula_lanes(
+    f: &crate::mapping::FormulaMapping,
+    natural: crate::mapping::Mapping,
+    p: &V3,
+    mine: M,
+) -> (F, F) {
+    let (mut u, mut v) = ([0.0; LANES], [0.0; LANES]);
+    let mesh = f.reads_mesh();
+    for i in 0..LANES {
+        if !mine[i] {
+            continue; // another object's lane: its point is not this formula's to count
+        }
+        let q = crate::math::Vec3A::new(p.x[i], p.y[i], p.z[i]);
+        let own = if mesh {
+            natural.map_uv(q)
+        } else {
+            crate::math::Vec2::ZERO
+        };
+        let uv = f.map_uv(q, own);
+        (u[i], v[i]) = (uv.x, uv.y);
     }
     (u, v)
 }

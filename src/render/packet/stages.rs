@@ -270,24 +270,37 @@ impl PacketPlan<'_> {
         // baseline instead of the dispatched level.
         #[allow(clippy::manual_map)]
         let uv = match sh.mapping {
-            Some(m) => Some(map_lanes(self, m, sh.affine.as_ref(), lp)),
+            Some(m) => Some(map_lanes(self, m, sh.affine.as_ref(), lp, mine)),
             None => None,
         };
         let mut tex = [[0.0; LANES]; 3];
         if let (Some(n), Some((u, v))) = (&sh.nearest, &uv) {
             tex = n.sample(u, v, mine);
+            if matches!(sh.mapping, Some(super::LaneMapping::Formula(..))) {
+                // Where a formula is not finite: the mark, as `ImageTexture::eval` gives it.
+                let mark = crate::texture::mark();
+                for i in 0..LANES {
+                    if mine[i] && (u[i].is_nan() || v[i].is_nan()) {
+                        (tex[0][i], tex[1][i], tex[2][i]) = (mark.0, mark.1, mark.2);
+                    }
+                }
+            }
         }
         for i in 0..LANES {
             if !mine[i] || (sh.nearest.is_some() & uv.is_some()) {
                 continue;
             }
+            let p = Vec3A::new(lp.x[i], lp.y[i], lp.z[i]);
             let c = match &uv {
-                Some((u, v)) => sh.texture.eval_tex_coord(TexCoord {
-                    uv: Vec2::new(u[i], v[i]),
-                    duvdx: Vec2::ZERO,
-                    duvdy: Vec2::ZERO,
-                }),
-                None => sh.texture.eval_tex_coord(TexCoord::default()),
+                Some((u, v)) => sh.texture.eval_tex_coord(
+                    TexCoord {
+                        uv: Vec2::new(u[i], v[i]),
+                        duvdx: Vec2::ZERO,
+                        duvdy: Vec2::ZERO,
+                    },
+                    p,
+                ),
+                None => sh.texture.eval_tex_coord(TexCoord::default(), p),
             };
             (tex[0][i], tex[1][i], tex[2][i]) = (c.0, c.1, c.2);
         }

@@ -291,7 +291,7 @@ mod tests {
     fn switching_kinds_keeps_the_mapping_texture_and_coefficients() {
         let earth = TextureDesc::Image {
             path: "earth.jpg".into(),
-            mapping: Mapping::Cylindrical,
+            mapping: Mapping::Cylindrical.into(),
             filter: Filter::Ewa,
             lookup: Lookup::Lecture,
             wrap: Wrap::Clamp,
@@ -302,12 +302,12 @@ mod tests {
         };
         assert_eq!(
             earth.converted(TextureKind::Checker).mapping(),
-            Some(Mapping::Cylindrical)
+            Some(&Mapping::Cylindrical.into())
         );
         // A mesh's material is read through the mesh's (u, v) unless told otherwise.
         assert_eq!(
             earth.converted(TextureKind::MeshMaterial).mapping(),
-            Some(Mapping::Uv)
+            Some(&Mapping::Uv.into())
         );
         let phong = MaterialDesc::Phong {
             ka: 0.1.into(),

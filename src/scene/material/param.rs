@@ -383,8 +383,8 @@ mod tests {
             panic!("ks: {ks:?}")
         };
         assert_eq!(
-            (path.as_str(), *mapping, *filter),
-            ("mask.png", Mapping::Spherical, Filter::Ewa)
+            (path.as_str(), mapping.builtin(), *filter),
+            ("mask.png", Some(Mapping::Spherical), Filter::Ewa)
         );
         assert_eq!(ks.channel(), Some(Channel::Luminance));
         assert!(matches!(

@@ -55,7 +55,10 @@ pub(super) fn displaced_mesh(
         return Ok(m);
     }
     if !base.has_uv()
-        && let Some(Mapping::Uv) = d.height.mapping()
+        && let Some(Mapping::Uv) = d
+            .height
+            .mapping()
+            .and_then(crate::scene::MappingDesc::builtin)
     {
         return Err(invalid(format!(
             "height: {} has no texture coordinates; choose a generated mapping (spherical, \

@@ -5,6 +5,7 @@ use super::super::material::MaterialDesc;
 use super::super::texture::TextureDesc;
 use crate::geometry::Mesh;
 use crate::mapping::Mapping;
+use crate::scene::MappingDesc;
 use std::borrow::Cow;
 
 /// The material with a [`TextureDesc::MeshMaterial`] replaced by what the mesh file names: its
@@ -44,7 +45,7 @@ pub(super) fn resolve_mesh_material<'a>(
                 .unwrap_or_else(|_| image.clone())
                 .to_string_lossy()
                 .into_owned(),
-            mapping: *mapping,
+            mapping: mapping.clone(),
             filter: *filter,
             lookup: *lookup,
             wrap: *wrap,
@@ -74,7 +75,7 @@ pub(super) fn check_uv_mapping(m: &MaterialDesc, mesh: &Mesh) -> Result<(), Stri
     match m
         .textures()
         .into_iter()
-        .find(|(_, t)| t.mapping() == Some(Mapping::Uv))
+        .find(|(_, t)| t.mapping().and_then(MappingDesc::builtin) == Some(Mapping::Uv))
     {
         Some((name, _)) => Err(format!(
             "{name}: {} has no texture coordinates; choose a generated mapping (spherical, cylindrical, rectangular)",

@@ -325,7 +325,8 @@ pub(super) fn build_object(
         if !mesh.has_uv()
             && let Some((field, _)) = o.textures().into_iter().find(|(f, t)| {
                 !f.to_string().starts_with("material")
-                    && t.mapping() == Some(crate::mapping::Mapping::Uv)
+                    && t.mapping().and_then(super::mapping::MappingDesc::builtin)
+                        == Some(crate::mapping::Mapping::Uv)
             })
         {
             return Err(bad(format!(

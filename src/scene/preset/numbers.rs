@@ -147,6 +147,8 @@ impl Numbers {
             | TextureDesc::UvGrid { max_anisotropy, .. } => {
                 self.check(|| format!("{tex}.max_anisotropy"), &[*max_anisotropy]);
             }
+            // Formulas are text, checked when they are compiled (`build_scene`).
+            TextureDesc::Formula { .. } => {}
         }
     }
 }

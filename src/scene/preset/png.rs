@@ -92,7 +92,7 @@ fn raw_text_chunk(path: &Path) -> Result<Option<&'static str>> {
     use std::io::{Read, Seek, SeekFrom};
     let mut file = crate::input::open_input(path)?;
     let io = |e: std::io::Error| Error::io(path, e);
-    let len = file.metadata().map_err(io)?.len();
+    let len = file.seek(SeekFrom::End(0)).map_err(io)?;
     let mut pos = 8u64;
     let key = PRESET_CHUNK.as_bytes();
     while pos + 12 <= len {

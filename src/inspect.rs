@@ -125,15 +125,72 @@ pub struct Inspection {
     pub debug_value: Option<(View, Rgb)>,
     /// On a mesh: the triangle hit, its vertices' (u, v) and the barycentric weights.
     pub mesh: Option<MeshPoint>,
+    /// The clip-mapped surfaces the ray passed through before it reached this one (alpha 0
+    /// there: the ray continued, as the renderer's does), nearest first.
+    pub passed: Vec<ClipPass>,
+    /// This surface's clip-map alpha, if it has a clip map: below 1 the pixel blends it with
+    /// what lies behind it (`alpha L_surface + (1 - alpha) L_behind`).
+    pub alpha: Option<f32>,
+}
+
+/// A clip-mapped surface a ray went through: where its clip map's alpha is 0 the surface is a
+/// hole, and the ray continues behind it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ClipPass {
+    /// The object's name.
+    pub object_name: String,
+    /// Where the ray met it (world space).
+    pub world_point: Vec3A,
+    /// Its clip map's alpha there (0: a hole).
+    pub alpha: f32,
 }
 
 impl Scene {
+    /// The first surface `ray` shows: through the holes of clip maps (alpha 0), as the
+    /// renderer goes. Returns the ray that reaches it, the hit, the surfaces passed and the hit's
+    /// own clip-map alpha (if it has a clip map).
+    fn through_holes(
+        &self,
+        mut ray: crate::math::Ray,
+        diff: &crate::math::RayDifferential,
+    ) -> Option<(
+        crate::math::Ray,
+        crate::scene::SurfaceHit,
+        Vec<ClipPass>,
+        Option<f32>,
+    )> {
+        let mut passed = Vec::new();
+        loop {
+            let hit = self.hit(&ray)?;
+            let Some(clip) = self.surfaces[hit.object]
+                .clip
+                .as_ref()
+                .filter(|_| self.has_clips())
+            else {
+                return Some((ray, hit, passed, None));
+            };
+            let a = clip
+                .eval(&self.texture_context(&hit, Some(diff)))
+                .clamp(0.0, 1.0);
+            if a > 0.0 || passed.len() + 1 >= crate::scene::MAX_CLIP_LAYERS as usize {
+                return Some((ray, hit, passed, Some(a)));
+            }
+            passed.push(ClipPass {
+                object_name: self.objects[hit.object].name.clone(),
+                world_point: hit.p,
+                alpha: a,
+            });
+            let origin = hit.p + ray.dir.normalize_or_zero() * self.offset_at(&hit);
+            ray = crate::math::Ray::new(origin, ray.dir);
+        }
+    }
+
     /// What the renderer does for the ray through film position `pixel` (pixels, (0, 0) the
     /// top-left corner; add 0.5 for a pixel's centre), or `None` where it hits nothing.
     #[must_use]
     pub fn inspect(&self, pixel: Vec2) -> Option<Inspection> {
         let (ray, diff) = self.camera.ray(pixel, 1.0)?;
-        let hit = self.hit(&ray)?;
+        let (ray, hit, passed, alpha) = self.through_holes(ray, &diff)?;
         let obj = &self.objects[hit.object];
         // Differentials always, even when no filter needs them: the footprint is worth showing.
         let d = if obj.identity {
@@ -285,6 +342,8 @@ impl Scene {
             radiance,
             debug_value,
             mesh,
+            passed,
+            alpha,
         })
     }
 }
@@ -619,6 +678,35 @@ mod tests {
         assert!(major >= minor && minor > 1.0, "{major} {minor}");
         assert!(fp.mip_level.expect("mip") > 1.0);
         assert!(i.radiance.is_finite());
+    }
+
+    #[test]
+    fn over_a_hole_of_a_clip_map_the_inspector_reports_the_surface_behind_it() {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("presets/cutout.ron");
+        let mut desc = load_preset(&path).expect("preset");
+        desc.render.width = 80;
+        desc.render.height = 60;
+        let scene = build_scene(&desc, &path, &mut AssetCache::new()).expect("build");
+        let all: Vec<Inspection> = (0..60)
+            .flat_map(|y| (0..80).map(move |x| Vec2::new(x as f32 + 0.5, y as f32 + 0.5)))
+            .filter_map(|p| scene.inspect(p))
+            .collect();
+        // Through a hole: the board is passed with alpha 0, and the floor is what shows, its
+        // radiance the pixel's.
+        let hole = all
+            .iter()
+            .find(|i| !i.passed.is_empty())
+            .expect("a pixel over one of the board's holes");
+        assert_eq!(hole.passed[0].object_name, "Board");
+        assert_eq!(hole.passed[0].alpha, 0.0);
+        assert_eq!(hole.object_name, "Floor");
+        assert!(hole.alpha.is_none(), "the floor has no clip map");
+        // On the board itself: solid, its alpha shown, nothing passed.
+        let board = all
+            .iter()
+            .find(|i| i.object_name == "Board" && i.alpha == Some(1.0))
+            .expect("a pixel on the board's solid part");
+        assert!(board.passed.is_empty());
     }
 
     #[test]

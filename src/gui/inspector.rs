@@ -466,9 +466,36 @@ fn hit_grid(ui: &mut egui::Ui, i: &Inspection) {
                 i.pixel.y.floor()
             ));
             ui.end_row();
+            for pass in &i.passed {
+                ui.label("passed through");
+                ui.label(format!(
+                    "{} at {}: clip-map alpha {:.2}, a hole: the ray continued",
+                    pass.object_name,
+                    v3(pass.world_point),
+                    pass.alpha
+                ))
+                .on_hover_text(
+                    "Where a clip map's alpha is 0 the surface is not there: the renderer's ray \
+                     goes on behind it, and so does the inspector's",
+                );
+                ui.end_row();
+            }
             ui.label("object");
             ui.label(format!("{} ({})", i.object_name, i.shape));
             ui.end_row();
+            if let Some(a) = i.alpha {
+                ui.label("clip-map alpha");
+                ui.label(if a >= 1.0 {
+                    format!("{a:.2}: solid here")
+                } else {
+                    format!(
+                        "{a:.2}: the pixel is {a:.2} of this surface and {:.2} of what lies \
+                         behind it",
+                        1.0 - a
+                    )
+                });
+                ui.end_row();
+            }
             ui.label("world hit point");
             ui.label(v3(i.world_point));
             ui.end_row();

@@ -414,7 +414,7 @@ impl Scene {
 
     /// How far rays leave a hit point: [`SHADOW_OFFSET_RELATIVE`] of the coordinates' size.
     #[inline]
-    fn offset_at(&self, hit: &SurfaceHit) -> f32 {
+    pub(crate) fn offset_at(&self, hit: &SurfaceHit) -> f32 {
         let obj = &self.objects[hit.object];
         SHADOW_OFFSET_RELATIVE
             * (max_abs(hit.p) + max_abs(obj.world_from_object.translation)).max(f32::MIN_POSITIVE)

@@ -469,15 +469,14 @@ fn hit_grid(ui: &mut egui::Ui, i: &Inspection) {
             for pass in &i.passed {
                 ui.label("passed through");
                 ui.label(format!(
-                    "{} at {}: clip-map alpha {:.2}, a hole: the ray continued",
-                    pass.object_name,
-                    v3(pass.world_point),
-                    pass.alpha
+                    "{}: alpha {:.2}, a hole; the ray went on",
+                    pass.object_name, pass.alpha
                 ))
-                .on_hover_text(
-                    "Where a clip map's alpha is 0 the surface is not there: the renderer's ray \
-                     goes on behind it, and so does the inspector's",
-                );
+                .on_hover_text(format!(
+                    "At {}. Where a clip map's alpha is 0 the surface is not there: the \
+                     renderer's ray goes on behind it, and so does the inspector's",
+                    v3(pass.world_point)
+                ));
                 ui.end_row();
             }
             ui.label("object");

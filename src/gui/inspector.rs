@@ -452,6 +452,34 @@ pub(super) fn overview(img: &ImageData) -> egui::ColorImage {
     egui::ColorImage::new([ow as usize, oh as usize], pixels)
 }
 
+/// A bump or normal map's rows: the value read, its (u, v) frame, and the normals.
+fn perturbation_rows(ui: &mut egui::Ui, p: &crate::inspect::PerturbationRead) {
+    let v3 = |v: crate::math::Vec3A| format!("({:.3}, {:.3}, {:.3})", v.x, v.y, v.z);
+    ui.label(p.kind);
+    ui.monospace(&p.value);
+    ui.end_row();
+    if let Some((dpdu, dpdv)) = p.frame {
+        ui.label("dp/du, dp/dv").on_hover_text(
+            "The surface's directions of growing u and v (object space): the map's slopes and \
+             tangent-space normals are read in this frame",
+        );
+        ui.label(format!("{}, {}", v3(dpdu), v3(dpdv)));
+        ui.end_row();
+    }
+    ui.label("geometric normal");
+    ui.label(v3(p.geometric));
+    ui.end_row();
+    ui.label("shading normal");
+    ui.label(format!(
+        "{}: tilted {:.1} degrees by the {}",
+        v3(p.shading),
+        p.tilt_degrees,
+        p.kind
+    ))
+    .on_hover_text("The normal the lighting uses; the surface itself does not move");
+    ui.end_row();
+}
+
 /// The hit: pixel, object, points, texture, mapping, colour, radiance and debug value.
 fn hit_grid(ui: &mut egui::Ui, i: &Inspection) {
     let v3 = |v: crate::math::Vec3A| format!("({:.4}, {:.4}, {:.4})", v.x, v.y, v.z);
@@ -482,6 +510,9 @@ fn hit_grid(ui: &mut egui::Ui, i: &Inspection) {
             ui.label("object");
             ui.label(format!("{} ({})", i.object_name, i.shape));
             ui.end_row();
+            if let Some(p) = &i.perturbation {
+                perturbation_rows(ui, p);
+            }
             if let Some(a) = i.alpha {
                 ui.label("clip-map alpha");
                 ui.label(if a >= 1.0 {

@@ -470,13 +470,12 @@ fn perturbation_rows(ui: &mut egui::Ui, p: &crate::inspect::PerturbationRead) {
     ui.label(v3(p.geometric));
     ui.end_row();
     ui.label("shading normal");
-    ui.label(format!(
-        "{}: tilted {:.1} degrees by the {}",
-        v3(p.shading),
-        p.tilt_degrees,
-        p.kind
-    ))
-    .on_hover_text("The normal the lighting uses; the surface itself does not move");
+    ui.label(format!("{}, tilted {:.1}°", v3(p.shading), p.tilt_degrees))
+        .on_hover_text(format!(
+            "The normal the lighting uses, tilted from the geometric one by the {}; the surface \
+             itself does not move",
+            p.kind
+        ));
     ui.end_row();
 }
 

@@ -141,7 +141,7 @@ pub struct Inspection {
 pub struct PerturbationRead {
     /// "bump map" or "normal map".
     pub kind: &'static str,
-    /// The value read, worked: `height 0.53 x scale 0.02 = 0.0106 (object units)` or
+    /// The value read, worked: `height 0.53 x scale 0.02 = 0.0106` (object units) or
     /// `texel (0.52, 0.48, 0.98) -> tangent-space normal (0.03, -0.05, 1.00)`.
     pub value: String,
     /// The surface's dp/du and dp/dv (object space) the map is read in: `None` where the
@@ -399,7 +399,7 @@ impl Scene {
             Perturbation::Bump(b) => {
                 let h = read.luminance();
                 format!(
-                    "height {} x scale {} = {} (object units)",
+                    "height {} x scale {} = {}",
                     explain_number(f64::from(h)),
                     explain_number(f64::from(b.scale)),
                     explain_number(f64::from(h * b.scale))

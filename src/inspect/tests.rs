@@ -44,17 +44,23 @@ fn inspecting_the_earth_centre_gives_the_spherical_map_and_both_texels() {
     assert!(i.radiance.is_finite());
 }
 
-#[test]
-fn over_a_hole_of_a_clip_map_the_inspector_reports_the_surface_behind_it() {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("presets/cutout.ron");
+/// The inspection of every pixel centre of shipped preset `name` rendered at 80 x 60 (those
+/// whose ray hits something).
+fn every_pixel(name: &str) -> Vec<Inspection> {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("presets/{name}.ron"));
     let mut desc = load_preset(&path).expect("preset");
     desc.render.width = 80;
     desc.render.height = 60;
     let scene = build_scene(&desc, &path, &mut AssetCache::new()).expect("build");
-    let all: Vec<Inspection> = (0..60)
+    (0..60)
         .flat_map(|y| (0..80).map(move |x| Vec2::new(x as f32 + 0.5, y as f32 + 0.5)))
         .filter_map(|p| scene.inspect(p))
-        .collect();
+        .collect()
+}
+
+#[test]
+fn over_a_hole_of_a_clip_map_the_inspector_reports_the_surface_behind_it() {
+    let all = every_pixel("cutout");
     // Through a hole: the board is passed with alpha 0, and the floor is what shows, its
     // radiance the pixel's.
     let hole = all
@@ -209,15 +215,7 @@ fn missing_the_scene_inspects_nothing() {
 
 #[test]
 fn a_bump_or_normal_map_shows_its_value_its_frame_and_the_tilted_normal() {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("presets/bumps.ron");
-    let mut desc = load_preset(&path).expect("preset");
-    desc.render.width = 80;
-    desc.render.height = 60;
-    let scene = build_scene(&desc, &path, &mut AssetCache::new()).expect("build");
-    let all: Vec<Inspection> = (0..60)
-        .flat_map(|y| (0..80).map(move |x| Vec2::new(x as f32 + 0.5, y as f32 + 0.5)))
-        .filter_map(|p| scene.inspect(p))
-        .collect();
+    let all = every_pixel("bumps");
     for kind in ["bump map", "normal map"] {
         let reads: Vec<&PerturbationRead> = all
             .iter()

@@ -11,6 +11,8 @@ use crate::texture::{ImageData, Lookup};
 use std::sync::Arc;
 
 mod diagram;
+mod mirror;
+mod normals;
 use diagram::mapping_diagram;
 
 /// Largest side of the texture overview uploaded to the GPU (bigger images are subsampled).
@@ -133,6 +135,26 @@ impl Inspector {
             );
         }
         hit_grid(ui, &i);
+        if let Some(p) = &i.perturbation {
+            normals::surface_vectors(
+                ui,
+                &format!(
+                    "edge-on: the {} tilts the shading normal {:.1}° from the geometric one",
+                    p.kind, p.tilt_degrees
+                ),
+                p.geometric,
+                "geometric n",
+                &[normals::Arrow {
+                    dir: p.shading,
+                    name: "shading n",
+                    colour: egui::Color32::from_rgb(255, 150, 60),
+                    marked: true,
+                }],
+            );
+        }
+        if let Some(m) = &i.mirror {
+            mirror::mirror_section(ui, m);
+        }
         if let Some(m) = &i.mesh {
             mesh_section(ui, m);
         }

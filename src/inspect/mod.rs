@@ -133,6 +133,8 @@ pub struct Inspection {
     pub alpha: Option<f32>,
     /// What this surface's bump or normal map does here, if it has one.
     pub perturbation: Option<PerturbationRead>,
+    /// If this surface is a mirror: the ray it reflects and what that ray shows.
+    pub mirror: Option<MirrorRead>,
 }
 
 /// A bump or normal map at one hit: the value read, the (u, v) frame it is read in, and the
@@ -212,11 +214,23 @@ impl Scene {
     #[must_use]
     pub fn inspect(&self, pixel: Vec2) -> Option<Inspection> {
         let (ray, diff) = self.camera.ray(pixel, 1.0)?;
-        let (ray, hit, passed, alpha) = self.through_holes(ray, &diff)?;
+        self.inspect_ray(pixel, ray, &diff, 0)
+    }
+
+    /// What the renderer does along `ray` (with differentials `diff`) for the pixel at `pixel`,
+    /// after `depth` mirror bounces.
+    pub(super) fn inspect_ray(
+        &self,
+        pixel: Vec2,
+        ray: crate::math::Ray,
+        diff: &crate::math::RayDifferential,
+        depth: u32,
+    ) -> Option<Inspection> {
+        let (ray, hit, passed, alpha) = self.through_holes(ray, diff)?;
         let obj = &self.objects[hit.object];
         // Differentials always, even when no filter needs them: the footprint is worth showing.
         let d = if obj.identity {
-            diff
+            *diff
         } else {
             diff.transformed(&obj.object_from_world)
         };
@@ -328,7 +342,7 @@ impl Scene {
         });
         let texture_colour = texture.eval(&ctx);
         let parameters = material.textured_values(&ctx);
-        let (radiance, debug_value) = self.radiance_and_view(&ray, &diff);
+        let (radiance, debug_value) = self.radiance_and_view(&ray, diff, depth);
         let mesh = match &obj.shape {
             Shape::Mesh(m) => mesh_point(&m.mesh, hit.local.prim, hit.local.part, hit.local.p),
             _ => None,
@@ -357,24 +371,30 @@ impl Scene {
             passed,
             alpha,
             perturbation: self.perturbation_read(&hit, &ctx),
+            mirror: self.mirror_read(pixel, &hit, &ctx, diff, depth),
         })
     }
 
     /// The shaded radiance along `ray` and, under a debug view, the view's value separately:
-    /// there the film shows the view's colour, not the light.
+    /// there the film shows the view's colour, not the light. `depth` counts the mirror bounces
+    /// `ray` has taken.
     fn radiance_and_view(
         &self,
         ray: &crate::math::Ray,
         diff: &crate::math::RayDifferential,
+        depth: u32,
     ) -> (Rgb, Option<(View, Rgb)>) {
         let diff = self.needs_differentials().then_some(diff);
-        let shown = self.trace(ray, diff);
+        let shown = self.trace_at_depth(ray, diff, depth);
         if self.settings.view == View::Shaded {
             (shown, None)
         } else {
             let mut shaded = self.clone();
             shaded.settings.view = View::Shaded;
-            (shaded.trace(ray, diff), Some((self.settings.view, shown)))
+            (
+                shaded.trace_at_depth(ray, diff, depth),
+                Some((self.settings.view, shown)),
+            )
         }
     }
 
@@ -472,71 +492,6 @@ fn formula_lines(
     }
     lines.extend(f.explain(&inputs).0);
     lines
-}
-
-/// The angles of the lecture's mapping formulas at one point, for the mapping diagram: what the
-/// generic object's drawing marks. Each is `None` where the mapping has no such angle.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct MappingAngles {
-    /// Azimuth about y from +z toward +x, in [0, 2 pi) (cylindrical, spherical).
-    pub phi: Option<f64>,
-    /// Polar angle from +y, in [0, pi] (spherical).
-    pub theta: Option<f64>,
-    /// Angle from the probe's axis (+z, or -z for the panoramic variant), in [0, pi].
-    pub alpha: Option<f64>,
-    /// Direction in the image disc, from +u toward +v (light probes).
-    pub beta: Option<f64>,
-    /// Distance from the image disc's centre, 0 to 1 (light probes).
-    pub r: Option<f64>,
-}
-
-/// The angles of `mapping`'s formula at `p` (the point the mapping reads, see
-/// [`Inspection::mapping_point`]): phi for the cylindrical map, phi and theta for the spherical,
-/// alpha, beta and r for the light probes. The rectangular map and a mesh's own (u, v) have
-/// none.
-#[must_use]
-pub fn mapping_angles(mapping: Mapping, p: Vec3A) -> MappingAngles {
-    let p = p.as_dvec3();
-    let phi = || {
-        let a = p.x.atan2(p.z);
-        if a < 0.0 {
-            a + std::f64::consts::TAU
-        } else {
-            a
-        }
-    };
-    match mapping {
-        Mapping::Cylindrical => MappingAngles {
-            phi: Some(phi()),
-            ..MappingAngles::default()
-        },
-        Mapping::Spherical => MappingAngles {
-            phi: Some(phi()),
-            theta: Some(p.x.hypot(p.z).atan2(p.y)),
-            ..MappingAngles::default()
-        },
-        Mapping::LightProbe | Mapping::Panoramic | Mapping::MirrorBall => {
-            let z = if mapping == Mapping::Panoramic {
-                -p.z
-            } else {
-                p.z
-            };
-            let alpha = p.x.hypot(p.y).atan2(z);
-            let r = if mapping == Mapping::MirrorBall {
-                (alpha * 0.5).sin()
-            } else {
-                alpha / std::f64::consts::PI
-            };
-            MappingAngles {
-                alpha: Some(alpha),
-                beta: Some(p.y.atan2(p.x)),
-                r: Some(r),
-                ..MappingAngles::default()
-            }
-        }
-        // `Uv` in effect means (u, v) carried by the shape: no angle.
-        Mapping::Rectangular | Mapping::Uv => MappingAngles::default(),
-    }
 }
 
 /// Where a learner goes wrong with object `object`'s image texture, in words: an image whose
@@ -714,5 +669,10 @@ fn shape_label(shape: &Shape, part: u32) -> String {
     }
 }
 
+mod angles;
+mod mirror;
 #[cfg(test)]
 mod tests;
+
+pub use angles::{MappingAngles, mapping_angles};
+pub use mirror::MirrorRead;

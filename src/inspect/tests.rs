@@ -242,3 +242,108 @@ fn a_bump_or_normal_map_shows_its_value_its_frame_and_the_tilted_normal() {
         assert!(tilted.value.starts_with(prefix), "{}", tilted.value);
     }
 }
+
+/// The light-probe scene at 80 x 60 with reflection depth `depth`.
+fn light_probe(depth: u32) -> Scene {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("presets/light-probe.ron");
+    let mut desc = load_preset(&path).expect("preset");
+    desc.render.width = 80;
+    desc.render.height = 60;
+    desc.render.reflection_depth = depth;
+    build_scene(&desc, &path, &mut AssetCache::new()).expect("build")
+}
+
+#[test]
+fn at_a_mirror_the_inspector_follows_the_reflected_ray_to_the_texel_it_reads() {
+    let scene = light_probe(4);
+    let pixels =
+        (0..60).flat_map(|y| (0..80).map(move |x| Vec2::new(x as f32 + 0.5, y as f32 + 0.5)));
+    let on_mirror: Vec<Inspection> = pixels
+        .filter_map(|p| scene.inspect(p))
+        .filter(|i| i.object_name == "Mirror ball")
+        .collect();
+    assert!(
+        on_mirror.len() > 50,
+        "{} pixels on the mirror ball",
+        on_mirror.len()
+    );
+    for i in &on_mirror {
+        let m = i.mirror.as_ref().expect("the mirror ball mirrors");
+        assert_eq!((m.depth, m.limit), (1, 4));
+        assert!(m.followed());
+        // r = 2 (n . v) n - v: the angle of incidence equals the angle of reflection.
+        let cos_in = m.normal.dot(m.view);
+        let cos_out = m.normal.dot(m.direction);
+        assert!((cos_in - cos_out).abs() < 1e-4, "{cos_in} {cos_out}");
+        assert!((m.direction - (2.0 * cos_in * m.normal - m.view)).length() < 1e-4);
+        // kr 0.95, cr white, and no other term: the pixel is exactly what the mirror adds.
+        assert!((m.weight.0 - 0.95).abs() < 1e-6);
+        let added = m.added();
+        assert!(
+            (added.0 - i.radiance.0).abs() <= 1e-4 * (1.0 + i.radiance.0),
+            "mirror adds {added:?}, pixel is {:?}",
+            i.radiance
+        );
+        // The ray goes on to the environment or a ball, whose texel the inspector reads
+        // through the mirrored differentials.
+        let seen = m.seen.as_ref().expect("the room surrounds everything");
+        if seen.texture_kind != "constant" {
+            assert!(
+                seen.tex.is_some() && seen.footprint.is_some(),
+                "{}",
+                seen.object_name
+            );
+        }
+        assert!(m.lines.iter().any(|l| l.starts_with("r = 2 (n . v) n - v")));
+    }
+    // The convex mirror shrinks the room: a pixel's footprint in the probe is larger seen in
+    // the mirror than seen directly.
+    let direct = scene
+        .inspect(Vec2::new(2.5, 2.5))
+        .filter(|i| i.object_name == "Environment")
+        .and_then(|i| i.footprint?.axes_texels)
+        .expect("the room in the corner");
+    let mirrored = on_mirror
+        .iter()
+        .filter_map(|i| i.mirror.as_ref()?.seen.as_ref())
+        .filter(|s| s.object_name == "Environment")
+        .filter_map(|s| s.footprint?.axes_texels)
+        .map(|(a, _)| a)
+        .fold(0.0_f32, f32::max);
+    assert!(mirrored > 2.0 * direct.0, "{mirrored} vs {}", direct.0);
+}
+
+#[test]
+fn past_the_reflection_depth_a_mirror_is_not_followed() {
+    let scene = light_probe(0);
+    let i = (0..60)
+        .flat_map(|y| (0..80).map(move |x| Vec2::new(x as f32 + 0.5, y as f32 + 0.5)))
+        .filter_map(|p| scene.inspect(p))
+        .find(|i| i.object_name == "Mirror ball")
+        .expect("the mirror ball is in view");
+    let m = i.mirror.expect("still a mirror");
+    assert_eq!((m.depth, m.limit), (1, 0));
+    assert!(!m.followed());
+    assert!(m.seen.is_none());
+    assert_eq!(m.radiance, Rgb::BLACK);
+    assert!(
+        m.lines
+            .iter()
+            .any(|l| l.contains("past the reflection depth 0"))
+    );
+}
+
+#[test]
+fn a_mirror_seen_in_a_mirror_is_the_second_bounce() {
+    let scene = light_probe(4);
+    let second = (0..60)
+        .flat_map(|y| (0..80).map(move |x| Vec2::new(x as f32 + 0.5, y as f32 + 0.5)))
+        .filter_map(|p| scene.inspect(p))
+        .find_map(|i| i.mirror?.seen?.mirror)
+        .expect("a ball mirrors the other somewhere");
+    assert_eq!(second.depth, 2);
+    // A matte surface mirrors nothing.
+    let matte = scene.inspect(Vec2::new(40.5, 30.5)).expect("the ball");
+    assert_eq!(matte.object_name, "Ball");
+    assert!(matte.mirror.is_none());
+}

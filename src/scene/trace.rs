@@ -289,7 +289,12 @@ impl Scene {
     }
 
     /// Radiance along a ray that has already been mirrored `depth` times (0 for a camera ray).
-    fn trace_at_depth(&self, ray: &Ray, diff: Option<&RayDifferential>, depth: u32) -> Rgb {
+    pub(crate) fn trace_at_depth(
+        &self,
+        ray: &Ray,
+        diff: Option<&RayDifferential>,
+        depth: u32,
+    ) -> Rgb {
         self.radiance_keyed(ray, diff, depth, 0).0
     }
 
@@ -362,7 +367,11 @@ impl Scene {
     /// The shading normal of `hit` after its object's bump or normal map, or `None` if it has
     /// neither (the common case: one flag tested, no per-object lookup).
     #[inline]
-    fn perturbed_normal_at(&self, hit: &SurfaceHit, ctx: &TextureContext) -> Option<Vec3A> {
+    pub(crate) fn perturbed_normal_at(
+        &self,
+        hit: &SurfaceHit,
+        ctx: &TextureContext,
+    ) -> Option<Vec3A> {
         if !self.has_perturbations {
             return None;
         }
@@ -576,6 +585,20 @@ impl Scene {
         offset: f32,
         depth: u32,
     ) -> Rgb {
+        let (ray, mirrored) = self.mirror_ray(hit, diff, offset);
+        self.trace_at_depth(&ray, mirrored.as_ref(), depth + 1)
+    }
+
+    /// The ray a mirror at `hit` reflects the viewer's ray into, `wi = 2 (n . wo) n - wo` about
+    /// the shading normal, leaving `offset` off the surface on the side it goes to; and, when
+    /// the hit carries ray differentials, the mirrored differentials (pbrt's specular
+    /// reflection differentials).
+    pub(crate) fn mirror_ray(
+        &self,
+        hit: &SurfaceHit,
+        diff: Option<&RayDifferential>,
+        offset: f32,
+    ) -> (Ray, Option<RayDifferential>) {
         let (n, wo) = (hit.ns, hit.wo);
         let cos = n.dot(wo);
         let wi = (2.0 * cos * n - wo).normalize_or(hit.ng);
@@ -600,7 +623,7 @@ impl Scene {
                 ry_dir,
             }
         });
-        self.trace_at_depth(&ray, mirrored.as_ref(), depth + 1)
+        (ray, mirrored)
     }
 
     /// The change of the world shading normal from `hit` to the point `dp` away on its tangent

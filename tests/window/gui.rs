@@ -144,6 +144,77 @@ fn saving_then_reopening_a_screenshot_restores_the_preset() {
     settle(&mut again);
 }
 
+/// The light-probe preset (a mirror ball, a glossy ball, a matte ball in a courtyard) at
+/// 160 x 120 and 1 spp, written to `dir` with its texture path made absolute.
+fn small_light_probe(dir: &std::path::Path) -> std::path::PathBuf {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut desc =
+        texplore::scene::load_preset(&root.join("presets/light-probe.ron")).expect("preset");
+    desc.render.width = 160;
+    desc.render.height = 120;
+    desc.render.spp = 1;
+    if let texplore::scene::TextureDesc::Image { path, .. } = desc.objects[0].material.texture_mut()
+    {
+        *path = root
+            .join("assets/courtyard_probe.hdr")
+            .display()
+            .to_string();
+    }
+    let path = dir.join("probe-small.ron");
+    texplore::scene::save_preset(&desc, &path).expect("write preset");
+    path
+}
+
+#[test]
+fn hovering_a_mirror_follows_its_reflected_ray() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let path = small_light_probe(dir.path());
+    let desc = texplore::scene::load_preset(&path).expect("preset");
+    let scene = texplore::scene::build_scene(&desc, &path, &mut texplore::scene::AssetCache::new())
+        .expect("build");
+    let mut h = harness(path);
+    // A film pixel on the mirror ball, found as the inspector finds it.
+    let (w, hh) = (scene.settings.width, scene.settings.height);
+    let film = (0..hh)
+        .flat_map(|y| {
+            (0..w).map(move |x| texplore::math::Vec2::new(x as f32 + 0.5, y as f32 + 0.5))
+        })
+        .find(|&p| {
+            scene
+                .inspect(p)
+                .is_some_and(|i| i.object_name == "Mirror ball")
+        })
+        .expect("the mirror ball is in view");
+    let image = h.get_by_label("Rendered image").rect();
+    let at = image.min
+        + egui::vec2(
+            film.x / w as f32 * image.width(),
+            film.y / hh as f32 * image.height(),
+        );
+    h.hover_at(at);
+    h.run_steps(3);
+    let i = h.state().inspection().expect("an inspection");
+    assert_eq!(i.object_name, "Mirror ball");
+    // The reflection worked, drawn and followed: what the ray hits and the texel it reads.
+    assert!(
+        h.query_all_by_label_contains("Mirror: bounce 1 (the reflection depth allows 4)")
+            .next()
+            .is_some()
+    );
+    assert!(
+        h.query_all_by_label_contains("r = 2 (n . v) n - v")
+            .next()
+            .is_some()
+    );
+    assert!(
+        h.query_all_by_label_contains("make equal angles")
+            .next()
+            .is_some()
+    );
+    assert!(h.query_by_label("r hits").is_some());
+    assert!(h.query_by_label("the mirror adds").is_some());
+}
+
 #[test]
 fn hovering_the_earth_explains_the_pixel() {
     let dir = tempfile::tempdir().expect("temp dir");

@@ -87,12 +87,25 @@ pub(super) fn mapping_diagram(ui: &mut egui::Ui, mapping: Mapping, p: crate::mat
     });
 }
 
-fn text(pa: &egui::Painter, at: egui::Pos2, align: egui::Align2, s: &str, c: egui::Color32) {
+pub(super) fn text(
+    pa: &egui::Painter,
+    at: egui::Pos2,
+    align: egui::Align2,
+    s: &str,
+    c: egui::Color32,
+) {
     pa.text(at, align, s, egui::FontId::proportional(11.0), c);
 }
 
 /// An arc about `c` of radius `r` from screen angle `a0` sweeping `sweep` radians (y down).
-fn arc(pa: &egui::Painter, c: egui::Pos2, r: f32, a0: f32, sweep: f32, colour: egui::Color32) {
+pub(super) fn arc(
+    pa: &egui::Painter,
+    c: egui::Pos2,
+    r: f32,
+    a0: f32,
+    sweep: f32,
+    colour: egui::Color32,
+) {
     let n = ((sweep.abs() * 16.0).ceil() as usize).max(2);
     let pts = (0..=n)
         .map(|k| {

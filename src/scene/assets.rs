@@ -93,11 +93,38 @@ impl AssetCache {
 
     /// Runs `build` as the build of one scene: every image and displaced mesh it asks for is
     /// counted once against [`MAX_SCENE_TEXEL_BYTES`] and [`MAX_SCENE_DISPLACED_TRIANGLES`].
+    /// Afterwards the cache keeps the images this scene read and, of the others, no more than
+    /// fit in [`MAX_SCENE_TEXEL_BYTES`] with them: a window or a command going through many
+    /// scenes (lessons' experiments, `snapshot update`) does not keep every image it met.
     pub(super) fn scene<T>(&mut self, build: impl FnOnce(&mut Self) -> T) -> T {
         let outer = self.scene.replace(SceneUse::default());
         let out = build(self);
+        if let Some(used) = self.scene.take() {
+            self.trim(&used.images);
+        }
         self.scene = outer;
         out
+    }
+
+    /// Forgets images not in `keep` (and their mip pyramids) while the cache's images take
+    /// more than [`MAX_SCENE_TEXEL_BYTES`].
+    fn trim(&mut self, keep: &HashSet<ImageKey>) {
+        let mut total: u64 = self.images.values().map(|(_, bytes)| bytes).sum();
+        let others: Vec<ImageKey> = self
+            .images
+            .keys()
+            .filter(|k| !keep.contains(*k))
+            .cloned()
+            .collect();
+        for key in others {
+            if total <= MAX_SCENE_TEXEL_BYTES {
+                break;
+            }
+            if let Some((image, bytes)) = self.images.remove(&key) {
+                total -= bytes;
+                self.mips.retain(|(base, _)| !Arc::ptr_eq(base, &image));
+            }
+        }
     }
 
     /// The image at `path`, decoded once per file (whatever path names it).

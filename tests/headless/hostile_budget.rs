@@ -441,3 +441,44 @@ fn lesson_list_counts_displacements_without_subdividing() {
         "{o}{e}"
     );
 }
+
+#[test]
+fn a_command_going_through_scenes_does_not_keep_every_image_it_met() {
+    // `snapshot update` of three presets, each reading its own 16384^2 file (1 GiB of texels),
+    // through one cache: it kept all three (3 GiB). Now the cache keeps, beside a scene's own
+    // images, no more than the scene budget of others.
+    let dir = tempfile::tempdir().unwrap();
+    let presets = dir.path().join("presets");
+    std::fs::create_dir(&presets).unwrap();
+    grey_png(&presets.join("a.png"), 16384, 16384);
+    for x in ["a", "b", "c"] {
+        if x != "a" {
+            std::fs::copy(presets.join("a.png"), presets.join(format!("{x}.png"))).unwrap();
+        }
+        let preset = sphere(&format!(
+            r#"material: Matte(cd: Image(path: "{x}.png", mapping: Spherical, filter: Nearest))"#
+        ))
+        .replace(
+            "render:",
+            "snapshot: (width: 8, height: 8, spp: 1), render:",
+        );
+        std::fs::write(presets.join(format!("{x}.ron")), preset).unwrap();
+    }
+    let out = texplore_limited(
+        dir.path(),
+        &[
+            "snapshot",
+            "update",
+            "--presets",
+            "presets",
+            "--screenshots",
+            "shots",
+        ],
+        BASELINE + 2048 * MIB + 128 * MIB,
+    );
+    let (o, e) = (String::from_utf8_lossy(&out.stdout), stderr(&out));
+    assert!(out.status.success(), "{o}{e}");
+    for x in ["a", "b", "c"] {
+        assert!(dir.path().join(format!("shots/{x}.png")).is_file(), "{o}");
+    }
+}

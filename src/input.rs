@@ -34,6 +34,34 @@ pub fn input_len(file: &Input) -> Option<u64> {
     Some(file.get_ref().len() as u64)
 }
 
+/// Which file an opened input is, whatever path spelled it: its device and inode on unix, so
+/// `x.png`, `./in/../x.png`, a hard link and a symbolic link to it are one file; elsewhere its
+/// canonical path (in a page, the mounted path).
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub enum FileId {
+    /// Device and inode numbers.
+    Inode(u64, u64),
+    /// The canonical path (or the path itself, when it cannot be made canonical).
+    Path(PathBuf),
+}
+
+/// The identity of the opened `file`, read from `path`.
+#[must_use]
+pub fn file_id(file: &Input, path: &Path) -> FileId {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        if let Ok(m) = file.metadata() {
+            return FileId::Inode(m.dev(), m.ino());
+        }
+    }
+    let _ = file;
+    #[cfg(target_arch = "wasm32")]
+    return FileId::Path(path.to_path_buf());
+    #[cfg(not(target_arch = "wasm32"))]
+    FileId::Path(std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf()))
+}
+
 /// The entries of the folder `dir` (as `dir` joined with each name), in no particular order;
 /// in a page, the files mounted in it.
 ///

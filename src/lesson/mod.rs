@@ -214,7 +214,7 @@ fn ron_text(v: &toml::Value) -> std::result::Result<String, String> {
 /// the preset, or an experiment whose scene does not build (a value out of range, a missing
 /// image).
 pub fn parse_lesson(text: &str, file: &Path) -> Result<Lesson> {
-    parse_with(text, file, &mut AssetCache::new())
+    parse_with(text, file, &mut AssetCache::checking())
 }
 
 /// [`parse_lesson`] with a cache shared by several lessons (each image is read once).
@@ -345,7 +345,7 @@ fn parse_with(text: &str, file: &Path, cache: &mut AssetCache) -> Result<Lesson>
 /// # Errors
 /// As [`parse_lesson`], or the file cannot be read.
 pub fn load_lesson(file: &Path) -> Result<Lesson> {
-    load_with(file, &mut AssetCache::new())
+    load_with(file, &mut AssetCache::checking())
 }
 
 fn load_with(file: &Path, cache: &mut AssetCache) -> Result<Lesson> {
@@ -445,7 +445,9 @@ pub fn load_dir(dir: &Path) -> Result<Lessons> {
         .collect();
     files.sort();
     let mut out = Lessons::default();
-    let mut cache = AssetCache::new();
+    // Every experiment's scene is checked, not built at full cost: images by their headers
+    // (their sizes against the scene's budget), displacements by their triangle counts.
+    let mut cache = AssetCache::checking();
     for f in files {
         match load_with(&f, &mut cache) {
             Ok(l) => out.lessons.push(l),

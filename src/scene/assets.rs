@@ -1,29 +1,59 @@
 //! The asset cache: images, meshes, mip pyramids and displaced meshes loaded once and shared
-//! between builds.
+//! between builds, each file known by its identity (not the path that spelled it), and the
+//! scene's budget: the texels of all its images, and the triangles of all its displaced meshes.
 
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::geometry::Mesh;
-use crate::texture::{ImageData, MipPyramid, load_alpha, load_image, uv_grid_image};
-use std::collections::HashMap;
+use crate::geometry::displace::MAX_DISPLACED_TRIANGLES;
+use crate::input::{FileId, file_id, open_input};
+use crate::texture::{
+    ImageData, ImageRequest, MAX_IMAGE_BYTES, MipPyramid, load_opened, uv_grid_image,
+};
+use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 /// Side of the generated UV test grid image.
 pub const UV_GRID_SIZE: u32 = 1024;
 
+/// The texture budget of a whole scene: the texel storage of every image it reads (colours,
+/// coefficients, clip, bump, normal and displacement maps; one file read twice counts once)
+/// together, [`MAX_IMAGE_BYTES`] (1 GiB). Mip pyramids add up to a third on top.
+pub const MAX_SCENE_TEXEL_BYTES: u64 = MAX_IMAGE_BYTES;
+
+/// The most triangles the displaced meshes of one scene may hold together (a displaced mesh
+/// two objects share counts once): [`MAX_DISPLACED_TRIANGLES`] (4 M), about 320 MB.
+pub const MAX_SCENE_DISPLACED_TRIANGLES: usize = MAX_DISPLACED_TRIANGLES;
+
+/// An image of a file: the file, sRGB or not, colour or alpha.
+type ImageKey = (FileId, bool, bool);
+
 /// Decoded images shared between builds, so an edit in the GUI does not decode the Earth again.
 #[derive(Debug, Default)]
 pub struct AssetCache {
-    images: HashMap<(PathBuf, bool), Arc<ImageData>>,
-    alphas: HashMap<PathBuf, Arc<ImageData>>,
+    /// Each image with the bytes its texel storage takes (counted against the scene budget).
+    images: HashMap<ImageKey, (Arc<ImageData>, u64)>,
     uv_grid: Option<Arc<ImageData>>,
-    meshes: HashMap<PathBuf, Arc<Mesh>>,
+    meshes: HashMap<FileId, Arc<Mesh>>,
     /// Mip pyramids, built on first use by a mip filter and keyed by their base image (the
     /// cache holds every base image, so an `Arc` pointer stays a unique key).
     mips: Vec<(Arc<ImageData>, Arc<MipPyramid>)>,
     /// The latest displaced meshes (at most [`DISPLACED_KEPT`]), by mesh file, the folder the
     /// height texture's path is relative to, and the displacement.
     displaced: Vec<(DisplacedKey, Arc<Mesh>)>,
+    /// What the scene being built has used so far (`None` outside [`AssetCache::scene`]).
+    scene: Option<SceneUse>,
+    /// Read images' headers only and do not subdivide (see [`AssetCache::checking`]).
+    checking: bool,
+}
+
+/// What one scene's build has taken of the budgets, each asset counted once.
+#[derive(Debug, Default)]
+struct SceneUse {
+    texel_bytes: u64,
+    images: HashSet<ImageKey>,
+    triangles: usize,
+    displaced: HashSet<DisplacedKey>,
 }
 
 /// What a displaced mesh is made from: the mesh file, the preset's folder and the displacement
@@ -42,49 +72,175 @@ impl AssetCache {
         Self::default()
     }
 
-    /// The image at `path`, decoded once.
+    /// An empty cache that checks scenes without building them at full cost: an image's header
+    /// is read and its size counted against the budget, but the image is a 1 x 1 stand-in; a
+    /// displacement is counted and its height texture checked, but the mesh is not subdivided.
+    /// What `lesson --list` and the Lessons panel check every experiment's scene with. Its
+    /// scenes are for checking only, never for rendering.
+    #[must_use]
+    pub fn checking() -> Self {
+        Self {
+            checking: true,
+            ..Self::default()
+        }
+    }
+
+    /// Whether this cache only checks (see [`AssetCache::checking`]).
+    #[must_use]
+    pub const fn is_checking(&self) -> bool {
+        self.checking
+    }
+
+    /// Runs `build` as the build of one scene: every image and displaced mesh it asks for is
+    /// counted once against [`MAX_SCENE_TEXEL_BYTES`] and [`MAX_SCENE_DISPLACED_TRIANGLES`].
+    /// Afterwards the cache keeps the images this scene read and, of the others, no more than
+    /// fit in [`MAX_SCENE_TEXEL_BYTES`] with them: a window or a command going through many
+    /// scenes (lessons' experiments, `snapshot update`) does not keep every image it met.
+    pub(super) fn scene<T>(&mut self, build: impl FnOnce(&mut Self) -> T) -> T {
+        let outer = self.scene.replace(SceneUse::default());
+        let out = build(self);
+        if let Some(used) = self.scene.take() {
+            self.trim(&used.images);
+        }
+        self.scene = outer;
+        out
+    }
+
+    /// Forgets images not in `keep` (and their mip pyramids) while the cache's images take
+    /// more than [`MAX_SCENE_TEXEL_BYTES`].
+    fn trim(&mut self, keep: &HashSet<ImageKey>) {
+        let mut total: u64 = self.images.values().map(|(_, bytes)| bytes).sum();
+        let others: Vec<ImageKey> = self
+            .images
+            .keys()
+            .filter(|k| !keep.contains(*k))
+            .cloned()
+            .collect();
+        for key in others {
+            if total <= MAX_SCENE_TEXEL_BYTES {
+                break;
+            }
+            if let Some((image, bytes)) = self.images.remove(&key) {
+                total -= bytes;
+                self.mips.retain(|(base, _)| !Arc::ptr_eq(base, &image));
+            }
+        }
+    }
+
+    /// The image at `path`, decoded once per file (whatever path names it).
     ///
     /// # Errors
-    /// See [`load_image`].
+    /// See [`crate::texture::load_image`]; the image does not fit what is left of the scene's
+    /// texture budget.
     pub fn image(&mut self, path: &Path, srgb: bool) -> Result<Arc<ImageData>> {
-        let key = (path.to_path_buf(), srgb);
-        if let Some(img) = self.images.get(&key) {
-            return Ok(img.clone());
-        }
-        let img = Arc::new(load_image(path, srgb)?);
-        self.images.insert(key, img.clone());
-        Ok(img)
+        self.load(path, ImageRequest::colour(srgb))
     }
 
-    /// The alpha channel of the image at `path` as a grey image, decoded once.
+    /// The alpha channel of the image at `path` as a grey image, decoded once per file.
     ///
     /// # Errors
-    /// See [`load_alpha`].
+    /// See [`crate::texture::load_alpha`]; the image does not fit what is left of the scene's
+    /// texture budget.
     pub fn alpha(&mut self, path: &Path) -> Result<Arc<ImageData>> {
-        if let Some(img) = self.alphas.get(path) {
-            return Ok(img.clone());
-        }
-        let img = Arc::new(load_alpha(path)?);
-        self.alphas.insert(path.to_path_buf(), img.clone());
-        Ok(img)
+        self.load(path, ImageRequest::alpha())
     }
 
-    /// The mesh at `path`, read and its BVH built once (every instance shares it).
+    /// The image of `path` as `req` asks, from the cache or decoded, counted against the scene.
+    fn load(&mut self, path: &Path, req: ImageRequest) -> Result<Arc<ImageData>> {
+        let file = open_input(path)?;
+        let key = (file_id(&file, path), req.srgb, req.alpha);
+        let counted = self.scene.as_ref().is_some_and(|s| s.images.contains(&key));
+        let left = match &self.scene {
+            Some(s) if !counted => MAX_SCENE_TEXEL_BYTES.saturating_sub(s.texel_bytes),
+            _ => MAX_IMAGE_BYTES,
+        };
+        let (image, bytes) = if let Some((image, bytes)) = self.images.get(&key) {
+            drop(file);
+            if *bytes > left {
+                // The message the decoder gives for the same size (read from the header again).
+                let req = ImageRequest {
+                    max_bytes: left,
+                    header_only: true,
+                    ..req
+                };
+                load_opened(open_input(path)?, path, req)?;
+                return Err(Error::Image {
+                    path: path.to_path_buf(),
+                    message: format!(
+                        "its texels do not fit what is left of the scene's texture budget ({left} bytes)"
+                    ),
+                });
+            }
+            (image.clone(), *bytes)
+        } else {
+            let req = ImageRequest {
+                max_bytes: left,
+                header_only: self.checking,
+                ..req
+            };
+            let (image, bytes) = load_opened(file, path, req)?;
+            let image = Arc::new(image);
+            self.images.insert(key.clone(), (image.clone(), bytes));
+            (image, bytes)
+        };
+        if let Some(s) = &mut self.scene
+            && s.images.insert(key)
+        {
+            s.texel_bytes += bytes;
+        }
+        Ok(image)
+    }
+
+    /// The mesh at `path`, read and its BVH built once per file (every instance shares it).
     ///
     /// # Errors
     /// See [`crate::meshio::load_mesh`] and [`Mesh::new`].
     pub fn mesh(&mut self, path: &Path) -> Result<Arc<Mesh>> {
-        if let Some(m) = self.meshes.get(path) {
+        if let Some(m) = self.meshes.get(&FileId::Path(path.to_path_buf())) {
+            return Ok(m.clone());
+        }
+        let id = file_id(&open_input(path)?, path);
+        if let Some(m) = self.meshes.get(&id) {
             return Ok(m.clone());
         }
         let mesh = Arc::new(Mesh::new(crate::meshio::load_mesh(path)?, path)?);
-        self.meshes.insert(path.to_path_buf(), mesh.clone());
+        self.meshes.insert(id, mesh.clone());
         Ok(mesh)
     }
 
     /// Makes `mesh` what presets naming `path` get (a generated mesh, for benchmarks).
     pub fn insert_mesh(&mut self, path: &Path, mesh: Arc<Mesh>) {
-        self.meshes.insert(path.to_path_buf(), mesh);
+        self.meshes.insert(FileId::Path(path.to_path_buf()), mesh);
+    }
+
+    /// Counts a displaced mesh of `triangles` made for `key` against the scene's
+    /// [`MAX_SCENE_DISPLACED_TRIANGLES`] (once per key).
+    ///
+    /// # Errors
+    /// The scene's displaced meshes would hold more: the message says how many the others hold.
+    pub(super) fn count_displaced(
+        &mut self,
+        key: &DisplacedKey,
+        triangles: usize,
+    ) -> std::result::Result<(), String> {
+        let Some(s) = &mut self.scene else {
+            return Ok(());
+        };
+        if s.displaced.contains(key) {
+            return Ok(());
+        }
+        let total = s.triangles.saturating_add(triangles);
+        if total > MAX_SCENE_DISPLACED_TRIANGLES {
+            return Err(format!(
+                "{triangles} triangles, and the scene's other displaced meshes hold {}: {total} \
+                 in all, above the {MAX_SCENE_DISPLACED_TRIANGLES} (4 M) a scene may hold; use \
+                 fewer levels or fewer displaced objects",
+                s.triangles
+            ));
+        }
+        s.triangles = total;
+        s.displaced.insert(key.clone());
+        Ok(())
     }
 
     /// The displaced mesh made for `key`, if one is kept.
@@ -125,5 +281,11 @@ impl AssetCache {
     #[must_use]
     pub fn mip_count(&self) -> usize {
         self.mips.len()
+    }
+
+    /// How many images have been decoded (each file once per colour space and channel).
+    #[must_use]
+    pub fn image_count(&self) -> usize {
+        self.images.len()
     }
 }

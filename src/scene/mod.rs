@@ -19,7 +19,9 @@ mod texture;
 mod trace;
 mod values;
 
-pub use assets::{AssetCache, DISPLACED_KEPT, UV_GRID_SIZE};
+pub use assets::{
+    AssetCache, DISPLACED_KEPT, MAX_SCENE_DISPLACED_TRIANGLES, MAX_SCENE_TEXEL_BYTES, UV_GRID_SIZE,
+};
 pub use camera::{CameraDesc, ProjectionDesc, ProjectionKind};
 pub use field::{FieldPath, Step};
 pub use light::{AmbientDesc, LightDesc, LightKind};

@@ -357,8 +357,18 @@ pub(super) fn param_texture(
             path,
             message: format!("{what}.{message}"),
         },
-        other => other,
+        other => asset_in_field(base, what, other),
     })
+}
+
+/// An asset's error (a file that cannot be read, an image above the budget) as the error of
+/// the field `what` (`kd`, `bump.height`), relative to the object: `build_object` puts the
+/// preset and the object in front. A value's error is returned as it is.
+pub(super) fn asset_in_field(base: &Path, what: &str, e: Error) -> Error {
+    match e {
+        e @ Error::Invalid { .. } => e,
+        other => Error::in_field(base, what, other),
+    }
 }
 
 /// The alpha channel of an `Image` texture, read through its mapping, filter, wrap and

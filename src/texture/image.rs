@@ -3,13 +3,17 @@
 
 use super::{Lookup, Wrap};
 use crate::error::{Error, Result};
-use crate::math::{Rgb, Vec2, floor_fast, linear_to_srgb8, srgb_to_linear, srgb8_table};
+use crate::math::{Rgb, Vec2, floor_fast, linear_to_srgb8, srgb8_table};
 use std::path::Path;
 
 mod float_tiff;
 mod hdr;
 mod jpeg;
 mod png_decode;
+mod storage;
+
+pub use storage::ImageRequest;
+use storage::Storage;
 
 /// The largest width or height an image may have (decoding refuses anything bigger): 2^20, so
 /// that an `f32` (u, v) still addresses a sixteenth of a texel. Memory is bounded by
@@ -139,216 +143,6 @@ fn zeroed<T: Clone + Default>(n: usize, what: &str) -> std::result::Result<Vec<T
     })?;
     v.resize(n, T::default());
     Ok(v)
-}
-
-/// The final texel storage of an image being decoded. It is sized from the header and checked
-/// against [`MAX_IMAGE_BYTES`] before any pixel is decoded, allocated once, and filled in tiled
-/// order as the decoder delivers rows, so no row-major copy of the texels ever exists.
-struct Storage {
-    width: u32,
-    height: u32,
-    tiles_x: u32,
-    /// 8- and 16-bit samples are sRGB-encoded.
-    srgb: bool,
-    texels: Texels,
-}
-
-impl Storage {
-    /// Bytes the tiled storage of a `width` x `height` image takes (rows and columns padded to
-    /// whole tiles), linear or sRGB.
-    fn bytes(width: u32, height: u32, linear: bool) -> u64 {
-        let texels = u64::from(width.div_ceil(TILE))
-            * u64::from(height.div_ceil(TILE))
-            * u64::from(TILE * TILE);
-        texels * if linear { 12 } else { 4 }
-    }
-
-    /// Checks a `width` x `height` image whose decoder writes `layout` against
-    /// [`MAX_IMAGE_DIMENSION`] and [`MAX_IMAGE_BYTES`]; the bytes its storage takes.
-    ///
-    /// # Errors
-    /// An empty image, a side above the limit, or storage above the budget.
-    fn check(
-        width: u32,
-        height: u32,
-        layout: Layout,
-        srgb: bool,
-    ) -> std::result::Result<u64, String> {
-        if width == 0 || height == 0 {
-            return Err("the image is empty (0 pixels)".into());
-        }
-        if width > MAX_IMAGE_DIMENSION || height > MAX_IMAGE_DIMENSION {
-            return Err(format!(
-                "{width} x {height} pixels is more than {MAX_IMAGE_DIMENSION} per side"
-            ));
-        }
-        let linear = Self::linear(layout, srgb);
-        let bytes = Self::bytes(width, height, linear);
-        if bytes > MAX_IMAGE_BYTES {
-            let kind = if linear {
-                "as linear RGB (12 bytes a texel)"
-            } else {
-                "as sRGB (4 bytes a texel)"
-            };
-            return Err(format!(
-                "{width} x {height} texels need {} {kind}, above the {} texture budget",
-                approx_bytes(bytes),
-                approx_bytes(MAX_IMAGE_BYTES)
-            ));
-        }
-        Ok(bytes)
-    }
-
-    /// Whether samples in `layout` are stored as linear floats (all but 8-bit sRGB).
-    fn linear(layout: Layout, srgb: bool) -> bool {
-        !(layout.sample == Sample::U8 && srgb)
-    }
-
-    /// Storage for a `width` x `height` image whose decoder writes `layout`, allocated after
-    /// [`Storage::check`].
-    ///
-    /// # Errors
-    /// What [`Storage::check`] reports, or the allocation fails.
-    fn new(
-        width: u32,
-        height: u32,
-        layout: Layout,
-        srgb: bool,
-    ) -> std::result::Result<Self, String> {
-        let bytes = Self::check(width, height, layout, srgb)?;
-        let linear = Self::linear(layout, srgb);
-        let n = usize::try_from(bytes / if linear { 12 } else { 4 })
-            .map_err(|_| "the image does not fit in memory".to_string())?;
-        let texels = if linear {
-            Texels::Linear(zeroed(n, "the texels")?)
-        } else {
-            Texels::Srgb8(zeroed(n, "the texels")?)
-        };
-        Ok(Self {
-            width,
-            height,
-            tiles_x: width.div_ceil(TILE),
-            srgb,
-            texels,
-        })
-    }
-
-    /// Converts file row `row` (0 = top), in `layout`, into its texels. Grey becomes RGB, alpha
-    /// is dropped, 8-bit samples stay sRGB-encoded (or become linear `v / 255` when not sRGB),
-    /// 16-bit ones become linear through the sRGB curve (unless not sRGB), floats are
-    /// [sanitized](sanitize). Bytes past the row's width are ignored.
-    fn put_row(&mut self, row: u32, data: &[u8], layout: Layout) {
-        /// Writes `f` of each pixel of the row into its tiles, four texels (one tile's row) at
-        /// a time.
-        fn fill<T>(
-            v: &mut [T],
-            tiles_x: u32,
-            width: u32,
-            row: u32,
-            data: &[u8],
-            bpp: usize,
-            f: impl Fn(&[u8]) -> T,
-        ) {
-            let data = &data[..data.len().min(width as usize * bpp)];
-            let tile = (TILE * TILE) as usize;
-            let first = tiled_index(tiles_x, 0, row);
-            let tiles = v[first..].chunks_mut(tile);
-            for (texels, pixels) in tiles.zip(data.chunks(TILE as usize * bpp)) {
-                for (t, px) in texels.iter_mut().zip(pixels.chunks_exact(bpp)) {
-                    *t = f(px);
-                }
-            }
-        }
-        let (tiles_x, width, srgb) = (self.tiles_x, self.width, self.srgb);
-        let bpp = layout.bytes_per_pixel();
-        let grey = layout.channels < 3;
-        let u8_linear = |v: u8| f32::from(v) / 255.0;
-        let u16_linear = |v: u16| {
-            let x = f32::from(v) / 65_535.0;
-            if srgb { srgb_to_linear(x) } else { x }
-        };
-        let be = |p: &[u8], c: usize| u16::from_be_bytes([p[2 * c], p[2 * c + 1]]);
-        let ne = |p: &[u8], c: usize| u16::from_ne_bytes([p[2 * c], p[2 * c + 1]]);
-        let f32_at = |p: &[u8], c: usize| {
-            f32::from_ne_bytes([p[4 * c], p[4 * c + 1], p[4 * c + 2], p[4 * c + 3]])
-        };
-        match (&mut self.texels, layout.sample, grey) {
-            (Texels::Srgb8(v), _, true) => fill(v, tiles_x, width, row, data, bpp, |p| {
-                [p[0], p[0], p[0], 255]
-            }),
-            (Texels::Srgb8(v), _, false) => fill(v, tiles_x, width, row, data, bpp, |p| {
-                [p[0], p[1], p[2], 255]
-            }),
-            (Texels::Linear(v), Sample::U8, true) => {
-                fill(v, tiles_x, width, row, data, bpp, |p| [u8_linear(p[0]); 3]);
-            }
-            (Texels::Linear(v), Sample::U8, false) => {
-                fill(v, tiles_x, width, row, data, bpp, |p| {
-                    [u8_linear(p[0]), u8_linear(p[1]), u8_linear(p[2])]
-                });
-            }
-            (Texels::Linear(v), Sample::U16Be, true) => {
-                fill(v, tiles_x, width, row, data, bpp, |p| {
-                    [u16_linear(be(p, 0)); 3]
-                });
-            }
-            (Texels::Linear(v), Sample::U16Be, false) => {
-                fill(v, tiles_x, width, row, data, bpp, |p| {
-                    [0, 1, 2].map(|c| u16_linear(be(p, c)))
-                });
-            }
-            (Texels::Linear(v), Sample::U16Ne, true) => {
-                fill(v, tiles_x, width, row, data, bpp, |p| {
-                    [u16_linear(ne(p, 0)); 3]
-                });
-            }
-            (Texels::Linear(v), Sample::U16Ne, false) => {
-                fill(v, tiles_x, width, row, data, bpp, |p| {
-                    [0, 1, 2].map(|c| u16_linear(ne(p, c)))
-                });
-            }
-            (Texels::Linear(v), Sample::F32Ne, true) => {
-                fill(v, tiles_x, width, row, data, bpp, |p| {
-                    sanitize([f32_at(p, 0); 3])
-                });
-            }
-            (Texels::Linear(v), Sample::F32Ne, false) => {
-                fill(v, tiles_x, width, row, data, bpp, |p| {
-                    sanitize([0, 1, 2].map(|c| f32_at(p, c)))
-                });
-            }
-        }
-    }
-
-    /// Converts a whole decoded image (rows top to bottom, in `layout`).
-    ///
-    /// # Errors
-    /// `data` holds fewer rows than the image has.
-    fn put_rows(&mut self, data: &[u8], layout: Layout) -> std::result::Result<(), String> {
-        let stride = self.width as usize * layout.bytes_per_pixel();
-        if data.len() < stride * self.height as usize {
-            return Err("truncated image data".into());
-        }
-        for (row, line) in data
-            .chunks_exact(stride)
-            .take(self.height as usize)
-            .enumerate()
-        {
-            self.put_row(row as u32, line, layout);
-        }
-        Ok(())
-    }
-
-    /// The image, named `name`.
-    fn finish(self, name: String) -> ImageData {
-        ImageData {
-            width: self.width,
-            height: self.height,
-            tiles_x: self.tiles_x,
-            texels: self.texels,
-            name,
-        }
-    }
 }
 
 /// An image in memory. Row 0 is the top row of the file; the lecture's `v` runs up, so
@@ -596,45 +390,42 @@ fn catmull_rom(t: f32) -> [f32; 4] {
 /// A missing, truncated, corrupt or oversized file, naming the file.
 pub fn load_image(path: &Path, srgb: bool) -> Result<ImageData> {
     let file = crate::input::open_input(path)?;
-    let storage = decode(std::io::BufReader::new(file), path, srgb)?;
-    let name = path
-        .file_name()
-        .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
-    Ok(storage.finish(name))
+    Ok(load_opened(file, path, ImageRequest::colour(srgb))?.0)
 }
 
 /// Reads the alpha channel of an image file (a PNG with transparency, say) as a grey image:
 /// each texel's R, G and B are its alpha in [0, 1] (linear: alpha is a coverage, not a
-/// colour). Read under the same limits and through the same bounded reader as colour images.
+/// colour). Read as colour images are, under the same budget checked from the header, with
+/// the alpha samples converted straight into the storage.
 ///
 /// # Errors
 /// The file cannot be read or decoded, or it has no alpha channel.
 pub fn load_alpha(path: &Path) -> Result<ImageData> {
-    let bytes = crate::input::read_input(path, MAX_IMAGE_BYTES)?;
-    let err = |message: String| Error::Image {
-        path: path.to_path_buf(),
-        message,
-    };
-    let mut reader = image::ImageReader::new(std::io::Cursor::new(bytes))
-        .with_guessed_format()
-        .map_err(|e| Error::io(path, e))?;
-    reader.limits(limits());
-    let img = reader.decode().map_err(|e| err(e.to_string()))?;
-    if !img.color().has_alpha() {
-        return Err(err(
-            "has no alpha channel (a clip map's Alpha channel needs one, e.g. an RGBA PNG)".into(),
-        ));
-    }
-    let alpha = img.to_rgba32f();
+    let file = crate::input::open_input(path)?;
+    Ok(load_opened(file, path, ImageRequest::alpha())?.0)
+}
+
+/// Decodes the opened image `file` (read from `path`) as `req` asks: the image (a 1 x 1
+/// stand-in for [`ImageRequest::header_only`]) and the bytes its full storage takes.
+///
+/// # Errors
+/// As [`load_image`]; the storage above `req.max_bytes`.
+pub fn load_opened(
+    file: crate::input::Input,
+    path: &Path,
+    req: ImageRequest,
+) -> Result<(ImageData, u64)> {
+    let storage = decode(std::io::BufReader::new(file), path, req)?;
     let name = path
         .file_name()
         .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
-    Ok(ImageData::from_fn(
-        alpha.width(),
-        alpha.height(),
-        &format!("{name} (alpha)"),
-        |x, y| Rgb::grey(alpha.get_pixel(x, y).0[3].clamp(0.0, 1.0)),
-    ))
+    let name = if req.alpha {
+        format!("{name} (alpha)")
+    } else {
+        name
+    };
+    let bytes = storage.bytes;
+    Ok((storage.finish(name), bytes))
 }
 
 /// The decode limits every image is read under.
@@ -652,7 +443,7 @@ fn limits() -> image::Limits {
 fn decode(
     mut file: std::io::BufReader<crate::input::Input>,
     path: &Path,
-    srgb: bool,
+    req: ImageRequest,
 ) -> Result<Storage> {
     use std::io::BufRead;
     let err = |message: String| Error::Image {
@@ -661,9 +452,17 @@ fn decode(
     };
     let head = file.fill_buf().map_err(|e| Error::io(path, e))?;
     if head.starts_with(b"#?") {
-        let check = |w: u32, h: u32| Storage::check(w, h, F32_RGB, srgb).map(|_| ());
-        let img = hdr::decode_radiance(file, limits(), &check).map_err(err)?;
-        return from_radiance(&img, srgb).map_err(err);
+        let size = std::cell::Cell::new((0, 0));
+        let check = |w: u32, h: u32| {
+            Storage::check(w, h, F32_RGB, req)?;
+            size.set((w, h));
+            Ok(!req.header_only)
+        };
+        let Some(img) = hdr::decode_radiance(file, limits(), &check).map_err(err)? else {
+            let (w, h) = size.get();
+            return Storage::stand_in(w, h, F32_RGB, req).map_err(err);
+        };
+        return from_radiance(&img, req).map_err(err);
     }
     let mut reader = image::ImageReader::new(file)
         .with_guessed_format()
@@ -675,16 +474,14 @@ fn decode(
     }
     match reader.format() {
         Some(image::ImageFormat::Png) => {
-            return png_decode::decode_png(reader.into_inner(), MAX_IMAGE_BYTES, srgb).map_err(err);
+            return png_decode::decode_png(reader.into_inner(), req).map_err(err);
         }
         Some(image::ImageFormat::Jpeg) => {
-            return jpeg::decode_jpeg(reader.into_inner(), MAX_IMAGE_BYTES, srgb).map_err(err);
+            return jpeg::decode_jpeg(reader.into_inner(), req).map_err(err);
         }
         Some(image::ImageFormat::Tiff) => {
             let mut file = reader.into_inner();
-            if let Some(storage) =
-                float_tiff::decode_gray_f32(&mut file, MAX_IMAGE_BYTES).map_err(err)?
-            {
+            if let Some(storage) = float_tiff::decode_gray_f32(&mut file, req).map_err(err)? {
                 return Ok(storage);
             }
             reader = image::ImageReader::with_format(file, image::ImageFormat::Tiff);
@@ -693,7 +490,7 @@ fn decode(
     }
     reader.limits(limits());
     let decoder = reader.into_decoder().map_err(|e| err(e.to_string()))?;
-    from_decoder(decoder, srgb).map_err(err)
+    from_decoder(decoder, req).map_err(err)
 }
 
 /// Linear RGB floats, as Radiance HDR decodes.
@@ -706,12 +503,14 @@ const F32_RGB: Layout = Layout {
 /// buffer converted into the storage.
 fn from_decoder(
     decoder: impl image::ImageDecoder,
-    srgb: bool,
+    req: ImageRequest,
 ) -> std::result::Result<Storage, String> {
     let (w, h) = decoder.dimensions();
     let color = decoder.color_type();
     let layout = Layout::of(color).ok_or_else(|| format!("unsupported colour type {color:?}"))?;
-    let mut storage = Storage::new(w, h, layout, srgb)?;
+    let Some(mut storage) = Storage::new(w, h, layout, req)? else {
+        return Storage::stand_in(w, h, layout, req);
+    };
     let total = decoder.total_bytes();
     if total > MAX_IMAGE_BYTES {
         return Err(format!(
@@ -728,9 +527,11 @@ fn from_decoder(
 
 /// Storage from a decoded Radiance file: its scanlines are the rows, or each pixel goes where
 /// the file's orientation puts it (no turned copy of the image is made).
-fn from_radiance(img: &hdr::Radiance, srgb: bool) -> std::result::Result<Storage, String> {
+fn from_radiance(img: &hdr::Radiance, req: ImageRequest) -> std::result::Result<Storage, String> {
     let (w, h) = img.size();
-    let mut storage = Storage::new(w, h, F32_RGB, srgb)?;
+    let Some(mut storage) = Storage::new(w, h, F32_RGB, req)? else {
+        return Storage::stand_in(w, h, F32_RGB, req);
+    };
     let Texels::Linear(v) = &mut storage.texels else {
         return Err("Radiance texels are linear".into());
     };

@@ -17,8 +17,8 @@ pub use explain::{explain_lookup, explain_wrap};
 pub use formula::{FormulaColour, FormulaTexture, mark};
 pub(crate) use image::tiled_index;
 pub use image::{
-    ImageData, MAX_IMAGE_BYTES, MAX_IMAGE_DIMENSION, TILE, Texels, load_alpha, load_image,
-    save_png, save_png_checked,
+    ImageData, ImageRequest, MAX_IMAGE_BYTES, MAX_IMAGE_DIMENSION, TILE, Texels, load_alpha,
+    load_image, load_opened, save_png, save_png_checked,
 };
 pub use mip::{DEFAULT_MAX_ANISOTROPY, EWA_FOOTPRINT_SCALE, MAX_ANISOTROPY_LIMIT, MipPyramid};
 pub use procedural::{Checker, uv_grid_image};

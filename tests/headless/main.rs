@@ -14,6 +14,7 @@ mod formula;
 mod fuzz;
 mod hard_cases;
 mod hostile;
+mod hostile_budget;
 mod hostile_cache;
 mod hostile_read;
 #[cfg(feature = "gui")]

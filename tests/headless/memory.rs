@@ -9,16 +9,16 @@ use std::path::Path;
 use std::process::{Command, Output, Stdio};
 use texplore::texture::{Texels, load_image};
 
-const MIB: u64 = 1 << 20;
+pub(crate) const MIB: u64 = 1 << 20;
 
 /// The address space texplore needs besides the texture (binary, stacks, a small decoder state):
 /// measured below 80 MiB for `render` of an 8 x 8 image of a 2048 x 1024 JPEG.
-const BASELINE: u64 = 128 * MIB;
+pub(crate) const BASELINE: u64 = 128 * MIB;
 
 /// Runs `texplore ARGS` in `dir` with its address space limited to `limit` bytes, one thread and
 /// one malloc arena (so the limit measures the program, not the allocator's reservations).
 #[allow(unsafe_code)]
-fn texplore_limited(dir: &Path, args: &[&str], limit: u64) -> Output {
+pub(crate) fn texplore_limited(dir: &Path, args: &[&str], limit: u64) -> Output {
     use std::os::unix::process::CommandExt;
     let mut cmd = Command::new(env!("CARGO_BIN_EXE_texplore"));
     cmd.args(args)
@@ -65,13 +65,13 @@ fn render_limited(dir: &Path, image: &str, srgb: bool, limit: u64) -> Output {
     )
 }
 
-fn stderr(out: &Output) -> String {
+pub(crate) fn stderr(out: &Output) -> String {
     String::from_utf8_lossy(&out.stderr).into_owned()
 }
 
 /// Writes a `width` x `height` 8-bit grey PNG whose texel (x, y) is `(x + 3 y) % 251`, streamed
 /// row by row.
-fn grey_png(path: &Path, width: u32, height: u32) {
+pub(crate) fn grey_png(path: &Path, width: u32, height: u32) {
     let file = std::io::BufWriter::new(std::fs::File::create(path).unwrap());
     let mut enc = png::Encoder::new(file, width, height);
     enc.set_color(png::ColorType::Grayscale);

@@ -202,7 +202,25 @@ fn a_missing_or_empty_asset_path_names_the_preset_the_object_and_the_file() {
         r#"shape: Sphere, material: Phong(cd: Constant((1, 1, 1)), ks: Image(path: "gone.png"))"#,
     );
     assert!(
-        e.starts_with(&format!("{p}: objects[0] (Ball).material: ")) && e.contains("gone.png"),
+        e.starts_with(&format!("{p}: objects[0] (Ball).material.ks: ")) && e.contains("gone.png"),
+        "{e}"
+    );
+    let e = build_error(
+        d,
+        r#"shape: Sphere, material: Matte(cd: Image(path: "gone.png"))"#,
+    );
+    assert!(
+        e.starts_with(&format!("{p}: objects[0] (Ball).material.cd: "))
+            && e.contains("gone.png: No such file"),
+        "{e}"
+    );
+    let e = build_error(
+        d,
+        r#"shape: Sphere, material: Matte(cd: Constant((1, 1, 1))), bump: (height: Image(path: "gone.png"))"#,
+    );
+    assert!(
+        e.starts_with(&format!("{p}: objects[0] (Ball).bump.height: "))
+            && e.contains("gone.png: No such file"),
         "{e}"
     );
     let e = build_error(

@@ -3,7 +3,7 @@
 //! runtime [`Scalar`] and [`Colour`].
 
 use super::super::assets::AssetCache;
-use super::super::texture::{TextureDesc, alpha_texture, param_texture};
+use super::super::texture::{TextureDesc, alpha_texture, asset_in_field, param_texture};
 use super::super::values::finite_non_negative;
 use crate::error::{Error, Result};
 use crate::material::{Colour, Scalar, ScalarTexture};
@@ -289,14 +289,25 @@ pub(in crate::scene) fn scalar(
                 path,
                 message: format!("{what}.{message}"),
             },
-            other => other,
+            other => asset_in_field(base, &format!("{what}.texture"), other),
         })?;
         return Ok(Scalar::Texture(Box::new(ScalarTexture {
             texture,
             channel,
         })));
     }
-    Ok(match param_texture(what, t, base, cache)? {
+    // One channel of a texture is one step deeper in the preset: `kd.texture`.
+    let texture = param_texture(what, t, base, cache).map_err(|e| match e {
+        Error::InField { path, field, cause } if matches!(s, ScalarDesc::Channel(_)) => {
+            Error::InField {
+                path,
+                field: format!("{field}.texture"),
+                cause,
+            }
+        }
+        e => e,
+    })?;
+    Ok(match texture {
         Texture::Constant(c) => Scalar::Const(channel.of(c)),
         texture => Scalar::Texture(Box::new(ScalarTexture { texture, channel })),
     })

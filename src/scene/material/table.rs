@@ -2,7 +2,7 @@
 //! the kinds' rows and defaults, the parameter accessors and the build of the runtime material.
 
 use super::super::assets::AssetCache;
-use super::super::texture::{TextureDesc, TextureKind, texture};
+use super::super::texture::{TextureDesc, TextureKind, asset_in_field, texture};
 use super::param::{BuildParam, ColorDesc, ScalarDesc};
 use super::{MaterialDesc, MaterialKind, ParamMut, ParamRef};
 use crate::error::Result;
@@ -114,7 +114,9 @@ macro_rules! desc_params {
         ) -> Result<Material> {
             Ok(match m {
                 $(MaterialDesc::$kind { $colour, $($name),* } => Material::$kind {
-                    $colour: texture($colour, base, cache)?,
+                    $colour: texture($colour, base, cache).map_err(|e| {
+                        asset_in_field(base, stringify!($colour), e)
+                    })?,
                     $($name: $name.build(stringify!($name), base, cache)?,)*
                 },)*
             })

@@ -51,6 +51,14 @@ pub(super) fn displaced_mesh(
         )));
     }
     let key: DisplacedKey = (file.to_path_buf(), dir.to_path_buf(), format!("{d:?}"));
+    cache.count_displaced(&key, triangles).map_err(|m| {
+        invalid(format!(
+            "subdivide: {} levels of the {} triangles in {} make {m}",
+            d.subdivide,
+            base.triangle_count(),
+            file.display()
+        ))
+    })?;
     if let Some(m) = cache.displaced(&key) {
         return Ok(m);
     }
@@ -71,8 +79,9 @@ pub(super) fn displaced_mesh(
         Texture::Constant(c) => c.luminance() * d.scale == 0.0,
         _ => d.scale == 0.0,
     };
-    if moves_nothing {
-        // A displacement that moves nothing is none: the file's mesh as it is, shared.
+    if moves_nothing || cache.is_checking() {
+        // A displacement that moves nothing is none: the file's mesh as it is, shared. A
+        // checking cache checks the displacement without making it.
         return Ok(base.clone());
     }
     let (mut data, _) = subdivide(&base.to_data(), d.subdivide);
@@ -101,6 +110,14 @@ pub(super) fn displaced_mesh(
             .collect()
     };
     displace(&mut data, &heights, d.scale);
+    if data.positions.iter().any(|p| !p.is_finite()) {
+        let highest = heights.iter().fold(0.0f32, |m, h| m.max(h.abs()));
+        return Err(invalid(format!(
+            "scale: {} times the height texture's values (up to {highest:e}) moves the surface \
+             beyond the largest finite coordinate; use a smaller scale or height",
+            d.scale
+        )));
+    }
     let what = Displacement {
         height: texture_words(&d.height),
         scale: d.scale,

@@ -271,11 +271,21 @@ pub(super) fn build_object(
     // or mesh that cannot be read) names the preset and the field too.
     let within = |prefix: &'static str| {
         let (what, bad) = (&what, &bad);
-        move |e: Error| match e {
-            Error::Invalid { message, .. } => bad(format!("{what}{prefix}{message}")),
-            other => {
-                let field = format!("{what}{}", prefix.trim_end_matches([':', ' ', '.']));
-                Error::in_field(preset_path, field, other)
+        move |e: Error| {
+            let field = format!("{what}{}", prefix.trim_end_matches([':', ' ', '.']));
+            match e {
+                Error::Invalid { message, .. } => bad(format!("{what}{prefix}{message}")),
+                // A field of the material or map (`kd`, `bump.height`), below the object.
+                Error::InField {
+                    field: below,
+                    cause,
+                    ..
+                } => Error::InField {
+                    path: preset_path.to_path_buf(),
+                    field: format!("{field}.{below}"),
+                    cause,
+                },
+                other => Error::in_field(preset_path, field, other),
             }
         }
     };

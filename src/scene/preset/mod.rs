@@ -58,11 +58,19 @@ pub struct SceneDesc {
 }
 
 /// Builds the runtime scene. `preset_path` names the file in errors; asset paths are resolved
-/// relative to its directory.
+/// relative to its directory. The scene's images together must fit
+/// [`MAX_SCENE_TEXEL_BYTES`](super::MAX_SCENE_TEXEL_BYTES) and its displaced meshes
+/// [`MAX_SCENE_DISPLACED_TRIANGLES`](super::MAX_SCENE_DISPLACED_TRIANGLES), each file counted
+/// once however its path is spelled.
 ///
 /// # Errors
-/// An out-of-range value (naming the field) or an asset that cannot be loaded.
+/// An out-of-range value (naming the field), an asset that cannot be loaded, or one that does
+/// not fit what the scene's other assets leave of its budget (naming the field).
 pub fn build_scene(desc: &SceneDesc, preset_path: &Path, cache: &mut AssetCache) -> Result<Scene> {
+    cache.scene(|cache| build(desc, preset_path, cache))
+}
+
+fn build(desc: &SceneDesc, preset_path: &Path, cache: &mut AssetCache) -> Result<Scene> {
     let bad = |msg: String| Error::invalid(preset_path, msg);
     check_numbers(desc).map_err(bad)?;
     let settings = render_settings(&desc.render).map_err(bad)?;

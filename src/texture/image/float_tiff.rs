@@ -1,7 +1,7 @@
 //! Single-channel 32-bit float TIFF (a height or luminance map), which the `image` crate
 //! refuses: decoded with the `tiff` crate under the same limits into grey texels.
 
-use super::{Layout, Sample, Storage};
+use super::{ImageRequest, Layout, MAX_IMAGE_BYTES, Sample, Storage};
 use std::io::{BufRead, Seek, SeekFrom};
 use tiff::ColorType;
 use tiff::decoder::{Decoder, DecodingResult, Limits};
@@ -15,15 +15,16 @@ const GREY: Layout = Layout {
 
 /// Decodes `r` if it is a one-channel float TIFF; `Ok(None)` (and `r` rewound) otherwise.
 ///
-/// The texture budget is checked from the header; the decoder's buffer holds at most
-/// `max_bytes`.
+/// The texture budget `req` leaves is checked from the header; the decoder's buffer holds at
+/// most [`MAX_IMAGE_BYTES`].
 ///
 /// # Errors
 /// The TIFF is one-channel float but cannot be decoded, or it is above the limits.
 pub(super) fn decode_gray_f32<R: BufRead + Seek>(
     r: &mut R,
-    max_bytes: u64,
+    req: ImageRequest,
 ) -> Result<Option<Storage>, String> {
+    let max_bytes = MAX_IMAGE_BYTES;
     let start = r.stream_position().map_err(|e| e.to_string())?;
     let found = {
         let mut limits = Limits::default();
@@ -39,7 +40,10 @@ pub(super) fn decode_gray_f32<R: BufRead + Seek>(
         );
         if float && matches!(decoder.colortype(), Ok(ColorType::Gray(32))) {
             let (w, h) = decoder.dimensions().map_err(|e| e.to_string())?;
-            let storage = Storage::new(w, h, GREY, false)?;
+            let req = ImageRequest { srgb: false, ..req };
+            let Some(storage) = Storage::new(w, h, GREY, req)? else {
+                return Storage::stand_in(w, h, GREY, req).map(Some);
+            };
             match decoder.read_image().map_err(|e| e.to_string())? {
                 DecodingResult::F32(v) => Some((storage, v)),
                 _ => return Err("a float TIFF did not decode to floats".into()),

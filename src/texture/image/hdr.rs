@@ -74,7 +74,8 @@ fn line(r: &mut impl BufRead, budget: &mut u64) -> Result<String, String> {
 }
 
 /// Decodes a Radiance HDR file whose first bytes are `#?`, once `check` has accepted its width
-/// and height (read from the resolution line, before any scanline is decoded).
+/// and height (read from the resolution line, before any scanline is decoded); `None` when
+/// `check` says to read no further (the header alone was asked for).
 ///
 /// # Errors
 /// A malformed header or resolution line, what `check` reports, or what the scanline decoder or
@@ -82,8 +83,8 @@ fn line(r: &mut impl BufRead, budget: &mut u64) -> Result<String, String> {
 pub fn decode_radiance(
     mut r: impl BufRead,
     limits: image::Limits,
-    check: &dyn Fn(u32, u32) -> Result<(), String>,
-) -> Result<Radiance, String> {
+    check: &dyn Fn(u32, u32) -> Result<bool, String>,
+) -> Result<Option<Radiance>, String> {
     let mut budget = MAX_HEADER_BYTES;
     let signature = line(&mut r, &mut budget)?;
     debug_assert!(signature.starts_with("#?"));
@@ -111,7 +112,9 @@ pub fn decode_radiance(
     let (Ok(n1), Ok(n2)) = (n1.parse::<u32>(), n2.parse::<u32>()) else {
         return Err(bad());
     };
-    check(if a1.x { n1 } else { n2 }, if a1.x { n2 } else { n1 })?;
+    if !check(if a1.x { n1 } else { n2 }, if a1.x { n2 } else { n1 })? {
+        return Ok(None);
+    }
     header.extend_from_slice(format!("\n-Y {n1} +X {n2}\n").as_bytes());
     let mut decoder = image::codecs::hdr::HdrDecoder::new(std::io::Cursor::new(header).chain(r))
         .map_err(|e| e.to_string())?;
@@ -119,11 +122,11 @@ pub fn decode_radiance(
     let scan = DynamicImage::from_decoder(decoder)
         .map_err(|e| e.to_string())?
         .into_rgb32f();
-    Ok(Radiance {
+    Ok(Some(Radiance {
         scan,
         axes: (a1, a2),
         counts: (n1, n2),
-    })
+    }))
 }
 
 /// A decoded Radiance file: its scanlines as stored, and where each pixel belongs.
@@ -198,9 +201,10 @@ mod tests {
             let img = decode_radiance(
                 &file("#?RADIANCE", res, 6)[..],
                 image::Limits::default(),
-                &|_, _| Ok(()),
+                &|_, _| Ok(true),
             )
-            .unwrap();
+            .unwrap()
+            .expect("decoded");
             assert_eq!(img.size(), (3, 2), "{res}");
             assert_eq!(red(&img, first.0, first.1), 0.0, "{res}");
             assert_eq!(red(&img, second.0, second.1), 1.0, "{res}");
@@ -212,9 +216,10 @@ mod tests {
         let img = decode_radiance(
             &file("#?RGBE", "-Y 1 +X 2", 2)[..],
             image::Limits::default(),
-            &|_, _| Ok(()),
+            &|_, _| Ok(true),
         )
-        .unwrap();
+        .unwrap()
+        .expect("decoded");
         assert_eq!(red(&img, 1, 0), 1.0);
     }
 
@@ -224,7 +229,7 @@ mod tests {
             let e = decode_radiance(
                 &file("#?RADIANCE", res, 6)[..],
                 image::Limits::default(),
-                &|_, _| Ok(()),
+                &|_, _| Ok(true),
             )
             .unwrap_err();
             assert!(e.contains(res), "{e}");

@@ -1,7 +1,10 @@
 //! JPEG through `zune-jpeg` directly, the decoder the `image` crate wraps, so that missing data
 //! is an error: `image` decodes leniently and fills what a truncated file lacks with grey.
 
-use super::{Layout, MAX_IMAGE_DIMENSION, Sample, Storage, approx_bytes, zeroed};
+use super::{
+    ImageRequest, Layout, MAX_IMAGE_BYTES, MAX_IMAGE_DIMENSION, Sample, Storage, approx_bytes,
+    zeroed,
+};
 use std::io::Read;
 use zune_core::bytestream::ZCursor;
 use zune_core::colorspace::ColorSpace;
@@ -49,7 +52,7 @@ fn can_hold(data: &[u8], width: usize, height: usize) -> bool {
     blocks <= (data.len() - sos) as u64 * 8
 }
 
-/// Decodes a JPEG of at most `max_bytes` into its texel storage, the budget checked from the
+/// Decodes a JPEG of at most [`MAX_IMAGE_BYTES`] into its texel storage, the budget checked from the
 /// header before anything is decoded. The pixels are decoded into one buffer (grey or RGB, 1 or
 /// 3 bytes a pixel) and converted into the storage.
 ///
@@ -61,7 +64,8 @@ fn can_hold(data: &[u8], width: usize, height: usize) -> bool {
 ///
 /// # Errors
 /// A malformed or truncated file, or a size above the limits.
-pub(super) fn decode_jpeg(r: impl Read, max_bytes: u64, srgb: bool) -> Result<Storage, String> {
+pub(super) fn decode_jpeg(r: impl Read, req: ImageRequest) -> Result<Storage, String> {
+    let max_bytes = MAX_IMAGE_BYTES;
     let mut data = Vec::new();
     r.take(max_bytes + 1)
         .read_to_end(&mut data)
@@ -96,11 +100,13 @@ pub(super) fn decode_jpeg(r: impl Read, max_bytes: u64, srgb: bool) -> Result<St
         u32::try_from(h).map_err(|_| "too tall")?,
     );
     // The budget, then whether the data can be there at all, before allocating anything.
-    Storage::check(w, h, layout, srgb)?;
+    Storage::check(w, h, layout, req)?;
     if !can_hold(&data, w as usize, h as usize) {
         return Err("truncated image data".into());
     }
-    let mut storage = Storage::new(w, h, layout, srgb)?;
+    let Some(mut storage) = Storage::new(w, h, layout, req)? else {
+        return Storage::stand_in(w, h, layout, req);
+    };
     let mut buf = zeroed::<u8>(
         w as usize * h as usize * layout.bytes_per_pixel(),
         "the decoder",

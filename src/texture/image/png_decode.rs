@@ -2,7 +2,7 @@
 //! not need and what can be a deflate bomb: the colour profile (`iCCP`, which `image`'s decoder
 //! inflates up to its whole allocation limit) and the text chunks.
 
-use super::{Layout, Sample, Storage};
+use super::{ImageRequest, Layout, Sample, Storage};
 use std::io::BufRead;
 
 /// The PNG decoder as textures are read: `max_bytes` of allocation, no colour profile, no
@@ -28,9 +28,9 @@ fn decoder<R: BufRead + std::io::Seek>(r: R, max_bytes: u64) -> png::Decoder<R> 
 /// What the decoder reports (missing data, a bad checksum), or a size above the limits.
 pub(super) fn decode_png(
     r: impl BufRead + std::io::Seek,
-    max_bytes: u64,
-    srgb: bool,
+    req: ImageRequest,
 ) -> Result<Storage, String> {
+    let max_bytes = super::MAX_IMAGE_BYTES;
     let mut reader = decoder(r, max_bytes)
         .read_info()
         .map_err(|e| e.to_string())?;
@@ -48,7 +48,9 @@ pub(super) fn decode_png(
         channels: color.samples(),
         sample,
     };
-    let mut storage = Storage::new(w, h, layout, srgb)?;
+    let Some(mut storage) = Storage::new(w, h, layout, req)? else {
+        return Storage::stand_in(w, h, layout, req);
+    };
     if reader.info().interlaced {
         let size = reader
             .output_buffer_size()
@@ -103,7 +105,7 @@ mod tests {
             .read_info()
             .unwrap();
         assert!(ours.info().icc_profile.is_none());
-        let img = decode_png(std::io::Cursor::new(&file), 1 << 20, true).unwrap();
+        let img = decode_png(std::io::Cursor::new(&file), ImageRequest::colour(true)).unwrap();
         let super::super::Texels::Srgb8(texels) = &img.texels else {
             panic!("8-bit sRGB texels expected");
         };

@@ -158,7 +158,7 @@ pub(super) fn camera(
         ProjectionDesc::Orthographic { height } => {
             if !(height > 0.0 && height <= 1e9) {
                 return Err(format!(
-                    "camera.height: {height} is out of range (0, 1e9] world units"
+                    "camera.projection.height: {height} is out of range (0, 1e9] world units"
                 ));
             }
             Projection::Orthographic { height }

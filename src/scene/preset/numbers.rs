@@ -1,163 +1,288 @@
-//! The check that every number of a preset is finite, naming the field.
+//! The check that every number of a preset is finite, naming the field: one walk over the
+//! description through its own `Serialize`, so a field added to the format is checked without
+//! being listed anywhere.
+//!
+//! The walk is a serde [`Serializer`] that writes nothing: it keeps the path to the value it is
+//! at (`objects[2].material.cd.scale`) and looks at every `f32` and `f64`. Written by hand
+//! because it is the format's own rule (which steps a path names, which it leaves out), not a
+//! data format a crate provides.
 
-use super::super::camera::ProjectionDesc;
-use super::super::light::LightDesc;
-use super::super::material::{ColorDesc, ParamRef, ScalarDesc};
-use super::super::object::ObjectDesc;
-use super::super::texture::TextureDesc;
 use super::SceneDesc;
+use crate::scene::field::{FieldPath, Step};
+use serde::Serialize;
+use serde::ser::{self, Serializer};
+use std::fmt;
 
 /// Refuses a preset holding a NaN or an infinity anywhere (every `f32`, point and colour),
 /// naming the field: `ambient.color: NaN is not a number`,
-/// `objects[2].material.cd.scale: inf is not finite`. Ranges are checked by [`build_scene`](super::build_scene);
-/// this check needs no files, so it also guards every preset written out (a saved preset or
-/// the one a PNG carries never holds a value that does not read back).
+/// `objects[2].material.cd.scale: inf is not finite`. A point or colour is named whole
+/// (`camera.eye`), a list item by its index. Ranges are checked by
+/// [`build_scene`](super::build_scene); this check needs no files, so it also guards every
+/// preset written out (a saved preset or the one a PNG carries never holds a value that does
+/// not read back).
 ///
 /// # Errors
 /// The first field that is not a finite number.
 pub fn check_numbers(desc: &SceneDesc) -> std::result::Result<(), String> {
-    let mut n = Numbers(None);
-    let c = &desc.camera;
-    n.check(|| "camera.eye".into(), &c.eye.to_array());
-    n.check(|| "camera.look_at".into(), &c.look_at.to_array());
-    n.check(|| "camera.up".into(), &c.up.to_array());
-    match c.projection {
-        ProjectionDesc::Pinhole { fov } | ProjectionDesc::Fisheye { fov } => {
-            n.check(|| "camera.projection.fov".into(), &[fov]);
-        }
-        ProjectionDesc::Spherical { h_fov, v_fov } => {
-            n.check(|| "camera.projection.h_fov".into(), &[h_fov]);
-            n.check(|| "camera.projection.v_fov".into(), &[v_fov]);
-        }
-        ProjectionDesc::Orthographic { height } => {
-            n.check(|| "camera.height".into(), &[height]);
-        }
-    }
-    let r = &desc.render;
-    n.check(|| "render.exposure".into(), &[r.exposure]);
-    n.check(|| "render.background".into(), &r.background.to_array());
-    if let Some(a) = r.adaptive {
-        n.check(|| "render.adaptive.threshold".into(), &[a.threshold]);
-    }
-    n.check(|| "ambient.ls".into(), &[desc.ambient.ls]);
-    n.check(|| "ambient.color".into(), &desc.ambient.color.to_array());
-    for (i, l) in desc.lights.iter().enumerate() {
-        let (point, point_name, ls, color) = match *l {
-            LightDesc::Directional {
-                direction,
-                ls,
-                color,
-                ..
-            } => (direction, "direction", ls, color),
-            LightDesc::Point {
-                position,
-                ls,
-                color,
-                ..
-            } => (position, "position", ls, color),
-        };
-        n.check(|| format!("lights[{i}].{point_name}"), &point.to_array());
-        n.check(|| format!("lights[{i}].ls"), &[ls]);
-        n.check(|| format!("lights[{i}].color"), &color.to_array());
-    }
-    for (i, o) in desc.objects.iter().enumerate() {
-        n.object(&format!("objects[{i}]"), o);
-    }
-    n.0.map_or(Ok(()), Err)
-}
-
-/// The first non-finite number [`check_numbers`] met, as its message.
-struct Numbers(Option<String>);
-
-impl Numbers {
-    /// Notes the first of `values` that is not finite, unless one was noted before; `what`
-    /// names the field.
-    fn check(&mut self, what: impl FnOnce() -> String, values: &[f32]) {
-        if self.0.is_none()
-            && let Some(v) = values.iter().find(|v| !v.is_finite())
-        {
-            self.0 = Some(format!("{}: {}", what(), not_finite(*v)));
-        }
-    }
-
-    /// Every number of one object: its transform, material and texture.
-    fn object(&mut self, at: &str, o: &ObjectDesc) {
-        let t = &o.transform;
-        self.check(
-            || format!("{at}.transform.translate"),
-            &t.translate.to_array(),
-        );
-        self.check(|| format!("{at}.transform.rotate"), &t.rotate.to_array());
-        self.check(|| format!("{at}.transform.scale"), &t.scale.to_array());
-        for (name, p) in o.material.params() {
-            match p {
-                ParamRef::Scalar(ScalarDesc::Value(v)) => {
-                    self.check(|| format!("{at}.material.{name}"), &[*v]);
-                }
-                ParamRef::Color(ColorDesc::Value(c)) => {
-                    self.check(|| format!("{at}.material.{name}"), &c.to_array());
-                }
-                _ => {}
-            }
-        }
-        if let Some(ScalarDesc::Value(v)) = &o.alpha {
-            self.check(|| format!("{at}.alpha"), &[*v]);
-        }
-        if let Some(b) = &o.bump {
-            self.check(|| format!("{at}.bump.scale"), &[b.scale]);
-        }
-        if let Some(n) = &o.normal {
-            self.check(|| format!("{at}.normal.strength"), &[n.strength]);
-        }
-        if let Some(d) = &o.displace {
-            self.check(|| format!("{at}.displace.scale"), &[d.scale]);
-        }
-        for (path, t) in o.textures() {
-            self.texture(&format!("{at}.{path}"), t);
-        }
-    }
-
-    /// Every number of one texture; `tex` names it.
-    fn texture(&mut self, tex: &str, t: &TextureDesc) {
-        if let Some(uv) = t.uv_transform() {
-            self.check(|| format!("{tex}.uv.scale"), &uv.scale.to_array());
-            self.check(|| format!("{tex}.uv.rotate"), &[uv.rotate]);
-            self.check(|| format!("{tex}.uv.offset"), &uv.offset.to_array());
-        }
-        match t {
-            TextureDesc::Constant(c) => self.check(|| tex.to_owned(), &c.to_array()),
-            TextureDesc::Image {
-                scale,
-                max_anisotropy,
-                ..
-            } => {
-                self.check(|| format!("{tex}.scale"), &[*scale]);
-                self.check(|| format!("{tex}.max_anisotropy"), &[*max_anisotropy]);
-            }
-            TextureDesc::Checker {
-                squares, colors, ..
-            } => {
-                self.check(|| format!("{tex}.squares"), &[squares.0, squares.1]);
-                self.check(
-                    || format!("{tex}.colors"),
-                    &[colors.0.to_array(), colors.1.to_array()].concat(),
-                );
-            }
-            TextureDesc::MeshMaterial { max_anisotropy, .. }
-            | TextureDesc::UvGrid { max_anisotropy, .. } => {
-                self.check(|| format!("{tex}.max_anisotropy"), &[*max_anisotropy]);
-            }
-            // Formulas are text, checked when they are compiled (`build_scene`).
-            TextureDesc::Formula { .. } => {}
-        }
+    let mut walk = Walk::default();
+    match desc.serialize(&mut walk) {
+        Err(Stop::NotFinite(path, v)) => Err(format!("{path}: {}", not_finite(v))),
+        Err(Stop::Custom(m)) => Err(m),
+        Ok(()) => Ok(()),
     }
 }
 
 /// Why a non-finite number is refused.
-fn not_finite(v: f32) -> String {
+fn not_finite(v: f64) -> String {
     if v.is_nan() {
         "NaN is not a number".into()
     } else {
-        format!("{v} is not finite")
+        format!("{} is not finite", v as f32)
+    }
+}
+
+/// Where the walk is: the steps to the value, each marked when it is a component of a tuple
+/// (a point or colour, named whole in messages).
+#[derive(Default)]
+struct Walk {
+    steps: Vec<(Step, bool)>,
+}
+
+impl Walk {
+    /// The path a message names: components of a point or colour left out.
+    fn named(&self) -> FieldPath {
+        FieldPath::from(
+            self.steps
+                .iter()
+                .filter(|(_, component)| !component)
+                .map(|(s, _)| s.clone())
+                .collect::<Vec<_>>(),
+        )
+    }
+
+    fn number(&mut self, v: f64) -> Result<(), Stop> {
+        if v.is_finite() {
+            Ok(())
+        } else {
+            Err(Stop::NotFinite(self.named(), v))
+        }
+    }
+
+    /// Serialises `value` one step further down.
+    fn down<T: Serialize + ?Sized>(
+        &mut self,
+        step: Step,
+        component: bool,
+        value: &T,
+    ) -> Result<(), Stop> {
+        self.steps.push((step, component));
+        let r = value.serialize(&mut *self);
+        self.steps.pop();
+        r
+    }
+}
+
+/// What ends the walk early.
+#[derive(Debug)]
+enum Stop {
+    /// The first number that is not finite, at the path a message names.
+    NotFinite(FieldPath, f64),
+    /// A value's own `Serialize` failed.
+    Custom(String),
+}
+
+impl fmt::Display for Stop {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::NotFinite(path, v) => write!(f, "{path}: {}", not_finite(*v)),
+            Self::Custom(m) => f.write_str(m),
+        }
+    }
+}
+
+impl std::error::Error for Stop {}
+
+impl ser::Error for Stop {
+    fn custom<T: fmt::Display>(msg: T) -> Self {
+        Self::Custom(msg.to_string())
+    }
+}
+
+/// A list, tuple, struct or map being walked: its items become steps.
+struct Compound<'a> {
+    walk: &'a mut Walk,
+    /// The next item's index (lists and tuples).
+    next: usize,
+    /// Whether items are components of one value (a tuple: a point or colour).
+    components: bool,
+}
+
+impl Compound<'_> {
+    fn item<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<(), Stop> {
+        let i = self.next;
+        self.next += 1;
+        self.walk.down(Step::Index(i), self.components, value)
+    }
+}
+
+macro_rules! items {
+    ($($trait:ident :: $method:ident),*) => {$(
+        impl ser::$trait for Compound<'_> {
+            type Ok = ();
+            type Error = Stop;
+            fn $method<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<(), Stop> {
+                self.item(value)
+            }
+            fn end(self) -> Result<(), Stop> {
+                Ok(())
+            }
+        }
+    )*};
+}
+items!(
+    SerializeSeq::serialize_element,
+    SerializeTuple::serialize_element,
+    SerializeTupleStruct::serialize_field,
+    SerializeTupleVariant::serialize_field
+);
+
+macro_rules! fields {
+    ($($trait:ident),*) => {$(
+        impl ser::$trait for Compound<'_> {
+            type Ok = ();
+            type Error = Stop;
+            fn serialize_field<T: Serialize + ?Sized>(
+                &mut self,
+                key: &'static str,
+                value: &T,
+            ) -> Result<(), Stop> {
+                self.walk.down(Step::Field(key.to_owned()), false, value)
+            }
+            fn end(self) -> Result<(), Stop> {
+                Ok(())
+            }
+        }
+    )*};
+}
+fields!(SerializeStruct, SerializeStructVariant);
+
+impl ser::SerializeMap for Compound<'_> {
+    type Ok = ();
+    type Error = Stop;
+    // A map's keys are not numbers of the scene; its values are walked as list items.
+    fn serialize_key<T: Serialize + ?Sized>(&mut self, _key: &T) -> Result<(), Stop> {
+        Ok(())
+    }
+    fn serialize_value<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<(), Stop> {
+        self.item(value)
+    }
+    fn end(self) -> Result<(), Stop> {
+        Ok(())
+    }
+}
+
+macro_rules! leaves {
+    ($($method:ident: $t:ty),*) => {$(
+        fn $method(self, _: $t) -> Result<(), Stop> {
+            Ok(())
+        }
+    )*};
+}
+
+impl<'a> Serializer for &'a mut Walk {
+    type Ok = ();
+    type Error = Stop;
+    type SerializeSeq = Compound<'a>;
+    type SerializeTuple = Compound<'a>;
+    type SerializeTupleStruct = Compound<'a>;
+    type SerializeTupleVariant = Compound<'a>;
+    type SerializeMap = Compound<'a>;
+    type SerializeStruct = Compound<'a>;
+    type SerializeStructVariant = Compound<'a>;
+
+    leaves!(
+        serialize_bool: bool, serialize_i8: i8, serialize_i16: i16, serialize_i32: i32,
+        serialize_i64: i64, serialize_u8: u8, serialize_u16: u16, serialize_u32: u32,
+        serialize_u64: u64, serialize_char: char, serialize_str: &str, serialize_bytes: &[u8],
+        serialize_unit_struct: &'static str
+    );
+
+    fn serialize_f32(self, v: f32) -> Result<(), Stop> {
+        self.number(f64::from(v))
+    }
+    fn serialize_f64(self, v: f64) -> Result<(), Stop> {
+        self.number(v)
+    }
+    fn serialize_none(self) -> Result<(), Stop> {
+        Ok(())
+    }
+    fn serialize_some<T: Serialize + ?Sized>(self, value: &T) -> Result<(), Stop> {
+        value.serialize(self)
+    }
+    fn serialize_unit(self) -> Result<(), Stop> {
+        Ok(())
+    }
+    fn serialize_unit_variant(self, _: &'static str, _: u32, _: &'static str) -> Result<(), Stop> {
+        Ok(())
+    }
+    fn serialize_newtype_struct<T: Serialize + ?Sized>(
+        self,
+        _: &'static str,
+        value: &T,
+    ) -> Result<(), Stop> {
+        value.serialize(self)
+    }
+    // A variant's name is not a step: `material.ka`, not `material.Phong.ka`.
+    fn serialize_newtype_variant<T: Serialize + ?Sized>(
+        self,
+        _: &'static str,
+        _: u32,
+        _: &'static str,
+        value: &T,
+    ) -> Result<(), Stop> {
+        value.serialize(self)
+    }
+    fn serialize_seq(self, _: Option<usize>) -> Result<Compound<'a>, Stop> {
+        Ok(self.compound(false))
+    }
+    fn serialize_tuple(self, _: usize) -> Result<Compound<'a>, Stop> {
+        Ok(self.compound(true))
+    }
+    fn serialize_tuple_struct(self, _: &'static str, _: usize) -> Result<Compound<'a>, Stop> {
+        Ok(self.compound(true))
+    }
+    fn serialize_tuple_variant(
+        self,
+        _: &'static str,
+        _: u32,
+        _: &'static str,
+        _: usize,
+    ) -> Result<Compound<'a>, Stop> {
+        Ok(self.compound(true))
+    }
+    fn serialize_map(self, _: Option<usize>) -> Result<Compound<'a>, Stop> {
+        Ok(self.compound(false))
+    }
+    fn serialize_struct(self, _: &'static str, _: usize) -> Result<Compound<'a>, Stop> {
+        Ok(self.compound(false))
+    }
+    fn serialize_struct_variant(
+        self,
+        _: &'static str,
+        _: u32,
+        _: &'static str,
+        _: usize,
+    ) -> Result<Compound<'a>, Stop> {
+        Ok(self.compound(false))
+    }
+}
+
+impl Walk {
+    const fn compound(&mut self, components: bool) -> Compound<'_> {
+        Compound {
+            walk: self,
+            next: 0,
+            components,
+        }
     }
 }

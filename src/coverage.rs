@@ -193,36 +193,37 @@ pub fn visible_points(
     let step = (pixels / max_points.max(1) as f64).sqrt().ceil().max(1.0) as u32;
     let pool = thread_pool(0).map_err(FieldError::Pool)?;
     let rows: Vec<u32> = (0..h).step_by(step as usize).collect();
-    let found = pool.install(|| {
-        rows.par_iter()
-            .map(|&y| {
-                if cancel.load(Ordering::Relaxed) {
-                    return Err(Cancelled);
-                }
-                let mut row = Vec::new();
-                for x in (0..w).step_by(step as usize) {
-                    let pixel = Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
-                    let Some((ray, _)) = scene.camera.ray(pixel, 1.0) else {
-                        continue;
-                    };
-                    let Some(hit) = scene.hit(&ray).filter(|hit| hit.object == object) else {
-                        continue;
-                    };
-                    let ctx = scene.texture_context_at(&hit, Vec3A::ZERO, Vec3A::ZERO);
-                    let own = Mapping::Uv.map_with_differentials(
-                        ctx.p,
-                        Vec3A::ZERO,
-                        Vec3A::ZERO,
-                        ctx.shape_uv,
-                        ctx.natural,
-                    );
-                    row.push((ctx.p.as_dvec3(), own.uv.as_dvec2()));
-                }
-                Ok(row)
-            })
-            .collect::<Result<Vec<_>, Cancelled>>()
-    })
-    .map_err(|Cancelled| FieldError::Cancelled)?;
+    let found = pool
+        .install(|| {
+            rows.par_iter()
+                .map(|&y| {
+                    if cancel.load(Ordering::Relaxed) {
+                        return Err(Cancelled);
+                    }
+                    let mut row = Vec::new();
+                    for x in (0..w).step_by(step as usize) {
+                        let pixel = Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
+                        let Some((ray, _)) = scene.camera.ray(pixel, 1.0) else {
+                            continue;
+                        };
+                        let Some(hit) = scene.hit(&ray).filter(|hit| hit.object == object) else {
+                            continue;
+                        };
+                        let ctx = scene.texture_context_at(&hit, Vec3A::ZERO, Vec3A::ZERO);
+                        let own = Mapping::Uv.map_with_differentials(
+                            ctx.p,
+                            Vec3A::ZERO,
+                            Vec3A::ZERO,
+                            ctx.shape_uv,
+                            ctx.natural,
+                        );
+                        row.push((ctx.p.as_dvec3(), own.uv.as_dvec2()));
+                    }
+                    Ok(row)
+                })
+                .collect::<Result<Vec<_>, Cancelled>>()
+        })
+        .map_err(|Cancelled| FieldError::Cancelled)?;
     Ok(found.into_iter().flatten().collect())
 }
 

@@ -162,7 +162,10 @@ fn colour_key(ui: &egui::Ui, image: egui::Rect, view: View) {
                 ))
             };
             vec![
-                (srgb(crate::texture::AGREE_COLOUR), "agree within the tolerance".to_owned()),
+                (
+                    srgb(crate::texture::AGREE_COLOUR),
+                    "agree within the tolerance".to_owned(),
+                ),
                 (heat(2e-3, 0.0), "|du| just above the tolerance".to_owned()),
                 (heat(0.5, 0.0), "|du| half the texture or more".to_owned()),
                 (heat(0.0, 2e-3), "|dv| just above the tolerance".to_owned()),

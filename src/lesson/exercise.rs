@@ -16,12 +16,13 @@
 //! one texel of a 2048 x 1024 image, with the common mistakes' hints; a checker texture on a
 //! grid of cell centres of the (u, v) square, a colour agreeing within [`COLOUR_TOLERANCE`].
 
+use crate::mapping::Mapping;
 use crate::mapping::formula::compare::{agreement, mistakes, one_texel, sample_points};
 use crate::mapping::formula::{FormulaError, FormulaMapping};
-use crate::mapping::Mapping;
 use crate::math::Rgb;
 use crate::scene::{MappingDesc, SceneDesc, TextureDesc};
 use crate::texture::{Checker, Filter, FormulaColour};
+use std::fmt::Write as _;
 
 /// The points along each side of the target mapping's surface that *Check* samples (as
 /// `texplore map --compare`).
@@ -107,7 +108,7 @@ impl Checked {
         };
         let mut s = format!("{:.1} % {what}", 100.0 * self.share());
         if self.non_finite > 0 {
-            s.push_str(&format!("; {} give NaN or infinity", self.non_finite));
+            let _ = write!(s, "; {} give NaN or infinity", self.non_finite);
         }
         s
     }
@@ -329,9 +330,9 @@ impl ExerciseFile {
         ex.apply(base, &ex.solution)
             .map_err(|m| (target_at, format!("`object` = {}: {m}", self.object)))?;
         let solution_at = self.solution.span().start;
-        let checked = ex.check(&ex.solution).map_err(|e| {
-            (solution_at, format!("`solution.{e}"))
-        })?;
+        let checked = ex
+            .check(&ex.solution)
+            .map_err(|e| (solution_at, format!("`solution.{e}")))?;
         if checked.share() < SOLUTION_SHARE {
             return Err((
                 solution_at,

@@ -330,9 +330,9 @@ fn parse_with(text: &str, file: &Path, cache: &mut AssetCache) -> Result<Lesson>
     }
     let mut exercises = Vec::new();
     for (k, x) in raw.exercises.into_iter().enumerate() {
-        let built = x.build(&base).map_err(|(offset, m)| {
-            at(file, text, offset, format!("exercise {}: {m}", k + 1))
-        })?;
+        let built = x
+            .build(&base)
+            .map_err(|(offset, m)| at(file, text, offset, format!("exercise {}: {m}", k + 1)))?;
         let applied = built
             .apply(&base, &built.solution)
             .map_err(|m| at(file, text, 0, format!("exercise {}: {m}", k + 1)))?;
@@ -341,7 +341,10 @@ fn parse_with(text: &str, file: &Path, cache: &mut AssetCache) -> Result<Lesson>
                 file,
                 text,
                 0,
-                format!("exercise {}: the scene with the solution does not build: {e}", k + 1),
+                format!(
+                    "exercise {}: the scene with the solution does not build: {e}",
+                    k + 1
+                ),
             )
         })?;
         exercises.push(built);

@@ -67,6 +67,7 @@ pub const DEFAULT_REFLECTION_DEPTH: u32 = 4;
 /// The largest [`RenderDesc::reflection_depth`].
 pub const MAX_REFLECTION_DEPTH: u32 = 64;
 
+#[allow(clippy::trivially_copy_pass_by_ref)] // serde's skip_serializing_if passes a reference
 fn is_default_compare(c: &Compare) -> bool {
     *c == Compare::default()
 }

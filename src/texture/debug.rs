@@ -349,7 +349,10 @@ mod tests {
         assert_eq!(c(0.0, 0.7), Rgb(0.0, 1.0, 0.0));
         let just = c(0.0, 1.1e-3);
         assert!(just.0 == 0.0 && (0.25..0.3).contains(&just.1), "{just:?}");
-        assert!(c(0.01, 0.0).0 < c(0.1, 0.0).0, "brighter with the difference");
+        assert!(
+            c(0.01, 0.0).0 < c(0.1, 0.0).0,
+            "brighter with the difference"
+        );
         assert_eq!(c(f64::NAN, 0.0), crate::texture::mark());
     }
 

@@ -27,7 +27,12 @@ fn every_shipped_exercise_is_solved_by_its_solution_and_not_by_its_start() {
                 lesson.name,
                 solved.summary(&x.target)
             );
-            assert!(solved.hints.is_empty(), "{}: {:?}", lesson.name, solved.hints);
+            assert!(
+                solved.hints.is_empty(),
+                "{}: {:?}",
+                lesson.name,
+                solved.hints
+            );
             if let Ok(start) = x.check(&x.start) {
                 assert!(
                     start.share() < CORRECT_SHARE,
@@ -67,9 +72,21 @@ fn the_broken_starts_get_their_hints() {
         x.check(&x.start).expect("the start compiles").hints
     };
     let first = |prefix: &str| hints(prefix).first().cloned().unwrap_or_default();
-    assert!(first("04").contains("u and v are swapped"), "{:?}", hints("04"));
-    assert!(first("06").contains("v is upside down"), "{:?}", hints("06"));
-    assert!(first("07").contains("mirrored left to right"), "{:?}", hints("07"));
+    assert!(
+        first("04").contains("u and v are swapped"),
+        "{:?}",
+        hints("04")
+    );
+    assert!(
+        first("06").contains("v is upside down"),
+        "{:?}",
+        hints("06")
+    );
+    assert!(
+        first("07").contains("mirrored left to right"),
+        "{:?}",
+        hints("07")
+    );
     // Lesson 5 starts empty: a formula error, not a verdict.
     let lesson5 = loaded
         .lessons
@@ -92,7 +109,11 @@ fn the_checker_exercise_names_swapped_colours() {
     let swapped = vec!["0.1 + 0.8 * 2 * fract((floor(8 * u) + floor(8 * v)) / 2)".to_owned()];
     let c = x.check(&swapped).unwrap();
     assert!(c.share() < 0.01, "{}", c.summary(&x.target));
-    assert!(c.hints[0].contains("colours are the wrong way round"), "{:?}", c.hints);
+    assert!(
+        c.hints[0].contains("colours are the wrong way round"),
+        "{:?}",
+        c.hints
+    );
 }
 
 /// The lesson `body` (its exercise and question) on the small rectangle preset, as a file in
@@ -105,7 +126,9 @@ fn bad(dir: &std::path::Path, body: &str) -> String {
     );
     let file = dir.join("bad.toml");
     std::fs::write(&file, text).unwrap();
-    load_lesson(&file).expect_err("the lesson is refused").to_string()
+    load_lesson(&file)
+        .expect_err("the lesson is refused")
+        .to_string()
 }
 
 #[test]
@@ -158,10 +181,13 @@ fn a_bad_exercise_is_an_error_naming_the_file_line_and_field() {
 fn earth_difference(u: &str, v: &str) -> texplore::scene::Scene {
     let path = root().join("presets/earth.ron");
     let mut desc = load_preset(&path).unwrap();
-    desc.objects[0].material.texture_mut().set_mapping(MappingDesc::Formula {
-        u: u.into(),
-        v: v.into(),
-    });
+    desc.objects[0]
+        .material
+        .texture_mut()
+        .set_mapping(MappingDesc::Formula {
+            u: u.into(),
+            v: v.into(),
+        });
     desc.render.view = View::Difference;
     desc.render.compare = Compare {
         with: Mapping::Spherical,
@@ -176,7 +202,9 @@ fn the_difference_view_paints_du_and_dv_and_the_visible_surface_names_the_mistak
     let agree = |p: &[f32; 4]| {
         let c = texplore::texture::AGREE_COLOUR;
         let w = p[3].max(1e-6);
-        (p[0] / w - c.0).abs() < 1e-4 && (p[1] / w - c.1).abs() < 1e-4 && (p[2] / w - c.2).abs() < 1e-4
+        (p[0] / w - c.0).abs() < 1e-4
+            && (p[1] / w - c.1).abs() < 1e-4
+            && (p[2] / w - c.2).abs() < 1e-4
     };
     let never = AtomicBool::new(false);
 
@@ -196,7 +224,11 @@ fn the_difference_view_paints_du_and_dv_and_the_visible_surface_names_the_mistak
         "1 - acos(y / sqrt(x*x + y*y + z*z)) / pi",
     );
     let film = render_on(&right, 2);
-    let on_earth = film.pixels().iter().filter(|p| p[0] + p[1] + p[2] > 0.0).count();
+    let on_earth = film
+        .pixels()
+        .iter()
+        .filter(|p| p[0] + p[1] + p[2] > 0.0)
+        .count();
     let agreeing = film.pixels().iter().filter(|p| agree(p)).count();
     assert!(on_earth > 64 * 48 / 4);
     assert_eq!(agreeing, on_earth, "every pixel of the Earth agrees");

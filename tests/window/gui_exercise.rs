@@ -40,7 +40,10 @@ pub fn percent(text: &str) -> f64 {
 
 /// How many bytes of two images differ by more than `by`.
 fn differing(a: &[u8], b: &[u8], by: u8) -> usize {
-    a.iter().zip(b).filter(|(x, y)| x.abs_diff(**y) > by).count()
+    a.iter()
+        .zip(b)
+        .filter(|(x, y)| x.abs_diff(**y) > by)
+        .count()
 }
 
 /// The value of the exercise's field `label`.
@@ -55,8 +58,11 @@ fn check_gives_the_hint_and_the_solution_agrees() {
     let dir = tempfile::tempdir().unwrap();
     let preset = small_earth(dir.path());
     // The shipped spherical lesson's exercise, on the small Earth.
-    let shipped = std::fs::read_to_string(root().join("lessons/06-spherical-mapping.toml")).unwrap();
-    let exercise = &shipped[shipped.find("[[exercise]]").expect("lesson 6 has an exercise")..];
+    let shipped =
+        std::fs::read_to_string(root().join("lessons/06-spherical-mapping.toml")).unwrap();
+    let exercise = &shipped[shipped
+        .find("[[exercise]]")
+        .expect("lesson 6 has an exercise")..];
     let text = format!(
         "title = \"The spherical exercise\"\npreset = {:?}\ntext = \"Write it.\"\n\n{exercise}",
         preset.file_name().unwrap().to_str().unwrap()
@@ -116,7 +122,8 @@ fn check_gives_the_hint_and_the_solution_agrees() {
 fn a_formula_that_does_not_compile_is_named_and_not_applied() {
     let dir = tempfile::tempdir().unwrap();
     let preset = small_earth(dir.path());
-    let shipped = std::fs::read_to_string(root().join("lessons/06-spherical-mapping.toml")).unwrap();
+    let shipped =
+        std::fs::read_to_string(root().join("lessons/06-spherical-mapping.toml")).unwrap();
     let exercise = &shipped[shipped.find("[[exercise]]").unwrap()..];
     let text = format!(
         "title = \"The spherical exercise\"\npreset = {:?}\ntext = \"Write it.\"\n\n{exercise}",

@@ -129,7 +129,10 @@ fn comparing_with_a_built_in_mapping_paints_the_difference_and_gives_the_hint() 
     assert!(h.query_by_label_contains("hint: ").is_none());
     let image = image_bytes(&h);
     let agreeing = count(&image, |r, g, b| b > 60 && r < 20 && g < 50);
-    assert!(agreeing * 10 > image.len() / 4, "{agreeing} dark blue pixels");
+    assert!(
+        agreeing * 10 > image.len() / 4,
+        "{agreeing} dark blue pixels"
+    );
     assert_eq!(count(&image, |r, g, _| g > 120 && r < 60), 0);
     let _ = h.get_by_label("NaN or infinity: at no hit of this render");
 

@@ -106,7 +106,9 @@ fn exercise_ui(
         }
         if ui
             .button("Show solution")
-            .on_hover_text("Fills the fields with the lesson's solution; Check puts it on the scene")
+            .on_hover_text(
+                "Fills the fields with the lesson's solution; Check puts it on the scene",
+            )
             .clicked()
         {
             attempt.formulas.clone_from(&x.solution);

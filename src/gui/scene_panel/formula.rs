@@ -17,26 +17,24 @@ use std::sync::Arc;
 /// What a comparison was computed for: the scene shown (by address), the object, the settings.
 type Key = (usize, usize, Compare);
 
+/// A comparison's outcome: `Ok(None)` when the object has no formula mapping.
+type Outcome = Result<Option<VisibleAgreement>, String>;
+
 /// The comparison's number, computed off the UI thread for the scene shown.
 #[derive(Default)]
 pub(super) struct FormulaCheck {
     /// The scene the viewport shows (set by the window each frame).
     pub(super) shown: Option<Arc<Scene>>,
     /// The comparison being computed.
-    running: Option<(Key, Task<Result<Option<VisibleAgreement>, String>>)>,
+    running: Option<(Key, Task<Outcome>)>,
     /// The last comparison computed.
-    done: Option<(Key, Result<Option<VisibleAgreement>, String>)>,
+    done: Option<(Key, Outcome)>,
 }
 
 impl FormulaCheck {
     /// The comparison for `object` under `compare`: started when the scene or the settings
     /// changed, collected when done. `None` while it runs.
-    fn poll(
-        &mut self,
-        ctx: &egui::Context,
-        object: usize,
-        compare: Compare,
-    ) -> Option<&Result<Option<VisibleAgreement>, String>> {
+    fn poll(&mut self, ctx: &egui::Context, object: usize, compare: Compare) -> Option<&Outcome> {
         let scene = self.shown.clone()?;
         let key = (Arc::as_ptr(&scene) as usize, object, compare);
         if let Some((k, task)) = &self.running
@@ -49,12 +47,12 @@ impl FormulaCheck {
         let current = self.done.as_ref().is_some_and(|(k, _)| *k == key);
         let started = self.running.as_ref().is_some_and(|(k, _)| *k == key);
         if !current && !started {
-            let work = move |cancel: &std::sync::atomic::AtomicBool| {
-                match visible_agreement(&scene, object, compare, cancel) {
-                    Ok(found) => Some(Ok(found)),
-                    Err(crate::coverage::FieldError::Cancelled) => None,
-                    Err(e) => Some(Err(e.to_string())),
-                }
+            let work = move |cancel: &std::sync::atomic::AtomicBool| match visible_agreement(
+                &scene, object, compare, cancel,
+            ) {
+                Ok(found) => Some(Ok(found)),
+                Err(crate::coverage::FieldError::Cancelled) => None,
+                Err(e) => Some(Err(e.to_string())),
             };
             match Task::spawn(work) {
                 Ok(task) => self.running = Some((key, task)),

@@ -144,3 +144,44 @@ fn a_formula_that_does_not_compile_is_named_and_not_applied() {
     assert!(error.starts_with("v: column 10"), "{error}");
     assert_eq!(desc(&h), base, "nothing was applied");
 }
+
+#[test]
+fn the_checker_exercise_checks_a_texture_and_writes_no_shipped_file() {
+    let shipped = crate::gui_lessons_class::shipped_files();
+    let loaded = texplore::lesson::load_dir(&root().join("lessons")).unwrap();
+    let lesson = loaded
+        .lessons
+        .into_iter()
+        .find(|l| l.name.starts_with("08"))
+        .expect("lesson 8");
+    let x = lesson.exercises[0].clone();
+    let mut h = crate::gui_lessons::start(lesson);
+    settle(&mut h);
+    let photo = image_bytes(&h);
+    assert_eq!(field(&h, "your grey ="), x.start[0]);
+
+    // The start draws stripes: they agree with the checker on every other row of squares.
+    press(&mut h, "Check");
+    settle(&mut h);
+    let verdict = wait_for_label(&mut h, "points of the (u, v) square");
+    assert!((45.0..55.0).contains(&percent(&verdict)), "{verdict}");
+    assert!(matches!(
+        desc(&h).objects[0].material.texture(),
+        texplore::scene::TextureDesc::Formula { grey, .. } if *grey == x.start[0]
+    ));
+    let stripes = image_bytes(&h);
+    assert!(differing(&photo, &stripes, 16) * 10 > photo.len());
+
+    press(&mut h, "Show solution");
+    assert_eq!(field(&h, "your grey ="), x.solution[0]);
+    press(&mut h, "Check");
+    settle(&mut h);
+    let verdict = wait_for_label(&mut h, "Correct: ");
+    assert!(percent(&verdict) >= 99.0, "{verdict}");
+    let checker = image_bytes(&h);
+    assert!(differing(&stripes, &checker, 16) * 20 > stripes.len());
+    assert!(
+        crate::gui_lessons_class::shipped_files() == shipped,
+        "no shipped file changed on disk"
+    );
+}

@@ -77,7 +77,7 @@ impl ScenePanel {
         let object = self.selected;
         let mut changed = false;
         ui.push_id("formula-check", |ui| {
-            non_finite_line(ui, self.formula.shown.as_deref(), object);
+            self.non_finite_ui(ui);
             let mut on = render.view == View::Difference;
             if ui
                 .checkbox(&mut on, "Compare with a built-in mapping")
@@ -123,7 +123,16 @@ impl ScenePanel {
     }
 }
 
-/// How many hits gave NaN or an infinity in the render of the scene shown.
+impl ScenePanel {
+    /// How many hits gave NaN or an infinity (a formula mapping's or a colour formula's) in the
+    /// render of the scene shown, on the selected object.
+    pub(super) fn non_finite_ui(&self, ui: &mut egui::Ui) {
+        let scene = self.formula.shown.as_deref();
+        non_finite_line(ui, scene, self.selected);
+    }
+}
+
+/// How many hits gave NaN or an infinity in the render of `scene`, on `object`.
 fn non_finite_line(ui: &mut egui::Ui, scene: Option<&Scene>, object: usize) {
     let Some(texture) = scene.and_then(|s| crate::coverage::object_texture(s, object)) else {
         return;

@@ -142,8 +142,19 @@ impl ScenePanel {
                 changed |= anisotropy(ui, *filter, max_anisotropy);
                 changed |= enum_combo(ui, "Wrap", wrap);
             }
-            TextureDesc::Formula { grey, r, g, b, .. } => {
+            TextureDesc::Formula {
+                grey,
+                r,
+                g,
+                b,
+                mapping,
+                ..
+            } => {
                 changed |= colour_formulas_ui(ui, grey, [r, g, b]);
+                // A formula mapping's editor above already counts the texture's NaNs.
+                if !matches!(mapping, MappingDesc::Formula { .. }) {
+                    self.non_finite_ui(ui);
+                }
             }
         }
         changed

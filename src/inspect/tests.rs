@@ -242,3 +242,28 @@ fn a_bump_or_normal_map_shows_its_value_its_frame_and_the_tilted_normal() {
         assert!(tilted.value.starts_with(prefix), "{}", tilted.value);
     }
 }
+
+#[test]
+fn under_the_difference_view_the_formula_is_worked_beside_the_builtin_mapping() {
+    let (mut desc, path) = earth();
+    desc.objects[0]
+        .material
+        .texture_mut()
+        .set_mapping(crate::scene::MappingDesc::Formula {
+            u: "fract(atan2(x, z) / tau)".into(),
+            v: "acos(y) / pi".into(),
+        });
+    desc.render.view = View::Difference;
+    let scene = build_scene(&desc, &path, &mut AssetCache::new()).expect("build");
+    // Above the Earth's centre, away from the equator where the flip changes nothing.
+    let i = scene.inspect(Vec2::new(32.0, 12.0)).expect("hit");
+    let lines = i.mapping_lines.join("\n");
+    assert!(lines.contains("v = acos(y) / pi = acos("), "{lines}");
+    assert!(
+        lines.contains("compared with the spherical mapping:"),
+        "{lines}"
+    );
+    assert!(lines.contains("  v = 1 - theta / pi = "), "{lines}");
+    assert!(lines.contains(": beyond the tolerance"), "{lines}");
+    assert_eq!(i.debug_value.map(|(v, _)| v), Some(View::Difference));
+}

@@ -39,10 +39,15 @@ impl FormulaCheck {
         let key = (Arc::as_ptr(&scene) as usize, object, compare);
         if let Some((k, task)) = &self.running
             && *k == key
-            && let Some(result) = task.take()
         {
-            self.done = Some((key, result));
-            self.running = None;
+            let finished = task.take().or_else(|| {
+                task.failure()
+                    .map(|why| Err(format!("the comparison failed: {why}")))
+            });
+            if let Some(result) = finished {
+                self.done = Some((key, result));
+                self.running = None;
+            }
         }
         let current = self.done.as_ref().is_some_and(|(k, _)| *k == key);
         let started = self.running.as_ref().is_some_and(|(k, _)| *k == key);

@@ -306,9 +306,16 @@ fn every_character_of_every_lesson_draws_in_the_window() {
             .experiments
             .iter()
             .flat_map(|x| [x.label.as_str(), x.look_for.as_str()]);
+        // An exercise's task and formulas (the fields are monospace: Hack).
+        let exercises = l.exercises.iter().flat_map(|x| {
+            std::iter::once(x.task.as_str())
+                .chain(x.start.iter().map(String::as_str))
+                .chain(x.solution.iter().map(String::as_str))
+        });
         let all = [l.title.as_str(), &l.text, &l.question, &l.answer]
             .into_iter()
-            .chain(x_text);
+            .chain(x_text)
+            .chain(exercises);
         for s in all {
             for c in s.chars().filter(|c| !c.is_whitespace()) {
                 // Hack draws the formulas, Ubuntu the rest: a character must be in both.

@@ -197,6 +197,22 @@ fn lessons_list_and_print_from_any_folder() {
         );
     }
     assert!(printed.contains(&first.answer), "{printed}");
+    // An exercise: its task and start before the question, its solution after the answer.
+    let printed = success(&lesson_cli(
+        elsewhere.path(),
+        elsewhere.path(),
+        &["lesson", "6", "--print"],
+    ));
+    let task = printed.find("Repair the spherical map").expect(&printed);
+    let start = printed.find("    v = acos(y) / pi\n").expect(&printed);
+    let question = printed.find("## Question").expect(&printed);
+    let solution = printed
+        .find("Solution of exercise 1:\n    u = fract(atan2(x, z) / tau)\n    v = 1 - acos(")
+        .expect(&printed);
+    assert!(
+        task < start && start < question && question < solution,
+        "{printed}"
+    );
 }
 
 #[test]

@@ -98,9 +98,14 @@ fn check_gives_the_hint_and_the_solution_agrees() {
         "the Earth is upside down on screen"
     );
 
-    // One undo step takes the formulas off.
+    // One undo step takes the formulas off, and the verdict with them.
     undo(&mut h);
     assert_eq!(desc(&h), base);
+    assert!(h.query_by_label_contains("hint: ").is_none());
+    assert!(
+        h.query_by_label_contains("points of the spherical map's surface")
+            .is_none()
+    );
 
     press(&mut h, "Show solution");
     assert_eq!(field(&h, "your u ="), x.solution[0]);

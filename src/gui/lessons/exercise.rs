@@ -15,8 +15,8 @@ use crate::scene::SceneDesc;
 pub(super) struct Attempt {
     /// The formulas typed, one per field.
     formulas: Vec<String>,
-    /// What the last *Check* found, or the formula's mistake.
-    verdict: Option<Result<Checked, String>>,
+    /// The formulas of the last *Check* and what it found, or their mistake.
+    verdict: Option<(Vec<String>, Result<Checked, String>)>,
 }
 
 impl LessonsPanel {
@@ -102,7 +102,7 @@ fn exercise_ui(
                     Err(e) => action = Some(Command::Error(e)),
                 }
             }
-            attempt.verdict = Some(verdict);
+            attempt.verdict = Some((attempt.formulas.clone(), verdict));
         }
         if ui
             .button("Show solution")
@@ -115,7 +115,18 @@ fn exercise_ui(
             attempt.verdict = None;
         }
     });
-    match &attempt.verdict {
+    // A verdict holds while the scene has the formulas it checked (Ctrl+Z takes both away);
+    // a mistake, until the fields change.
+    let current = |checked: &Vec<String>| match desc {
+        Some(d) => x.formulas_in(d).as_ref() == Some(checked),
+        None => false,
+    };
+    let shown = match &attempt.verdict {
+        Some((checked, Err(e))) if *checked == attempt.formulas => Some(Err(e)),
+        Some((checked, Ok(c))) if current(checked) => Some(Ok(c)),
+        _ => None,
+    };
+    match shown {
         None => {}
         Some(Err(e)) => {
             ui.label(

@@ -147,3 +147,28 @@ fn comparing_with_a_built_in_mapping_paints_the_difference_and_gives_the_hint() 
         .unwrap_or_else(|| panic!("{nan}"));
     assert!(n > 0, "{nan}");
 }
+
+#[test]
+fn the_tolerance_decides_what_agrees() {
+    use crate::gui_exercise::{percent, wait_for_label};
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut h = harness(small_earth(dir.path()));
+    choose(&mut h, "Mapping", "formula");
+    // A quarter turn: |du| = 0.25, 512 texels of the 2048-wide Earth.
+    type_formula(&mut h, "u =", "fract(atan2(x, z) / tau + 0.25)");
+    h.get_by_role_and_label(Role::CheckBox, "Compare with a built-in mapping")
+        .click();
+    settle(&mut h);
+    let verdict = wait_for_label(&mut h, "of the visible surface agrees with spherical");
+    assert!(percent(&verdict) < 1.0, "{verdict}");
+    let hint = wait_for_label(&mut h, "hint: ");
+    assert!(hint.contains("quarter turn"), "{hint}");
+
+    h.get_by_label("tolerance (texels)")
+        .set_value_accesskit(600.0);
+    settle(&mut h);
+    assert_eq!(desc(&h).render.compare.tolerance, 600.0);
+    let verdict = wait_for_label(&mut h, "within 600 texels");
+    assert!(percent(&verdict) >= 99.0, "{verdict}");
+    assert!(h.query_by_label_contains("hint: ").is_none());
+}

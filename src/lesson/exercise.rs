@@ -51,6 +51,18 @@ pub enum Target {
     },
 }
 
+impl Target {
+    /// The names of the formulas that must give it: `u`, `v` for a mapping, `grey` for a
+    /// texture.
+    #[must_use]
+    pub const fn fields(&self) -> &'static [&'static str] {
+        match self {
+            Self::Mapping(_) => &["u", "v"],
+            Self::Checker { .. } => &["grey"],
+        }
+    }
+}
+
 /// One exercise of a lesson.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Exercise {
@@ -118,10 +130,7 @@ impl Exercise {
     /// The names of the formulas: `u`, `v` for a mapping, `grey` for a texture.
     #[must_use]
     pub const fn fields(&self) -> &'static [&'static str] {
-        match self.target {
-            Target::Mapping(_) => &["u", "v"],
-            Target::Checker { .. } => &["grey"],
-        }
+        self.target.fields()
     }
 
     /// The target in words (`the cylindrical mapping`).
@@ -314,10 +323,7 @@ impl ExerciseFile {
     pub(super) fn build(self, base: &SceneDesc) -> Result<Exercise, Fault> {
         let target_at = self.target.span().start;
         let target = parse_target(self.target.get_ref()).map_err(|m| (target_at, m))?;
-        let fields: &[&str] = match target {
-            Target::Mapping(_) => &["u", "v"],
-            Target::Checker { .. } => &["grey"],
-        };
+        let fields = target.fields();
         let start = formulas(&self.start, "start", fields)?;
         let solution = formulas(&self.solution, "solution", fields)?;
         let ex = Exercise {

@@ -11,11 +11,13 @@
 //! footprint filters (trilinear, EWA) the texels of level 0 under the pixel's footprint.
 
 use crate::geometry::Shape;
+use crate::mapping::formula::compare::{self, Agreement, Mistake};
 use crate::mapping::{AnyMapping, Mapping, TexCoord};
-use crate::math::Vec2;
+use crate::math::{Vec2, Vec3A};
 use crate::render::{Cancelled, PoolError, thread_pool};
 use crate::scene::Scene;
-use crate::texture::{Filter, ImageTexture, Texture};
+use crate::texture::{Compare, Filter, ImageTexture, Texture};
+use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 use std::collections::BTreeMap;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -168,6 +170,101 @@ fn pixel_uv(scene: &Scene, mappings: &[Option<AnyMapping>], x: u32, y: u32) -> O
         prim: hit.local.prim,
         tex: ctx.tex_coord(mapping),
     })
+}
+
+/// The most pixel centres [`visible_agreement`] looks through (a grid over the film).
+pub const MAX_VISIBLE_POINTS: usize = 40_000;
+
+/// The points of `object` that the film's pixel centres see, through a grid of at most
+/// `max_points` of them (every k-th pixel of every k-th row): each the local hit point and the
+/// shape's own (u, v) there (what a formula's `mesh_u`, `mesh_v` read), as
+/// [`crate::mapping::formula::compare`] takes points.
+///
+/// # Errors
+/// As [`UvField::compute`].
+pub fn visible_points(
+    scene: &Scene,
+    object: usize,
+    max_points: usize,
+    cancel: &AtomicBool,
+) -> Result<Vec<(DVec3, DVec2)>, FieldError> {
+    let (w, h) = (scene.settings.width, scene.settings.height);
+    let pixels = f64::from(w) * f64::from(h);
+    let step = (pixels / max_points.max(1) as f64).sqrt().ceil().max(1.0) as u32;
+    let pool = thread_pool(0).map_err(FieldError::Pool)?;
+    let rows: Vec<u32> = (0..h).step_by(step as usize).collect();
+    let found = pool
+        .install(|| {
+            rows.par_iter()
+                .map(|&y| {
+                    if cancel.load(Ordering::Relaxed) {
+                        return Err(Cancelled);
+                    }
+                    let mut row = Vec::new();
+                    for x in (0..w).step_by(step as usize) {
+                        let pixel = Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
+                        let Some((ray, _)) = scene.camera.ray(pixel, 1.0) else {
+                            continue;
+                        };
+                        let Some(hit) = scene.hit(&ray).filter(|hit| hit.object == object) else {
+                            continue;
+                        };
+                        let ctx = scene.texture_context_at(&hit, Vec3A::ZERO, Vec3A::ZERO);
+                        let own = Mapping::Uv.map_with_differentials(
+                            ctx.p,
+                            Vec3A::ZERO,
+                            Vec3A::ZERO,
+                            ctx.shape_uv,
+                            ctx.natural,
+                        );
+                        row.push((ctx.p.as_dvec3(), own.uv.as_dvec2()));
+                    }
+                    Ok(row)
+                })
+                .collect::<Result<Vec<_>, Cancelled>>()
+        })
+        .map_err(|Cancelled| FieldError::Cancelled)?;
+    Ok(found.into_iter().flatten().collect())
+}
+
+/// How the formula mapping of `object`'s texture compares with a built-in mapping over the
+/// visible surface.
+#[derive(Clone, Debug, PartialEq)]
+pub struct VisibleAgreement {
+    /// The share of the visible points where they agree, and the largest differences.
+    pub agreement: Agreement,
+    /// The common mistakes found ([`compare::mistakes`]), none for a correct formula.
+    pub mistakes: Vec<Mistake>,
+    /// The tolerance used, in (u, v).
+    pub tolerance: DVec2,
+}
+
+/// The formula mapping of `object`'s texture against `compare.with` over the surface the film
+/// sees ([`visible_points`], at most [`MAX_VISIBLE_POINTS`]), within `compare.tolerance`
+/// texels of the texture's image: the agreement and the mistakes, by the same code as
+/// `texplore map --compare`. `Ok(None)` when the object's texture has no formula mapping.
+///
+/// # Errors
+/// As [`UvField::compute`].
+pub fn visible_agreement(
+    scene: &Scene,
+    object: usize,
+    compare: Compare,
+    cancel: &AtomicBool,
+) -> Result<Option<VisibleAgreement>, FieldError> {
+    let Some(texture) = object_texture(scene, object) else {
+        return Ok(None);
+    };
+    let Some(AnyMapping::Formula(formula)) = texture.mapping() else {
+        return Ok(None);
+    };
+    let points = visible_points(scene, object, MAX_VISIBLE_POINTS, cancel)?;
+    let tolerance = texture.texel_size() * f64::from(compare.tolerance);
+    Ok(Some(VisibleAgreement {
+        agreement: compare::agreement(formula, compare.with, &points, tolerance),
+        mistakes: compare::mistakes(formula, compare.with, &points, tolerance),
+        tolerance,
+    }))
 }
 
 /// A set of texels of one image (level 0), column by row counted from the bottom (as v is).

@@ -135,7 +135,14 @@ mod tests {
         );
         assert_eq!(
             round_trips::<View>(),
-            ["shaded", "uv", "mip-level", "texel-grid", "seams"]
+            [
+                "shaded",
+                "uv",
+                "mip-level",
+                "texel-grid",
+                "seams",
+                "difference"
+            ]
         );
         assert_eq!(
             round_trips::<PixelSampler>(),

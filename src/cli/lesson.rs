@@ -90,7 +90,8 @@ pub fn run(a: &LessonArgs) -> Result<Option<Lesson>> {
 }
 
 /// The lesson as text: title, preset, text, each experiment with what it builds on and what to
-/// look for, and the question (the answer last, after a rule), control characters escaped.
+/// look for, each exercise with the formulas it starts from, and the question (the answer and
+/// the exercises' solutions last, after a rule), control characters escaped.
 #[must_use]
 pub fn handout(l: &Lesson) -> String {
     use std::fmt::Write as _;
@@ -111,8 +112,21 @@ pub fn handout(l: &Lesson) -> String {
         }
         let _ = writeln!(out, "   Look for: {}", printable(&x.look_for));
     }
+    for (k, x) in l.exercises.iter().enumerate() {
+        let _ = writeln!(out, "\n## Exercise {}\n\n{}", k + 1, printable(&x.task));
+        let _ = writeln!(out, "Checked against {}. Start from:", x.target_name());
+        for (name, f) in x.fields().iter().zip(&x.start) {
+            let _ = writeln!(out, "    {name} = {}", printable(f));
+        }
+    }
     let _ = writeln!(out, "\n## Question\n\n{}\n", printable(&l.question));
     let _ = writeln!(out, "---\nAnswer: {}", printable(&l.answer));
+    for (k, x) in l.exercises.iter().enumerate() {
+        let _ = writeln!(out, "Solution of exercise {}:", k + 1);
+        for (name, f) in x.fields().iter().zip(&x.solution) {
+            let _ = writeln!(out, "    {name} = {}", printable(f));
+        }
+    }
     out
 }
 

@@ -152,6 +152,7 @@ impl ExplorerApp {
                         ..
                     } = self;
                     doc.sync_ids();
+                    scene_panel.show_scene(self.viewer.scene_arc().cloned());
                     if let Some(desc) = &mut doc.desc {
                         // Whether it changed anything is seen at the end of the frame.
                         let ids = &mut doc.ids;

@@ -153,6 +153,28 @@ fn colour_key(ui: &egui::Ui, image: egui::Rect, view: View) {
         ))
         .chain(levels().map(|(c, n)| (c, format!("level {n}"))))
         .collect(),
+        View::Difference => {
+            let tol = glam::DVec2::splat(1e-3);
+            let heat = |du: f64, dv: f64| {
+                srgb(crate::texture::difference_color(
+                    glam::DVec2::new(du, dv),
+                    tol,
+                ))
+            };
+            vec![
+                (
+                    srgb(crate::texture::AGREE_COLOUR),
+                    "agree within the tolerance".to_owned(),
+                ),
+                (heat(2e-3, 0.0), "|du| just above the tolerance".to_owned()),
+                (heat(0.5, 0.0), "|du| half the texture or more".to_owned()),
+                (heat(0.0, 2e-3), "|dv| just above the tolerance".to_owned()),
+                (heat(0.0, 0.5), "|dv| half the texture or more".to_owned()),
+                (heat(0.5, 0.5), "both differ".to_owned()),
+                (srgb(crate::texture::mark()), "NaN or infinite".to_owned()),
+                (egui::Color32::from_gray(40), "no mapping".to_owned()),
+            ]
+        }
         View::Seams => vec![
             (
                 egui::Color32::from_rgb(255, 0, 255),

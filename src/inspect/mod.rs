@@ -280,6 +280,10 @@ impl Scene {
             _ if let Some(f) = formula => {
                 let mut lines = fit_lines;
                 lines.extend(formula_lines(f, &ctx));
+                if self.settings.view == View::Difference {
+                    let tol = texture.texel_size() * f64::from(self.settings.compare.tolerance);
+                    lines.extend(compare_lines(f, self.settings.compare.with, &ctx, tol));
+                }
                 lines
             }
             (Some(Mapping::Uv), _) => vec!["(u, v) carried by the shape's vertices".to_owned()],
@@ -491,6 +495,46 @@ fn formula_lines(
         ));
     }
     lines.extend(f.explain(&inputs).0);
+    lines
+}
+
+/// Under the `Difference` view: the built-in mapping `with` worked at the same point, and how
+/// far the formula's (u, v) is from it against the tolerance `tol` (in (u, v)).
+fn compare_lines(
+    f: &crate::mapping::FormulaMapping,
+    with: Mapping,
+    ctx: &crate::texture::TextureContext,
+    tol: glam::DVec2,
+) -> Vec<String> {
+    let own = Mapping::Uv.map_with_differentials(
+        ctx.p,
+        Vec3A::ZERO,
+        Vec3A::ZERO,
+        ctx.shape_uv,
+        ctx.natural,
+    );
+    let p = ctx.p.as_dvec3();
+    let got = f.eval(&crate::mapping::formula::inputs_of(p, own.uv.as_dvec2()));
+    let want = crate::mapping::map_uv_f64(with, p);
+    let d = crate::mapping::formula::compare::difference(with, got, want);
+    let mut lines = vec![format!("compared with the {} mapping:", with.name())];
+    lines.extend(
+        explain_mapping(with, ctx.p)
+            .into_iter()
+            .map(|l| format!("  {l}")),
+    );
+    let verdict = if d.x <= tol.x && d.y <= tol.y {
+        "within the tolerance: they agree here"
+    } else {
+        "beyond the tolerance"
+    };
+    lines.push(format!(
+        "  |du| = {}, |dv| = {} ({:.2} and {:.2} times the tolerance): {verdict}",
+        explain_number(d.x),
+        explain_number(d.y),
+        d.x / tol.x.max(f64::MIN_POSITIVE),
+        d.y / tol.y.max(f64::MIN_POSITIVE),
+    ));
     lines
 }
 

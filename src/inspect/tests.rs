@@ -347,3 +347,28 @@ fn a_mirror_seen_in_a_mirror_is_the_second_bounce() {
     assert_eq!(matte.object_name, "Ball");
     assert!(matte.mirror.is_none());
 }
+
+#[test]
+fn under_the_difference_view_the_formula_is_worked_beside_the_builtin_mapping() {
+    let (mut desc, path) = earth();
+    desc.objects[0]
+        .material
+        .texture_mut()
+        .set_mapping(crate::scene::MappingDesc::Formula {
+            u: "fract(atan2(x, z) / tau)".into(),
+            v: "acos(y) / pi".into(),
+        });
+    desc.render.view = View::Difference;
+    let scene = build_scene(&desc, &path, &mut AssetCache::new()).expect("build");
+    // Above the Earth's centre, away from the equator where the flip changes nothing.
+    let i = scene.inspect(Vec2::new(32.0, 12.0)).expect("hit");
+    let lines = i.mapping_lines.join("\n");
+    assert!(lines.contains("v = acos(y) / pi = acos("), "{lines}");
+    assert!(
+        lines.contains("compared with the spherical mapping:"),
+        "{lines}"
+    );
+    assert!(lines.contains("  v = 1 - theta / pi = "), "{lines}");
+    assert!(lines.contains(": beyond the tolerance"), "{lines}");
+    assert_eq!(i.debug_value.map(|(v, _)| v), Some(View::Difference));
+}

@@ -32,6 +32,7 @@
 //! the lesson file, else (for a copy of a shipped lesson) among the shipped files.
 
 pub mod edit;
+pub mod exercise;
 
 use crate::error::{Error, Result};
 use crate::scene::{AssetCache, SceneDesc, build_scene, load_preset};
@@ -57,6 +58,8 @@ pub struct Lesson {
     pub text: String,
     /// The *Try this* experiments, in the file's order.
     pub experiments: Vec<Experiment>,
+    /// The exercises: formulas to write, checked against a built-in mapping or texture.
+    pub exercises: Vec<exercise::Exercise>,
     /// The question for the learner.
     pub question: String,
     /// Its answer, shown on request.
@@ -142,6 +145,8 @@ struct LessonFile {
     text: String,
     #[serde(default, rename = "experiment")]
     experiments: Vec<ExperimentFile>,
+    #[serde(default, rename = "exercise")]
+    exercises: Vec<exercise::ExerciseFile>,
     question: QuestionFile,
 }
 
@@ -323,6 +328,27 @@ fn parse_with(text: &str, file: &Path, cache: &mut AssetCache) -> Result<Lesson>
             after,
         });
     }
+    let mut exercises = Vec::new();
+    for (k, x) in raw.exercises.into_iter().enumerate() {
+        let built = x
+            .build(&base)
+            .map_err(|(offset, m)| at(file, text, offset, format!("exercise {}: {m}", k + 1)))?;
+        let applied = built
+            .apply(&base, &built.solution)
+            .map_err(|m| at(file, text, 0, format!("exercise {}: {m}", k + 1)))?;
+        build_scene(&applied, &preset, cache).map_err(|e| {
+            at(
+                file,
+                text,
+                0,
+                format!(
+                    "exercise {}: the scene with the solution does not build: {e}",
+                    k + 1
+                ),
+            )
+        })?;
+        exercises.push(built);
+    }
     Ok(Lesson {
         name: lesson_name(file),
         file: file.to_path_buf(),
@@ -335,6 +361,7 @@ fn parse_with(text: &str, file: &Path, cache: &mut AssetCache) -> Result<Lesson>
             .trim_end()
             .to_owned(),
         experiments,
+        exercises,
         question: raw.question.ask.trim().to_owned(),
         answer: raw.question.answer.trim().to_owned(),
     })

@@ -6,7 +6,7 @@ use super::texture::TextureDesc;
 use super::values::finite_non_negative;
 use crate::math::Rgb;
 use crate::sampler::{PixelFilter, PixelSampler};
-use crate::texture::{Filter, View};
+use crate::texture::{Compare, Filter, MAX_COMPARE_TOLERANCE, View};
 use serde::{Deserialize, Serialize};
 
 /// Largest accepted width or height of a render.
@@ -51,6 +51,10 @@ pub struct RenderDesc {
     pub adaptive: Option<AdaptiveDesc>,
     /// What the render shows: the shaded image or a debug view; default `Shaded`.
     pub view: View,
+    /// What the `Difference` view compares the texture's mapping with: the built-in mapping
+    /// and the tolerance in texels; default `(with: Spherical, tolerance: 1)`.
+    #[serde(skip_serializing_if = "is_default_compare")]
+    pub compare: Compare,
     /// How many mirror bounces a ray may take (`Reflective` materials), 0 to
     /// [`MAX_REFLECTION_DEPTH`]; 0 shades a mirror as plain Phong; default 4.
     #[serde(skip_serializing_if = "is_default_depth")]
@@ -62,6 +66,11 @@ pub const DEFAULT_REFLECTION_DEPTH: u32 = 4;
 
 /// The largest [`RenderDesc::reflection_depth`].
 pub const MAX_REFLECTION_DEPTH: u32 = 64;
+
+#[allow(clippy::trivially_copy_pass_by_ref)] // serde's skip_serializing_if passes a reference
+fn is_default_compare(c: &Compare) -> bool {
+    *c == Compare::default()
+}
 
 #[allow(clippy::trivially_copy_pass_by_ref)] // serde's skip_serializing_if passes a reference
 fn is_default_depth(d: &u32) -> bool {
@@ -81,6 +90,7 @@ impl Default for RenderDesc {
             pixel_filter: PixelFilter::Box,
             adaptive: None,
             view: View::Shaded,
+            compare: Compare::default(),
             reflection_depth: DEFAULT_REFLECTION_DEPTH,
         }
     }
@@ -153,6 +163,8 @@ pub struct RenderSettings {
     pub adaptive: Option<AdaptiveDesc>,
     /// The shaded image or a debug view.
     pub view: View,
+    /// What the `Difference` view compares with.
+    pub compare: Compare,
     /// How many mirror bounces a ray may take.
     pub reflection_depth: u32,
 }
@@ -215,6 +227,12 @@ pub(super) fn render_settings(r: &RenderDesc) -> std::result::Result<RenderSetti
             ));
         }
     }
+    let tol = r.compare.tolerance;
+    if !(tol.is_finite() && tol > 0.0 && tol <= MAX_COMPARE_TOLERANCE) {
+        return Err(format!(
+            "render.compare.tolerance: {tol} texels is out of range (above 0, at most {MAX_COMPARE_TOLERANCE})"
+        ));
+    }
     if r.reflection_depth > MAX_REFLECTION_DEPTH {
         return Err(format!(
             "render.reflection_depth: {} is out of range (0 to {})",
@@ -232,6 +250,7 @@ pub(super) fn render_settings(r: &RenderDesc) -> std::result::Result<RenderSetti
         pixel_filter: r.pixel_filter,
         adaptive: r.adaptive,
         view: r.view,
+        compare: r.compare,
         reflection_depth: r.reflection_depth,
     })
 }

@@ -498,6 +498,10 @@ impl Scene {
         if matches!(view, View::Uv | View::MipLevel) {
             return (material.texture().debug_color(&ctx, view, Rgb::BLACK), key);
         }
+        if view == View::Difference {
+            let compare = self.settings.compare;
+            return (material.texture().difference_view_color(&ctx, compare), key);
+        }
         let sp = material.shade_point(&ctx, self.ambient);
         if !material.is_lit() {
             return (material.texture().debug_color(&ctx, view, sp.base), key);

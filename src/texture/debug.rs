@@ -1,8 +1,10 @@
 //! Debug views: what the texture stage did at each pixel, rendered as an image any viewer can
-//! show: (u, v) as colour, the mip level the footprint selects, the texel grid, and the seams.
+//! show: (u, v) as colour, the mip level the footprint selects, the texel grid, the seams, and
+//! the difference between the texture's mapping (a student's formula) and a built-in one.
 
 use super::{Texture, TextureContext};
-use crate::mapping::TexCoord;
+use crate::mapping::formula::compare::difference;
+use crate::mapping::{Mapping, TexCoord};
 use crate::math::{Rgb, srgb_to_linear};
 use serde::{Deserialize, Serialize};
 
@@ -41,7 +43,71 @@ pub enum View {
         message = "The image with the mapping's seams: magenta where u wraps, yellow at the poles, cyan at tile edges."
     )]
     Seams,
+    /// The texture's mapping (a student's formula) against the built-in mapping of
+    /// `render.compare`: a heat map of |du| (red) and |dv| (green), dark blue where both are
+    /// within the tolerance, brighter the larger the difference (on a log scale from the
+    /// tolerance to half the texture), magenta where the formula is NaN or infinite.
+    #[strum(
+        message = "The texture's mapping against a built-in one: red |du|, green |dv|, dark blue where they agree."
+    )]
+    Difference,
 }
+
+/// What [`View::Difference`] compares the texture's mapping with, and how closely.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Compare {
+    /// The built-in mapping; default `Spherical`.
+    pub with: Mapping,
+    /// How far apart (u, v) may be and still agree, in texels of the texture's image (of a
+    /// 1024 x 1024 image for a texture without one); default 1.
+    pub tolerance: f32,
+}
+
+impl Default for Compare {
+    fn default() -> Self {
+        Self {
+            with: Mapping::Spherical,
+            tolerance: 1.0,
+        }
+    }
+}
+
+/// The largest [`Compare::tolerance`], in texels.
+pub const MAX_COMPARE_TOLERANCE: f32 = 1e6;
+
+/// The texel size of a texture without an image, for [`Compare::tolerance`].
+pub const DEFAULT_TEXELS: u32 = 1024;
+
+/// The [`View::Difference`] colour of |du| and |dv| (in (u, v)) against the tolerance `tol`
+/// (in (u, v)): dark blue where both are within it; else red for u and green for v, each
+/// from 0.25 just above the tolerance to 1 at half the texture, on a log scale.
+#[must_use]
+pub fn difference_color(d: glam::DVec2, tol: glam::DVec2) -> Rgb {
+    if !(d.is_finite() && tol.is_finite()) {
+        return super::mark();
+    }
+    let level = |x: f64, t: f64| {
+        let t = t.max(1e-12);
+        if x <= t {
+            0.0
+        } else if t >= 0.5 {
+            1.0
+        } else {
+            let s = ((x / t).log2() / (0.5 / t).log2()).clamp(0.0, 1.0);
+            (0.25 + 0.75 * s) as f32
+        }
+    };
+    let (r, g) = (level(d.x, tol.x), level(d.y, tol.y));
+    if r == 0.0 && g == 0.0 {
+        AGREE_COLOUR
+    } else {
+        Rgb(r, g, 0.0)
+    }
+}
+
+/// The [`View::Difference`] colour where the mappings agree.
+pub const AGREE_COLOUR: Rgb = Rgb(0.0, 0.01, 0.12);
 
 impl crate::names::Named for View {
     const WHAT: &'static str = "view";
@@ -110,16 +176,40 @@ impl Texture {
         }
     }
 
-    /// The pixel colour of debug view `view` at a hit whose shaded radiance is `shaded`.
+    /// The size of one texel in (u, v): the image's, else of a [`DEFAULT_TEXELS`]-wide one.
+    #[must_use]
+    pub fn texel_size(&self) -> glam::DVec2 {
+        let (w, h) = match self {
+            Self::Image(t) => (t.image.width(), t.image.height()),
+            _ => (DEFAULT_TEXELS, DEFAULT_TEXELS),
+        };
+        crate::mapping::formula::compare::one_texel(w, h)
+    }
+
+    /// The [`View::Difference`] colour at a hit: the texture's mapping against `compare.with`
+    /// (both before the (u, v) transform); dark grey for a texture without a mapping.
+    #[must_use]
+    pub fn difference_view_color(&self, ctx: &TextureContext, compare: Compare) -> Rgb {
+        let Some(mapping) = self.mapping() else {
+            return Rgb::grey(0.02);
+        };
+        let got = ctx.tex_coord(mapping).uv.as_dvec2();
+        let want = ctx.tex_coord(&compare.with.into()).uv.as_dvec2();
+        let tol = self.texel_size() * f64::from(compare.tolerance);
+        difference_color(difference(compare.with, got, want), tol)
+    }
+
+    /// The pixel colour of debug view `view` at a hit whose shaded radiance is `shaded`
+    /// ([`View::Difference`] needs its comparison: [`Texture::difference_view_color`]).
     #[must_use]
     pub fn debug_color(&self, ctx: &TextureContext, view: View, shaded: Rgb) -> Rgb {
-        if view == View::Shaded {
+        if matches!(view, View::Shaded | View::Difference) {
             return shaded;
         }
         let (Some(mapping), Some((w, h))) = (self.mapping(), self.resolution()) else {
             return match view {
                 View::Uv | View::MipLevel => Rgb::grey(0.02),
-                View::Shaded | View::TexelGrid | View::Seams => shaded,
+                View::Shaded | View::TexelGrid | View::Seams | View::Difference => shaded,
             };
         };
         let tc = ctx.tex_coord(mapping);
@@ -135,7 +225,7 @@ impl Texture {
             }
         };
         match view {
-            View::Shaded => shaded,
+            View::Shaded | View::Difference => shaded,
             View::Uv => {
                 let (u, v) = match self {
                     Self::Image(t) => {
@@ -248,6 +338,22 @@ mod tests {
         // Elsewhere: the shaded colour.
         let c = t.debug_color(&ctx(p, d * 0.01, e * 0.01), View::Seams, shaded);
         assert_eq!(c, shaded);
+    }
+
+    #[test]
+    fn difference_colours_name_the_coordinate_that_differs() {
+        let tol = glam::DVec2::splat(1e-3);
+        let c = |du: f64, dv: f64| difference_color(glam::DVec2::new(du, dv), tol);
+        assert_eq!(c(1e-3, 0.0), AGREE_COLOUR);
+        assert_eq!(c(0.5, 0.0), Rgb(1.0, 0.0, 0.0));
+        assert_eq!(c(0.0, 0.7), Rgb(0.0, 1.0, 0.0));
+        let just = c(0.0, 1.1e-3);
+        assert!(just.0 == 0.0 && (0.25..0.3).contains(&just.1), "{just:?}");
+        assert!(
+            c(0.01, 0.0).0 < c(0.1, 0.0).0,
+            "brighter with the difference"
+        );
+        assert_eq!(c(f64::NAN, 0.0), crate::texture::mark());
     }
 
     #[test]

@@ -12,7 +12,10 @@ mod image;
 mod mip;
 mod procedural;
 
-pub use debug::{View, mip_level_color};
+pub use debug::{
+    AGREE_COLOUR, Compare, DEFAULT_TEXELS, MAX_COMPARE_TOLERANCE, View, difference_color,
+    mip_level_color,
+};
 pub use explain::{explain_lookup, explain_wrap};
 pub use formula::{FormulaColour, FormulaTexture, mark};
 pub(crate) use image::tiled_index;

@@ -197,6 +197,22 @@ fn lessons_list_and_print_from_any_folder() {
         );
     }
     assert!(printed.contains(&first.answer), "{printed}");
+    // An exercise: its task and start before the question, its solution after the answer.
+    let printed = success(&lesson_cli(
+        elsewhere.path(),
+        elsewhere.path(),
+        &["lesson", "6", "--print"],
+    ));
+    let task = printed.find("Repair the spherical map").expect(&printed);
+    let start = printed.find("    v = acos(y) / pi\n").expect(&printed);
+    let question = printed.find("## Question").expect(&printed);
+    let solution = printed
+        .find("Solution of exercise 1:\n    u = fract(atan2(x, z) / tau)\n    v = 1 - acos(")
+        .expect(&printed);
+    assert!(
+        task < start && start < question && question < solution,
+        "{printed}"
+    );
 }
 
 #[test]
@@ -306,9 +322,16 @@ fn every_character_of_every_lesson_draws_in_the_window() {
             .experiments
             .iter()
             .flat_map(|x| [x.label.as_str(), x.look_for.as_str()]);
+        // An exercise's task and formulas (the fields are monospace: Hack).
+        let exercises = l.exercises.iter().flat_map(|x| {
+            std::iter::once(x.task.as_str())
+                .chain(x.start.iter().map(String::as_str))
+                .chain(x.solution.iter().map(String::as_str))
+        });
         let all = [l.title.as_str(), &l.text, &l.question, &l.answer]
             .into_iter()
-            .chain(x_text);
+            .chain(x_text)
+            .chain(exercises);
         for s in all {
             for c in s.chars().filter(|c| !c.is_whitespace()) {
                 // Hack draws the formulas, Ubuntu the rest: a character must be in both.

@@ -9,6 +9,7 @@ mod antialiasing;
 mod cli;
 mod closed_ends;
 mod displacement;
+mod exercises;
 mod footprint;
 mod formula;
 mod fuzz;

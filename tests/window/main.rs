@@ -10,6 +10,7 @@ mod gui;
 mod gui_browse;
 mod gui_displace;
 mod gui_edit;
+mod gui_exercise;
 mod gui_files;
 mod gui_formula;
 mod gui_frame_time;

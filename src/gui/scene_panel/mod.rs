@@ -8,6 +8,7 @@
 //! defaults come from [`crate::scene`].
 
 mod camera;
+mod formula;
 mod lights;
 mod maps;
 mod material;
@@ -54,6 +55,8 @@ pub struct ScenePanel {
     /// The clip, bump, normal and displacement maps switched off, the bump/normal note, a
     /// displacement scale being dragged.
     maps: maps::MapMemory,
+    /// The comparison of a formula mapping with a built-in one, and the scene shown.
+    formula: formula::FormulaCheck,
 }
 
 /// What a texture editor needs to choose an image: the *Browse…* dialog, the preset its paths
@@ -133,6 +136,11 @@ impl ScenePanel {
             *p = path;
         }
         self.path_text = None;
+    }
+
+    /// The scene the viewport shows (its formula's NaN count and comparison are read from it).
+    pub fn show_scene(&mut self, scene: Option<std::sync::Arc<crate::scene::Scene>>) {
+        self.formula.shown = scene;
     }
 
     /// Forgets everything typed or remembered about the previous scene: called when another
@@ -224,7 +232,7 @@ impl ScenePanel {
         self.key = ids.get(self.selected).copied().unwrap_or_default();
         if let Some(obj) = desc.objects.get_mut(self.selected) {
             ui.separator();
-            changed |= self.object_ui(ui, obj, preset);
+            changed |= self.object_ui(ui, obj, &mut desc.render, preset);
         }
         ui.separator();
         changed |= render::render_ui(ui, desc, resolution);

@@ -7,7 +7,7 @@ use crate::geometry::Shading;
 use crate::gui::files::{BrowseFor, Browser};
 use crate::gui::widgets::{enum_combo, vec3};
 use crate::names::Named;
-use crate::scene::{ObjectDesc, ShapeDesc, ShapeKind};
+use crate::scene::{ObjectDesc, RenderDesc, ShapeDesc, ShapeKind};
 use std::path::Path;
 
 impl ScenePanel {
@@ -15,6 +15,7 @@ impl ScenePanel {
         &mut self,
         ui: &mut egui::Ui,
         obj: &mut ObjectDesc,
+        render: &mut RenderDesc,
         preset: &Path,
     ) -> bool {
         let mut changed = false;
@@ -56,7 +57,7 @@ impl ScenePanel {
         egui::CollapsingHeader::new("Texture")
             .default_open(true)
             .show(ui, |ui| {
-                changed |= self.texture_ui(ui, obj.material.texture_mut(), preset);
+                changed |= self.texture_ui(ui, obj.material.texture_mut(), render, preset);
             });
         egui::CollapsingHeader::new("Clip, bump and normal maps")
             .default_open(true)

@@ -8,7 +8,7 @@ use crate::gui::widgets::{colour, enum_combo, number, number_tip, uv_transform};
 use crate::mapping::formula::compare::lecture_formula;
 use crate::mapping::{FormulaError, FormulaMapping, Mapping};
 use crate::names::Named as _;
-use crate::scene::{MappingDesc, TextureDesc, TextureKind, relative_asset_path};
+use crate::scene::{MappingDesc, RenderDesc, TextureDesc, TextureKind, relative_asset_path};
 use crate::texture::{Filter, MAX_ANISOTROPY_LIMIT};
 use std::path::{Path, PathBuf};
 
@@ -52,6 +52,7 @@ impl ScenePanel {
         &mut self,
         ui: &mut egui::Ui,
         tex: &mut TextureDesc,
+        render: &mut RenderDesc,
         preset: &Path,
     ) -> bool {
         let mut changed = false;
@@ -66,6 +67,9 @@ impl ScenePanel {
             if mapping_ui(ui, "Mapping", &mut m) {
                 tex.set_mapping(m);
                 changed = true;
+            }
+            if matches!(tex.mapping(), Some(MappingDesc::Formula { .. })) {
+                changed |= self.formula_check_ui(ui, render);
             }
         }
         if let Some(uv) = tex.uv_transform_mut() {
@@ -138,8 +142,19 @@ impl ScenePanel {
                 changed |= anisotropy(ui, *filter, max_anisotropy);
                 changed |= enum_combo(ui, "Wrap", wrap);
             }
-            TextureDesc::Formula { grey, r, g, b, .. } => {
+            TextureDesc::Formula {
+                grey,
+                r,
+                g,
+                b,
+                mapping,
+                ..
+            } => {
                 changed |= colour_formulas_ui(ui, grey, [r, g, b]);
+                // A formula mapping's editor above already counts the texture's NaNs.
+                if !matches!(mapping, MappingDesc::Formula { .. }) {
+                    self.non_finite_ui(ui);
+                }
             }
         }
         changed

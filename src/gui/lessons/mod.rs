@@ -12,6 +12,8 @@
 //! an edited description in place) that the app carries out the way it carries out every
 //! other panel's edit.
 
+mod exercise;
+
 use super::command::Command;
 use crate::lesson::{Lesson, Lessons, edit::value_at, load_default, load_dirs};
 use crate::scene::SceneDesc;
@@ -47,6 +49,8 @@ pub struct LessonsPanel {
     /// one is drawn.
     drawn: Option<usize>,
     markdown: egui_commonmark::CommonMarkCache,
+    /// The lesson whose exercises are being written, and each exercise's fields and verdict.
+    attempts: (Option<usize>, Vec<exercise::Attempt>),
 }
 
 impl Default for LessonsPanel {
@@ -83,6 +87,7 @@ impl LessonsPanel {
             show_answer: false,
             drawn: None,
             markdown: egui_commonmark::CommonMarkCache::default(),
+            attempts: (None, Vec::new()),
         }
     }
 
@@ -113,6 +118,7 @@ impl LessonsPanel {
             .unwrap_or(0);
         self.loaded = Some(loaded);
         self.shown = None;
+        self.attempts = (None, Vec::new());
     }
 
     fn lessons(&mut self) -> &Lessons {
@@ -363,6 +369,7 @@ impl LessonsPanel {
             ui.strong("Try this");
             ui.weak("Each experiment starts from the lesson's scene.");
             self.experiments_ui(ui, &lesson, desc, &mut action);
+            self.exercises_ui(ui, &lesson, desc, &mut action);
             ui.separator();
             ui.strong("Question");
             ui.label(&lesson.question);

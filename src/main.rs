@@ -2,15 +2,17 @@
 
 use clap::Parser;
 use texplore::cli::{Cli, Command, run};
+use texplore::scene::SimdMode;
 
 fn main() -> std::process::ExitCode {
     let cli = Cli::parse();
+    let simd = cli.simd;
     let result = match cli.command {
         Some(Command::Lesson(a)) => {
-            texplore::cli::lesson::run(&a).and_then(|l| l.map_or(Ok(()), open_lesson))
+            texplore::cli::lesson::run(&a).and_then(|l| l.map_or(Ok(()), |l| open_lesson(l, simd)))
         }
-        Some(command) => run(command),
-        None => open_window(cli.open),
+        Some(command) => run(command, simd),
+        None => open_window(cli.open, simd),
     };
     match result {
         Ok(()) => std::process::ExitCode::SUCCESS,
@@ -22,17 +24,17 @@ fn main() -> std::process::ExitCode {
 }
 
 #[cfg(feature = "gui")]
-fn open_window(open: Option<std::path::PathBuf>) -> anyhow::Result<()> {
-    texplore::gui::run(open)
+fn open_window(open: Option<std::path::PathBuf>, simd: SimdMode) -> anyhow::Result<()> {
+    texplore::gui::run(open, simd)
 }
 
 #[cfg(feature = "gui")]
-fn open_lesson(lesson: texplore::lesson::Lesson) -> anyhow::Result<()> {
-    texplore::gui::run_lesson(lesson)
+fn open_lesson(lesson: texplore::lesson::Lesson, simd: SimdMode) -> anyhow::Result<()> {
+    texplore::gui::run_lesson(lesson, simd)
 }
 
 #[cfg(not(feature = "gui"))]
-fn open_lesson(lesson: texplore::lesson::Lesson) -> anyhow::Result<()> {
+fn open_lesson(lesson: texplore::lesson::Lesson, _simd: SimdMode) -> anyhow::Result<()> {
     anyhow::bail!(
         "{}: this texplore was built without the `gui` feature, so it cannot open a lesson",
         lesson.file.display()
@@ -40,7 +42,7 @@ fn open_lesson(lesson: texplore::lesson::Lesson) -> anyhow::Result<()> {
 }
 
 #[cfg(not(feature = "gui"))]
-fn open_window(_open: Option<std::path::PathBuf>) -> anyhow::Result<()> {
+fn open_window(_open: Option<std::path::PathBuf>, _simd: SimdMode) -> anyhow::Result<()> {
     anyhow::bail!(
         "this texplore was built without the `gui` feature; see `texplore --help` for the headless commands"
     )

@@ -8,6 +8,7 @@
 
 use crate::error::{Error, Result};
 use crate::render::render_blocking;
+use crate::scene::SimdMode;
 use crate::scene::{AssetCache, SceneDesc, build_scene, load_preset};
 use crate::texture::save_png;
 use std::path::{Path, PathBuf};
@@ -83,7 +84,8 @@ pub fn compare(a: &[u8], b: &[u8]) -> Comparison {
     }
 }
 
-/// Renders a preset at its snapshot settings; returns (width, height, RGB8).
+/// Renders a preset at its snapshot settings, its primary rays on the path `simd` chooses;
+/// returns (width, height, RGB8).
 ///
 /// # Errors
 /// The preset or its assets cannot be loaded.
@@ -91,12 +93,14 @@ pub fn render_snapshot(
     desc: &SceneDesc,
     preset_path: &Path,
     cache: &mut AssetCache,
+    simd: SimdMode,
 ) -> Result<(u32, u32, Vec<u8>)> {
     let mut desc = desc.clone();
     desc.render.width = desc.snapshot.width;
     desc.render.height = desc.snapshot.height;
     desc.render.spp = desc.snapshot.spp;
-    let scene = build_scene(&desc, preset_path, cache)?;
+    let mut scene = build_scene(&desc, preset_path, cache)?;
+    scene.settings.simd = simd;
     let film = render_blocking(&scene, |_| {});
     let img = film.to_display(scene.settings.exposure_scale);
     Ok((img.width, img.height, img.rgb()))
@@ -111,12 +115,13 @@ pub fn check_preset(
     screenshots: &Path,
     update: bool,
     cache: &mut AssetCache,
+    simd: SimdMode,
 ) -> Result<Outcome> {
     let name = preset
         .file_stem()
         .map_or_else(|| "preset".into(), |s| s.to_string_lossy().into_owned());
     let desc = load_preset(preset)?;
-    let (w, h, rgb) = render_snapshot(&desc, preset, cache)?;
+    let (w, h, rgb) = render_snapshot(&desc, preset, cache, simd)?;
     let golden = screenshots.join(format!("{name}.png"));
     let new = screenshots.join(format!("{name}.new.png"));
     let diff = screenshots.join(format!("{name}.diff.png"));

@@ -102,7 +102,7 @@ fn mesh_scene(a: &BenchArgs, triangles: u32) -> Result<(crate::scene::SceneDesc,
     Ok((parse_preset(&text, Path::new("generated"))?, cache))
 }
 
-pub fn run(a: &BenchArgs) -> Result<()> {
+pub fn run(a: &BenchArgs, simd: SimdMode) -> Result<()> {
     let (mut desc, preset, mut cache) = match (&a.preset, a.mesh) {
         (_, Some(n)) => {
             let (desc, cache) = mesh_scene(a, n)?;
@@ -129,11 +129,7 @@ pub fn run(a: &BenchArgs) -> Result<()> {
         a.height,
         a.repeat.max(1)
     );
-    let mode = if a.scalar {
-        SimdMode::Scalar
-    } else {
-        SimdMode::from_env()
-    };
+    let mode = if a.scalar { SimdMode::Scalar } else { simd };
     match packet_eligibility(&scene, mode) {
         Ok(()) => println!(
             "path: packets of {LANES} rays, {} (runtime dispatch)",

@@ -10,6 +10,7 @@ mod render;
 mod report;
 mod snapshot;
 
+use crate::scene::SimdMode;
 use anyhow::Result;
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
@@ -26,6 +27,19 @@ pub struct Cli {
     /// Preset or screenshot to open in the window (default: the Earth).
     #[arg(value_name = "FILE")]
     pub open: Option<PathBuf>,
+    /// Which path primary rays take: `auto` (packets of rays where the scene allows, else one
+    /// ray at a time) or `scalar` (one ray at a time everywhere, for comparison). Every command
+    /// that renders and the window take it.
+    #[arg(long, global = true, env = "TEXPLORE_SIMD", default_value = "auto", value_parser = parse_simd)]
+    pub simd: SimdMode,
+}
+
+/// `--simd`: `auto` (or `on`, `1`, `true`) or `scalar` (or `off`, `0`, `false`).
+fn parse_simd(s: &str) -> std::result::Result<SimdMode, String> {
+    s.trim()
+        .to_ascii_lowercase()
+        .parse()
+        .map_err(|_| format!("`{s}` is not a path: use auto or scalar"))
 }
 
 /// Subcommands.
@@ -54,15 +68,15 @@ pub enum Command {
 ///
 /// # Errors
 /// Anything the subcommand reports, with context naming the file.
-pub fn run(command: Command) -> Result<()> {
+pub fn run(command: Command, simd: SimdMode) -> Result<()> {
     match command {
-        Command::Render(a) => render::run(&a),
-        Command::Snapshot(a) => snapshot::run(&a),
+        Command::Render(a) => render::run(&a, simd),
+        Command::Snapshot(a) => snapshot::run(&a, simd),
         Command::Map(a) => map::run(&a),
         Command::Probe(a) => probe::run(&a),
-        Command::Bench(a) => bench::run(&a),
+        Command::Bench(a) => bench::run(&a, simd),
         Command::MeshInfo(a) => mesh_info::run(&a),
-        Command::Report(a) => report::run(&a),
+        Command::Report(a) => report::run(&a, simd),
         // The binary opens the window on the lesson; here only the list can be shown.
         Command::Lesson(a) => match lesson::run(&a)? {
             None => Ok(()),

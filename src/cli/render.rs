@@ -73,7 +73,7 @@ pub struct RenderArgs {
 ///
 /// # Errors
 /// The preset, its assets or the output cannot be read or written.
-pub fn run(a: &RenderArgs) -> Result<()> {
+pub fn run(a: &RenderArgs, simd: crate::scene::SimdMode) -> Result<()> {
     let mut desc = read_preset_or_png(&a.preset)?;
     // A bad -o fails now, not after the render.
     let preset_dir = a.preset.parent().unwrap_or(Path::new("."));
@@ -99,7 +99,8 @@ pub fn run(a: &RenderArgs) -> Result<()> {
         },
     );
     let mut cache = AssetCache::new();
-    let scene = build_scene(&desc, &a.preset, &mut cache)?;
+    let mut scene = build_scene(&desc, &a.preset, &mut cache)?;
+    scene.settings.simd = simd;
     let s = scene.settings;
     let bar = if a.quiet {
         indicatif::ProgressBar::hidden()

@@ -141,7 +141,7 @@ fn check_numbers(a: &ReportArgs) -> Result<()> {
 ///
 /// # Errors
 /// A preset cannot be read or built, or an output cannot be written.
-pub fn run(a: &ReportArgs) -> Result<()> {
+pub fn run(a: &ReportArgs, simd: crate::scene::SimdMode) -> Result<()> {
     let presets = if a.presets.is_empty() {
         let d = vec![
             PathBuf::from("presets/earth.ron"),
@@ -205,6 +205,7 @@ pub fn run(a: &ReportArgs) -> Result<()> {
             a.heatmap_spp
                 .unwrap_or_else(|| a.spp.iter().copied().min().unwrap_or(1)),
         ),
+        simd,
     };
     let pool = crate::render::thread_pool(a.threads)?;
     let threads = pool.current_num_threads();

@@ -30,7 +30,7 @@ pub enum SnapshotAction {
     Update,
 }
 
-pub fn run(a: &SnapshotArgs) -> Result<()> {
+pub fn run(a: &SnapshotArgs, simd: crate::scene::SimdMode) -> Result<()> {
     let update = a.action == SnapshotAction::Update;
     let mut presets = list_presets(&a.presets)?;
     if presets.is_empty() {
@@ -68,7 +68,7 @@ pub fn run(a: &SnapshotArgs) -> Result<()> {
     let mut failed = 0;
     for p in &presets {
         let name = p.file_stem().unwrap_or_default().to_string_lossy();
-        match check_preset(p, &a.screenshots, update, &mut cache)? {
+        match check_preset(p, &a.screenshots, update, &mut cache, simd)? {
             Outcome::Match(c) => println!(
                 "ok       {name} (max diff {}, mean {:.3})",
                 c.max_diff, c.mean_diff

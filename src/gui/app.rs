@@ -37,6 +37,8 @@ pub struct AppOptions {
     /// Render at the image pane's size (the window) rather than the preset's resolution
     /// (tests, which render small presets at their own size).
     pub follow_viewport: bool,
+    /// Which path every render's primary rays take (the command line's `--simd`).
+    pub simd: crate::scene::SimdMode,
 }
 
 /// What the window remembers between runs besides its size (which eframe keeps) and the
@@ -117,6 +119,8 @@ pub struct ExplorerApp {
     pub(super) shortcuts_open: bool,
     /// The window title last sent, so it is sent only when it changes.
     title_sent: String,
+    /// Which path every render's primary rays take.
+    simd: crate::scene::SimdMode,
 }
 
 impl ExplorerApp {
@@ -142,7 +146,8 @@ impl ExplorerApp {
             inspector: Inspector::default(),
             texture_panel: TexturePanel::default(),
             ab: AbSplit::default(),
-            speed: SpeedPanel::default(),
+            speed: SpeedPanel::new(options.simd),
+            simd: options.simd,
             files: Files::new(options.recent_file, options.browser),
             lessons: LessonsPanel::default(),
             frame_time: FRAME_INTERVAL.as_secs_f32(),
@@ -338,6 +343,7 @@ impl ExplorerApp {
         Recipe {
             split: self.ab.enabled.then(|| self.ab.descs(&d)),
             render: d,
+            simd: self.simd,
         }
     }
 

@@ -263,6 +263,8 @@ pub struct SpeedPanel {
     running: Option<Measuring>,
     progress: (u64, u64),
     error: Option<String>,
+    /// Which path the measured renders' primary rays take.
+    simd: crate::scene::SimdMode,
 }
 
 /// The colour of the `i`-th mode's curve: egui_plot's own automatic palette (hues a golden
@@ -278,6 +280,15 @@ const SPEED_SPP: [u32; 5] = [1, 2, 4, 8, 16];
 const SPEED_SIZE: (u32, u32) = (160, 120);
 
 impl SpeedPanel {
+    /// A closed panel whose measurements take the path `simd`.
+    #[must_use]
+    pub fn new(simd: crate::scene::SimdMode) -> Self {
+        Self {
+            simd,
+            ..Self::default()
+        }
+    }
+
     fn measure(&mut self, desc: &SceneDesc, path: &Path) {
         let (tx, rx) = channel();
         let (desc, path): (SceneDesc, PathBuf) = (desc.clone(), path.to_path_buf());
@@ -291,6 +302,7 @@ impl SpeedPanel {
             height: Some(SPEED_SIZE.1),
             reference: reference(),
             heatmap_spp: None,
+            simd: self.simd,
         };
         let work = move |stop: &AtomicBool| {
             let mut progress = move |u: &ProgressUpdate<'_>| {

@@ -79,6 +79,8 @@ pub struct Recipe {
     pub render: SceneDesc,
     /// The A/B split's descriptions (side A, side B, the reference), when it is shown.
     pub split: Option<[SceneDesc; 3]>,
+    /// Which path the scenes' primary rays take.
+    pub simd: crate::scene::SimdMode,
 }
 
 /// The scenes of a build.
@@ -402,13 +404,18 @@ impl Document {
 
 /// Builds the scenes of `recipe` (on a pool thread).
 fn build(recipe: &Recipe, path: &Path, cache: &mut AssetCache) -> Result<Built, String> {
-    let scene = build_scene(&recipe.render, path, cache).map_err(|e| e.to_string())?;
+    let simd = recipe.simd;
+    let with_simd = |mut s: Scene| {
+        s.settings.simd = simd;
+        s
+    };
+    let scene = with_simd(build_scene(&recipe.render, path, cache).map_err(|e| e.to_string())?);
     let split = recipe.split.as_ref().map(|descs| {
         let mut scenes = Vec::with_capacity(3);
         for d in descs {
-            scenes.push(Arc::new(
+            scenes.push(Arc::new(with_simd(
                 build_scene(d, path, cache).map_err(|e| e.to_string())?,
-            ));
+            )));
         }
         <[Arc<Scene>; 3]>::try_from(scenes).map_err(|_| "three scenes".to_owned())
     });

@@ -60,8 +60,8 @@ pub fn default_preset() -> std::path::PathBuf {
 /// # Errors
 /// The window cannot be created (no display, no GPU adapter).
 #[cfg(not(target_arch = "wasm32"))]
-pub fn run(open: Option<PathBuf>) -> anyhow::Result<()> {
-    run_app(open, None)
+pub fn run(open: Option<PathBuf>, simd: crate::scene::SimdMode) -> anyhow::Result<()> {
+    run_app(open, None, simd)
 }
 
 /// Opens the window on `lesson`: its preset, with the Lessons panel open on it.
@@ -69,12 +69,19 @@ pub fn run(open: Option<PathBuf>) -> anyhow::Result<()> {
 /// # Errors
 /// The window cannot be created (no display, no GPU adapter).
 #[cfg(not(target_arch = "wasm32"))]
-pub fn run_lesson(lesson: crate::lesson::Lesson) -> anyhow::Result<()> {
-    run_app(Some(lesson.preset.clone()), Some(lesson))
+pub fn run_lesson(
+    lesson: crate::lesson::Lesson,
+    simd: crate::scene::SimdMode,
+) -> anyhow::Result<()> {
+    run_app(Some(lesson.preset.clone()), Some(lesson), simd)
 }
 
 #[cfg(not(target_arch = "wasm32"))]
-fn run_app(open: Option<PathBuf>, lesson: Option<crate::lesson::Lesson>) -> anyhow::Result<()> {
+fn run_app(
+    open: Option<PathBuf>,
+    lesson: Option<crate::lesson::Lesson>,
+    simd: crate::scene::SimdMode,
+) -> anyhow::Result<()> {
     // The window's memory is checked before eframe reads it (see `storage`).
     let memory = app_ron();
     if let Some(path) = &memory {
@@ -107,6 +114,7 @@ fn run_app(open: Option<PathBuf>, lesson: Option<crate::lesson::Lesson>) -> anyh
         lesson,
         browser: Browser::default(),
         follow_viewport: true,
+        simd,
     };
     eframe::run_native(
         "texplore",

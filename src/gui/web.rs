@@ -248,6 +248,7 @@ pub async fn start(canvas_id: &str) -> Result<(), String> {
                     browser: Browser::default(),
                     // The preset's resolution: the page renders on one thread.
                     follow_viewport: false,
+                    simd: crate::scene::SimdMode::Auto,
                 };
                 // The scene open last time, if it is a shipped one (uploads do not outlive the
                 // page), else the Earth.

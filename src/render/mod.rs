@@ -12,11 +12,12 @@ mod pool;
 mod slices;
 mod task;
 
+pub use crate::scene::SimdMode;
 pub use adaptive::{CONTRAST_FACTOR, adaptive_mask, display_luminance};
 pub use film::{DisplayImage, Film, encode_srgb8};
 pub use job::{Generation, Progress, RenderJob, RenderOptions};
 pub use lanes::LANES;
-pub use packet::{Ineligible, SimdMode, packet_eligibility, simd_level};
+pub use packet::{Ineligible, packet_eligibility, simd_level};
 pub use pool::{MAX_THREADS, PoolError, thread_pool};
 pub use task::Task;
 
@@ -117,8 +118,8 @@ const ADAPTIVE_STREAM: u32 = 0xada9_7e55;
 
 /// Like [`render_pass`], but only for pixels where `mask` is true (all when `None`). When the
 /// scene renders adaptively, each sample's display luminance also goes into the film's
-/// statistics. Primary rays take the packet path where the scene is eligible and the process
-/// default ([`SimdMode::from_env`]) allows it.
+/// statistics. Primary rays take the packet path where the scene is eligible and its
+/// [`RenderSettings::simd`](crate::scene::RenderSettings::simd) allows it.
 ///
 /// # Errors
 /// [`Cancelled`] if `cancelled` returned true.
@@ -129,7 +130,7 @@ pub fn render_pass_masked(
     mask: Option<&[bool]>,
     cancelled: &(dyn Fn() -> bool + Sync),
 ) -> Result<(), Cancelled> {
-    render_pass_with(scene, film, sample, mask, SimdMode::from_env(), cancelled)
+    render_pass_with(scene, film, sample, mask, scene.settings.simd, cancelled)
 }
 
 /// [`render_pass_masked`] with the path chosen by `mode`: [`SimdMode::Scalar`] forces the
@@ -410,7 +411,7 @@ pub fn render_scheduled_pass(
     pass: u32,
     cancelled: &(dyn Fn() -> bool + Sync),
 ) -> Result<usize, Cancelled> {
-    render_scheduled_pass_with(scene, film, pass, SimdMode::from_env(), cancelled)
+    render_scheduled_pass_with(scene, film, pass, scene.settings.simd, cancelled)
 }
 
 /// [`render_scheduled_pass`] with the path chosen by `mode` (see [`render_pass_with`]).
@@ -583,7 +584,7 @@ pub fn render_preview_into(
 /// most there can be is [`RenderSettings::max_spp`]).
 #[must_use]
 pub fn render_blocking(scene: &Scene, on_pass: impl FnMut(u32)) -> Film {
-    render_blocking_with(scene, SimdMode::from_env(), on_pass)
+    render_blocking_with(scene, scene.settings.simd, on_pass)
 }
 
 /// [`render_blocking`] with the path chosen by `mode` (see [`render_pass_with`]).

@@ -11,8 +11,7 @@
 
 use super::job::{Generation, Progress, RenderOptions, Shared};
 use super::{
-    Film, PREVIEW_BLOCKS, PassPixels, SimdMode, pass_pixels, render_preview, render_tiles_with,
-    tile_count,
+    Film, PREVIEW_BLOCKS, PassPixels, pass_pixels, render_preview, render_tiles_with, tile_count,
 };
 use crate::math::DisplayImage;
 use crate::scene::Scene;
@@ -173,7 +172,7 @@ impl SlicedRender {
         };
         let t0 = Instant::now();
         let tiles = tile..tile + 1;
-        let mode = SimdMode::from_env();
+        let mode = self.scene.settings.simd;
         // Not cancellable inside: a tile is the unit of cancellation, checked by `step`.
         let _ = render_tiles_with(
             &self.scene,

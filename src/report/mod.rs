@@ -313,6 +313,8 @@ pub struct ReportConfig {
     pub reference: ReferenceSettings,
     /// Keep FLIP error maps for heat maps at this spp (`None`: keep none).
     pub heatmap_spp: Option<u32>,
+    /// Which path primary rays take in every render (the reference's too).
+    pub simd: crate::scene::SimdMode,
 }
 
 impl Default for ReportConfig {
@@ -326,6 +328,7 @@ impl Default for ReportConfig {
             height: None,
             reference: ReferenceSettings::default(),
             heatmap_spp: None,
+            simd: crate::scene::SimdMode::Auto,
         }
     }
 }
@@ -484,7 +487,8 @@ pub fn run_scene(
     } else if let Some(img) = stored {
         (img, true)
     } else {
-        let ref_scene = build_scene(&ref_desc, preset_path, &mut assets)?;
+        let mut ref_scene = build_scene(&ref_desc, preset_path, &mut assets)?;
+        ref_scene.settings.simd = config.simd;
         let img = render_reference(&ref_scene, r.spp, &mut tally, cancel)?;
         // A cache that cannot keep it (a damaged entry that is a folder, a full disk) costs
         // only the next run's render: the report goes on, and says so.
@@ -516,7 +520,8 @@ pub fn run_scene(
     for &mode in &config.modes {
         for &spp in &config.spp {
             let desc = sized(scene, config, mode, spp);
-            let built = build_scene(&desc, preset_path, &mut assets)?;
+            let mut built = build_scene(&desc, preset_path, &mut assets)?;
+            built.settings.simd = config.simd;
             let (row, flip_map) = target.measure(&built, mode, spp, &mut tally)?;
             if let Some(error) = flip_map.filter(|_| config.heatmap_spp == Some(spp)) {
                 error_maps.push(ErrorMap {

@@ -42,7 +42,7 @@ pub use preset::{
 pub use settings::{
     AdaptiveDesc, DEFAULT_ADAPTIVE_THRESHOLD, DEFAULT_REFLECTION_DEPTH, MAX_REFLECTION_DEPTH,
     MAX_RENDER_BYTES, MAX_RESOLUTION, MAX_SPP, Overrides, RENDER_BYTES_PER_PIXEL, RenderDesc,
-    RenderSettings, SnapshotDesc, apply_overrides,
+    RenderSettings, SimdMode, SnapshotDesc, apply_overrides,
 };
 pub use texture::{TextureDesc, TextureKind};
 pub use trace::{

@@ -140,6 +140,40 @@ impl Default for SnapshotDesc {
     }
 }
 
+/// Which path primary rays take: not part of a preset, but chosen by whoever renders (the
+/// command line's `--simd`, or `TEXPLORE_SIMD`, and the window's start options), and carried in
+/// [`RenderSettings::simd`].
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    Default,
+    PartialEq,
+    Eq,
+    strum::EnumString,
+    strum::Display
+)]
+#[strum(serialize_all = "kebab-case")]
+pub enum SimdMode {
+    /// The packet path where the scene is eligible, the scalar path elsewhere.
+    #[default]
+    #[strum(
+        serialize = "auto",
+        serialize = "on",
+        serialize = "1",
+        serialize = "true"
+    )]
+    Auto,
+    /// The scalar path for every scene (for comparison and tests).
+    #[strum(
+        serialize = "scalar",
+        serialize = "off",
+        serialize = "0",
+        serialize = "false"
+    )]
+    Scalar,
+}
+
 /// Settings the renderer needs besides geometry.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RenderSettings {
@@ -167,6 +201,9 @@ pub struct RenderSettings {
     pub compare: Compare,
     /// How many mirror bounces a ray may take.
     pub reflection_depth: u32,
+    /// Which path primary rays take: [`SimdMode::Auto`] when a scene is built; whoever renders
+    /// sets it.
+    pub simd: SimdMode,
 }
 
 impl RenderSettings {
@@ -252,6 +289,7 @@ pub(super) fn render_settings(r: &RenderDesc) -> std::result::Result<RenderSetti
         view: r.view,
         compare: r.compare,
         reflection_depth: r.reflection_depth,
+        simd: SimdMode::Auto,
     })
 }
 

@@ -118,3 +118,51 @@ fn probe_writes_an_hdr_probe() {
     assert_eq!(img.texel_top(0, 0), texplore::math::Rgb::BLACK);
     assert!(img.texel_top(32, 32).max_channel() > 0.0);
 }
+
+/// The path line `bench` prints for the Earth with `args` after `bench`, and `TEXPLORE_SIMD` set
+/// to `env` (unset with `None`).
+fn bench_path(args: &[&str], env: Option<&str>) -> String {
+    let mut cmd = std::process::Command::new(env!("CARGO_BIN_EXE_texplore"));
+    cmd.current_dir(crate::common::root())
+        .args([
+            "bench",
+            "presets/earth.ron",
+            "--width",
+            "16",
+            "--height",
+            "12",
+        ])
+        .args(["--repeat", "1", "--threads", "1"])
+        .args(args)
+        .env_remove("TEXPLORE_SIMD");
+    if let Some(v) = env {
+        cmd.env("TEXPLORE_SIMD", v);
+    }
+    let out = success(&cmd.output().expect("run texplore"));
+    out.lines()
+        .find(|l| l.starts_with("path: "))
+        .unwrap_or_else(|| panic!("no path line in {out}"))
+        .to_owned()
+}
+
+#[test]
+fn the_simd_path_is_chosen_by_the_option_or_the_environment() {
+    assert!(bench_path(&[], None).starts_with("path: packets of"));
+    for (args, env) in [
+        (&["--simd", "scalar"][..], None),
+        (&[][..], Some("off")),
+        (&[][..], Some("scalar")),
+    ] {
+        assert!(
+            bench_path(args, env).starts_with("path: scalar"),
+            "{args:?} {env:?}"
+        );
+    }
+    // The option wins over the environment.
+    assert!(bench_path(&["--simd", "auto"], Some("off")).starts_with("path: packets of"));
+    let e = failure(&texplore(&["bench", "--simd", "fast", "presets/earth.ron"]));
+    assert!(
+        e.contains("`fast` is not a path: use auto or scalar"),
+        "{e}"
+    );
+}

@@ -7,6 +7,7 @@ use crate::common::{failure, root, success};
 use std::path::Path;
 use std::process::{Command, Output};
 use texplore::lesson::{Lesson, find, load_dir};
+use texplore::scene::SimdMode;
 use texplore::scene::{AssetCache, SceneDesc, load_preset};
 use texplore::snapshot::render_snapshot;
 
@@ -28,7 +29,7 @@ fn small(desc: &SceneDesc, base: &SceneDesc, lesson: &Lesson, cache: &mut AssetC
     } else {
         d.render.spp.min(64)
     };
-    render_snapshot(&d, &lesson.preset, cache)
+    render_snapshot(&d, &lesson.preset, cache, SimdMode::Auto)
         .unwrap_or_else(|e| panic!("{}: {e}", lesson.file.display()))
         .2
 }

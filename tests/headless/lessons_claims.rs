@@ -6,6 +6,7 @@
 
 use crate::common::root;
 use texplore::lesson::{Lesson, find, load_dir};
+use texplore::scene::SimdMode;
 use texplore::scene::{AssetCache, SceneDesc, load_preset};
 use texplore::snapshot::render_snapshot;
 
@@ -32,7 +33,7 @@ fn render(desc: &SceneDesc, l: &Lesson, w: u32, h: u32, spp: u32) -> Vec<[u8; 3]
     d.snapshot.width = w;
     d.snapshot.height = h;
     d.snapshot.spp = spp;
-    render_snapshot(&d, &l.preset, &mut AssetCache::new())
+    render_snapshot(&d, &l.preset, &mut AssetCache::new(), SimdMode::Auto)
         .unwrap()
         .2
         .chunks(3)

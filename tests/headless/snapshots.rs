@@ -5,6 +5,7 @@
 //! `<preset>.diff.png` are written.
 
 use std::path::Path;
+use texplore::scene::SimdMode;
 use texplore::scene::{AssetCache, list_presets};
 use texplore::snapshot::{Outcome, check_preset};
 
@@ -19,7 +20,13 @@ fn every_preset_matches_its_golden_image() {
     let mut cache = AssetCache::new();
     let mut failures = Vec::new();
     for p in &presets {
-        match check_preset(p, &root.join("screenshots"), false, &mut cache) {
+        match check_preset(
+            p,
+            &root.join("screenshots"),
+            false,
+            &mut cache,
+            SimdMode::Auto,
+        ) {
             Ok(Outcome::Match(_)) => {}
             Ok(other) => failures.push(format!("{}: {other:?}", p.display())),
             Err(e) => failures.push(e.to_string()),

@@ -35,34 +35,10 @@ use crate::geometry::Shape;
 use crate::mapping::{AnyMapping, FormulaMapping, Mapping, UvAffine};
 use crate::material::{Colour, Material, Scalar};
 use crate::math::{Affine3A, INV_PI, Mat3A, Rgb, max_abs};
-use crate::scene::{Scene, natural_mapping};
+use crate::scene::{Scene, SimdMode, natural_mapping};
 use crate::texture::{Texture, View};
 use nearest::Nearest;
 use std::fmt;
-use std::sync::OnceLock;
-
-/// Which path primary rays take.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum SimdMode {
-    /// The packet path where the scene is eligible, the scalar path elsewhere.
-    #[default]
-    Auto,
-    /// The scalar path for every scene (for comparison and tests).
-    Scalar,
-}
-
-impl SimdMode {
-    /// The process-wide default: [`SimdMode::Scalar`] when the environment variable
-    /// `TEXPLORE_SIMD` is `off` (or `0`, `false`, `scalar`), else [`SimdMode::Auto`]. Read once.
-    #[must_use]
-    pub fn from_env() -> Self {
-        static MODE: OnceLock<SimdMode> = OnceLock::new();
-        *MODE.get_or_init(|| match std::env::var("TEXPLORE_SIMD") {
-            Ok(v) if matches!(v.trim(), "off" | "0" | "false" | "scalar") => Self::Scalar,
-            _ => Self::Auto,
-        })
-    }
-}
 
 /// The instruction set [`pulp::Arch::dispatch`] picks on this CPU, for `texplore bench`.
 #[must_use]

@@ -250,7 +250,9 @@ impl<'a> PacketPlan<'a> {
         let orthographic = match scene.camera.projection {
             Projection::Pinhole { .. } => false,
             Projection::Orthographic { .. } => true,
-            _ => return no("a fisheye or spherical camera"),
+            Projection::Fisheye { .. } | Projection::Spherical { .. } => {
+                return no("a fisheye or spherical camera");
+            }
         };
         if scene.objects.len() >= 0xffff {
             return no("more objects than edge keys");

@@ -600,4 +600,6 @@ impl_real!(f32);
 impl_real!(f64);
 
 #[cfg(test)]
+mod fetch_tests;
+#[cfg(test)]
 mod tests;

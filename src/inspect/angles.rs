@@ -20,9 +20,9 @@ pub struct MappingAngles {
 }
 
 /// The angles of `mapping`'s formula at `p` (the point the mapping reads, see
-/// [`Inspection::mapping_point`]): phi for the cylindrical map, phi and theta for the spherical,
-/// alpha, beta and r for the light probes. The rectangular map and a mesh's own (u, v) have
-/// none.
+/// [`Inspection::mapping_point`](super::Inspection::mapping_point)): phi for the cylindrical
+/// map, phi and theta for the spherical, alpha, beta and r for the light probes. The
+/// rectangular map and a mesh's own (u, v) have none.
 #[must_use]
 pub fn mapping_angles(mapping: Mapping, p: Vec3A) -> MappingAngles {
     let p = p.as_dvec3();

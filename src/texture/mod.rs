@@ -322,7 +322,8 @@ impl Wrap {
         }
         match self {
             Self::Repeat => {
-                // `floor_fast` is `floor` bit for bit, without a libm call on x86-64's baseline.
+                // `floor_fast` is `floor` bit for bit here (only -0.0 differs, and it returned
+                // above), without a libm call on x86-64's baseline.
                 let f = t - crate::math::floor_fast(t);
                 if f.is_finite() { f } else { 0.0 }
             }

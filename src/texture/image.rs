@@ -307,12 +307,15 @@ impl ImageData {
             let bottom = self.texel(c, r) * (1.0 - fx) + self.texel(c + 1, r) * fx;
             return bottom * (1.0 - fy) + top * fy;
         }
-        let fetch = |i: i64, j: i64| match (wu.index(i, self.width), wv.index(j, self.height)) {
+        // At an edge: each axis's two indices wrapped once (no division, see `Wrap::index`).
+        let (c0, c1) = (wu.index(x0, self.width), wu.index(x0 + 1, self.width));
+        let (r0, r1) = (wv.index(y0, self.height), wv.index(y0 + 1, self.height));
+        let fetch = |c: Option<u32>, r: Option<u32>| match (c, r) {
             (Some(c), Some(r)) => self.texel(c, r),
             _ => Rgb::BLACK,
         };
-        let top = fetch(x0, y0 + 1) * (1.0 - fx) + fetch(x0 + 1, y0 + 1) * fx;
-        let bottom = fetch(x0, y0) * (1.0 - fx) + fetch(x0 + 1, y0) * fx;
+        let top = fetch(c0, r1) * (1.0 - fx) + fetch(c1, r1) * fx;
+        let bottom = fetch(c0, r0) * (1.0 - fx) + fetch(c1, r0) * fx;
         bottom * (1.0 - fy) + top * fy
     }
 
@@ -331,14 +334,16 @@ impl ImageData {
         let (x0, y0) = (floor_fast(x), floor_fast(y));
         let (wx, wy) = (catmull_rom(x - x0), catmull_rom(y - y0));
         let (x0, y0) = (x0 as i64 - 1, y0 as i64 - 1);
+        // The four columns wrapped once, not once per row.
+        let cols: [Option<u32>; 4] = std::array::from_fn(|i| wu.index(x0 + i as i64, self.width));
         let mut sum = Rgb::BLACK;
         for (j, wyj) in wy.iter().enumerate() {
             let Some(r) = wv.index(y0 + j as i64, self.height) else {
                 continue;
             };
             let mut row = Rgb::BLACK;
-            for (i, wxi) in wx.iter().enumerate() {
-                if let Some(c) = wu.index(x0 + i as i64, self.width) {
+            for (c, wxi) in cols.iter().zip(&wx) {
+                if let Some(c) = *c {
                     row += self.texel(c, r) * *wxi;
                 }
             }

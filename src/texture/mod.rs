@@ -325,7 +325,9 @@ impl Wrap {
         }
         match self {
             Self::Repeat => {
-                let f = t - t.floor();
+                // `floor_fast` is `floor` bit for bit here (only -0.0 differs, and it returned
+                // above), without a libm call on x86-64's baseline.
+                let f = t - crate::math::floor_fast(t);
                 if f.is_finite() { f } else { 0.0 }
             }
             Self::Mirror => {
@@ -349,19 +351,38 @@ impl Wrap {
     }
 
     /// An integer texel index brought into [0, n), or `None` outside under [`Wrap::Black`].
+    ///
+    /// Wrap-free near the image: an index within one period of [0, n) (every index a filter
+    /// reads after [`Wrap::reduce`], unless the image is narrower than its kernel) is wrapped
+    /// by one comparison and one addition or subtraction; only indices further out take an
+    /// integer remainder.
     #[must_use]
     #[inline]
     pub fn index(self, i: i64, n: u32) -> Option<u32> {
         let n64 = i64::from(n);
         match self {
-            Self::Repeat => Some(i.rem_euclid(n64) as u32),
+            Self::Repeat => Some(wrap_near(i, n64) as u32),
             Self::Clamp => Some(i.clamp(0, n64 - 1) as u32),
             Self::Mirror => {
-                let m = i.rem_euclid(2 * n64);
+                let m = wrap_near(i, 2 * n64);
                 Some(if m >= n64 { 2 * n64 - 1 - m } else { m } as u32)
             }
             Self::Black => (0..n64).contains(&i).then_some(i as u32),
         }
+    }
+}
+
+/// `i.rem_euclid(n)` (n > 0), without a division for i in [-n, 2n).
+#[inline(always)]
+const fn wrap_near(i: i64, n: i64) -> i64 {
+    if i < 0 {
+        if i >= -n { i + n } else { i.rem_euclid(n) }
+    } else if i < n {
+        i
+    } else if i < 2 * n {
+        i - n
+    } else {
+        i.rem_euclid(n)
     }
 }
 
@@ -602,5 +623,7 @@ macro_rules! impl_real {
 impl_real!(f32);
 impl_real!(f64);
 
+#[cfg(test)]
+mod fetch_tests;
 #[cfg(test)]
 mod tests;

@@ -372,3 +372,44 @@ fn under_the_difference_view_the_formula_is_worked_beside_the_builtin_mapping() 
     assert!(lines.contains(": beyond the tolerance"), "{lines}");
     assert_eq!(i.debug_value.map(|(v, _)| v), Some(View::Difference));
 }
+
+#[test]
+fn a_hall_of_mirrors_is_followed_to_the_reflection_depth_and_no_further() {
+    // Two mirror planes facing each other, the camera between them looking along them: every
+    // ray bounces until the depth runs out.
+    let text = r"(
+        version: 1,
+        camera: (eye: (0, 1, 0), look_at: (0, 0.2, -1), projection: Pinhole(fov: 30)),
+        render: (width: 8, height: 6, spp: 1, reflection_depth: 64),
+        objects: [
+            (shape: Plane, material: Reflective(cd: Constant((0, 0, 0)), ka: 0, kd: 0, ks: 0, kr: 0.9)),
+            (shape: Plane, transform: (translate: (0, 2, 0), rotate: (180, 0, 0)),
+             material: Reflective(cd: Constant((0, 0, 0)), ka: 0, kd: 0, ks: 0, kr: 0.9)),
+        ],
+    )";
+    let path = Path::new("/hall.ron");
+    let desc = crate::scene::parse_preset(text, path).expect("parses");
+    let scene = build_scene(&desc, path, &mut AssetCache::new()).expect("build");
+    let i = scene.inspect(Vec2::new(4.0, 3.0)).expect("a mirror");
+    let mut m = i.mirror.as_ref().expect("mirrors");
+    let mut bounces = 1;
+    while let Some(next) = m.seen.as_ref().and_then(|s| s.mirror.as_ref()) {
+        assert_eq!(next.depth, m.depth + 1);
+        m = next;
+        bounces += 1;
+    }
+    // Bounces 1 to 64 are traced; the 65th mirror is met but not followed.
+    assert_eq!(bounces, 65);
+    assert_eq!(m.depth, 65);
+    assert!(!m.followed());
+    assert!(m.seen.is_none());
+    // Mirrors all the way down and nothing else: the pixel is black, as the renderer makes it.
+    assert_eq!(i.radiance, Rgb::BLACK);
+    assert_eq!(
+        scene.trace(
+            &scene.camera.ray(Vec2::new(4.0, 3.0), 1.0).expect("ray").0,
+            None
+        ),
+        Rgb::BLACK
+    );
+}

@@ -478,7 +478,8 @@ pub(super) fn overview(img: &ImageData) -> egui::ColorImage {
 fn perturbation_rows(ui: &mut egui::Ui, p: &crate::inspect::PerturbationRead) {
     let v3 = |v: crate::math::Vec3A| format!("({:.3}, {:.3}, {:.3})", v.x, v.y, v.z);
     ui.label(p.kind);
-    ui.monospace(&p.value);
+    // A normal map's texel and decoded normal is a long line: it wraps in a narrow pane.
+    ui.add(egui::Label::new(egui::RichText::new(&p.value).monospace()).wrap());
     ui.end_row();
     if let Some((dpdu, dpdv)) = p.frame {
         ui.label("dp/du, dp/dv").on_hover_text(

@@ -55,11 +55,12 @@ pub(super) fn surface_vectors(
     );
     let tip = to_screen(up);
     pa.arrow(origin, tip - origin, egui::Stroke::new(1.5, SURFACE));
-    // The normal's name on its left, the arrows' names outward: apart even for a small tilt.
+    // The normal's name above its tip, the arrows' names beside and below theirs: apart even
+    // when an arrow lies close to the normal.
     label(
         &pa,
-        tip + egui::vec2(-6.0, 4.0),
-        egui::Align2::RIGHT_TOP,
+        tip + egui::vec2(0.0, -4.0),
+        egui::Align2::CENTER_BOTTOM,
         normal_name,
         SURFACE,
     );
@@ -67,11 +68,11 @@ pub(super) fn surface_vectors(
         let tip = to_screen(a.dir);
         pa.arrow(origin, tip - origin, egui::Stroke::new(2.0, a.colour));
         let (align, nudge) = if tip.x < origin.x - 1.0 {
-            (egui::Align2::RIGHT_CENTER, -6.0)
+            (egui::Align2::RIGHT_TOP, -6.0)
         } else {
-            (egui::Align2::LEFT_CENTER, 6.0)
+            (egui::Align2::LEFT_TOP, 6.0)
         };
-        label(&pa, tip + egui::vec2(nudge, 0.0), align, a.name, a.colour);
+        label(&pa, tip + egui::vec2(nudge, 2.0), align, a.name, a.colour);
         if a.marked {
             let d = tip - origin;
             let to = d.y.atan2(d.x);

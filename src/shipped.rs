@@ -9,13 +9,25 @@
 //! made read-only, so a save in the window cannot land there.
 
 use crate::error::{Error, Result};
-use include_dir::{Dir, include_dir};
+use include_dir::Dir;
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
-static LESSONS: Dir<'static> = include_dir!("$CARGO_MANIFEST_DIR/lessons");
-static PRESETS: Dir<'static> = include_dir!("$CARGO_MANIFEST_DIR/presets");
-static ASSETS: Dir<'static> = include_dir!("$CARGO_MANIFEST_DIR/assets");
+#[cfg(not(target_arch = "wasm32"))]
+static LESSONS: Dir<'static> = include_dir::include_dir!("$CARGO_MANIFEST_DIR/lessons");
+#[cfg(not(target_arch = "wasm32"))]
+static PRESETS: Dir<'static> = include_dir::include_dir!("$CARGO_MANIFEST_DIR/presets");
+#[cfg(not(target_arch = "wasm32"))]
+static ASSETS: Dir<'static> = include_dir::include_dir!("$CARGO_MANIFEST_DIR/assets");
+
+// The page fetches the shipped files from beside itself and mounts them (`gui::web`): built in
+// as well, they would be 7.7 MB of its download for nothing. Its store is empty.
+#[cfg(target_arch = "wasm32")]
+static LESSONS: Dir<'static> = Dir::new("", &[]);
+#[cfg(target_arch = "wasm32")]
+static PRESETS: Dir<'static> = Dir::new("", &[]);
+#[cfg(target_arch = "wasm32")]
+static ASSETS: Dir<'static> = Dir::new("", &[]);
 
 /// The shipped folders, as they are named in the source tree and in the copy.
 pub const FOLDERS: [&str; 3] = ["lessons", "presets", "assets"];

@@ -471,12 +471,9 @@ fn texture_parts(texture: &Texture) -> (&'static str, Option<&AnyMapping>, Optio
     }
 }
 
-/// A formula mapping's worked formulas at the hit of `ctx`: each with the point's numbers (and
-/// the shape's own (u, v) as mesh_u, mesh_v) substituted, and which derivatives it uses.
-fn formula_lines(
-    f: &crate::mapping::FormulaMapping,
-    ctx: &crate::texture::TextureContext,
-) -> Vec<String> {
+/// What a formula mapping reads at the hit of `ctx`: the point, then the shape's own (u, v) as
+/// mesh_u, mesh_v.
+fn formula_inputs(ctx: &crate::texture::TextureContext) -> [f64; 5] {
     let own = Mapping::Uv.map_with_differentials(
         ctx.p,
         Vec3A::ZERO,
@@ -484,8 +481,16 @@ fn formula_lines(
         ctx.shape_uv,
         ctx.natural,
     );
-    let p = ctx.p.as_dvec3();
-    let inputs = [p.x, p.y, p.z, f64::from(own.uv.x), f64::from(own.uv.y)];
+    crate::mapping::formula::inputs_of(ctx.p.as_dvec3(), own.uv.as_dvec2())
+}
+
+/// A formula mapping's worked formulas at the hit of `ctx`: each with the point's numbers (and
+/// the shape's own (u, v) as mesh_u, mesh_v) substituted, and which derivatives it uses.
+fn formula_lines(
+    f: &crate::mapping::FormulaMapping,
+    ctx: &crate::texture::TextureContext,
+) -> Vec<String> {
+    let inputs = formula_inputs(ctx);
     let mut lines = Vec::new();
     if f.reads_mesh() {
         lines.push(format!(
@@ -506,16 +511,8 @@ fn compare_lines(
     ctx: &crate::texture::TextureContext,
     tol: glam::DVec2,
 ) -> Vec<String> {
-    let own = Mapping::Uv.map_with_differentials(
-        ctx.p,
-        Vec3A::ZERO,
-        Vec3A::ZERO,
-        ctx.shape_uv,
-        ctx.natural,
-    );
-    let p = ctx.p.as_dvec3();
-    let got = f.eval(&crate::mapping::formula::inputs_of(p, own.uv.as_dvec2()));
-    let want = crate::mapping::map_uv_f64(with, p);
+    let got = f.eval(&formula_inputs(ctx));
+    let want = crate::mapping::map_uv_f64(with, ctx.p.as_dvec3());
     let d = crate::mapping::formula::compare::difference(with, got, want);
     let mut lines = vec![format!("compared with the {} mapping:", with.name())];
     lines.extend(

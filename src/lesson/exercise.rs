@@ -95,11 +95,7 @@ impl Checked {
     /// The share of points that agree, 0 to 1.
     #[must_use]
     pub fn share(&self) -> f64 {
-        if self.points == 0 {
-            0.0
-        } else {
-            self.agreeing as f64 / self.points as f64
-        }
+        crate::mapping::formula::compare::share_of(self.agreeing, self.points)
     }
 
     /// The verdict in a sentence: the share and what it was measured on.

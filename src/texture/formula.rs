@@ -92,11 +92,7 @@ impl FormulaTexture {
     /// Texture coordinates of a hit: the mapping's, then the (u, v) transform if any.
     #[must_use]
     pub fn tex_coord(&self, ctx: &TextureContext) -> TexCoord {
-        let tc = ctx.tex_coord(&self.mapping);
-        match &self.transform {
-            Some(a) if tc.uv.is_finite() => a.apply(tc),
-            _ => tc,
-        }
+        ctx.transformed_tex_coord(&self.mapping, self.transform.as_ref())
     }
 
     /// The colour at a hit.

@@ -53,6 +53,22 @@ impl TextureContext {
     pub fn tex_coord(&self, mapping: &AnyMapping) -> TexCoord {
         mapping.map_with_differentials(self.p, self.dpdx, self.dpdy, self.shape_uv, self.natural)
     }
+
+    /// A texture's coordinates: `mapping`'s, then its (u, v) transform if it has one (not
+    /// applied to a formula's NaN (u, v), which stays NaN and marks the pixel).
+    #[must_use]
+    #[inline]
+    pub fn transformed_tex_coord(
+        &self,
+        mapping: &AnyMapping,
+        transform: Option<&UvAffine>,
+    ) -> TexCoord {
+        let tc = self.tex_coord(mapping);
+        match transform {
+            Some(a) if tc.uv.is_finite() => a.apply(tc),
+            _ => tc,
+        }
+    }
 }
 
 /// How a texture becomes colour at a hit.
@@ -489,11 +505,7 @@ impl ImageTexture {
     #[must_use]
     #[inline]
     pub fn tex_coord(&self, ctx: &TextureContext) -> TexCoord {
-        let tc = ctx.tex_coord(&self.mapping);
-        match &self.transform {
-            Some(a) if tc.uv.is_finite() => a.apply(tc),
-            _ => tc,
-        }
+        ctx.transformed_tex_coord(&self.mapping, self.transform.as_ref())
     }
 
     /// The colour at a hit; the [`mark`] where a formula mapping is not finite.

@@ -41,11 +41,7 @@ impl Checker {
     #[must_use]
     #[inline]
     pub fn tex_coord(&self, ctx: &TextureContext) -> TexCoord {
-        let tc = ctx.tex_coord(&self.mapping);
-        match &self.transform {
-            Some(a) if tc.uv.is_finite() => a.apply(tc),
-            _ => tc,
-        }
+        ctx.transformed_tex_coord(&self.mapping, self.transform.as_ref())
     }
 
     /// The checker averaged over the bounding box of the pixel's footprint, in closed form

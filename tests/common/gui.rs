@@ -8,8 +8,9 @@
 use egui::accesskit::Role;
 use egui::{Key, Modifiers};
 use egui_kittest::Harness;
-use egui_kittest::kittest::Queryable as _;
+use egui_kittest::kittest::{NodeT as _, Queryable as _};
 use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
 use texplore::gui::{AppOptions, ExplorerApp};
 use texplore::scene::{SceneDesc, TextureDesc, load_preset, save_preset};
 
@@ -118,4 +119,21 @@ pub fn select(h: &mut Harness<'_, ExplorerApp>, object: &str) {
 pub fn undo(h: &mut Harness<'_, ExplorerApp>) {
     h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
     settle(h);
+}
+
+/// Steps until a label containing `text` shows (one minute at most); returns its text.
+pub fn wait_for_label(h: &mut Harness<'_, ExplorerApp>, text: &str) -> String {
+    let started = Instant::now();
+    loop {
+        h.step();
+        if let Some(n) = h.query_by_label_contains(text) {
+            let node = n.accesskit_node();
+            return node.value().or_else(|| node.label()).unwrap_or_default();
+        }
+        assert!(
+            started.elapsed() < Duration::from_mins(1),
+            "no label with '{text}' appeared"
+        );
+        std::thread::sleep(Duration::from_millis(20));
+    }
 }

@@ -3,31 +3,13 @@
 //! hint, *Show solution* fills the fields, and the solution checks as correct and renders the
 //! built-in image.
 
-use crate::gui_common::{desc, image_bytes, settle, small_earth, undo};
+use crate::gui_common::{desc, image_bytes, settle, small_earth, undo, wait_for_label};
 use crate::gui_lessons::{press, root};
 use egui::accesskit::Role;
 use egui_kittest::Harness;
-use egui_kittest::kittest::{NodeT as _, Queryable as _};
-use std::time::{Duration, Instant};
+use egui_kittest::kittest::Queryable as _;
 use texplore::gui::ExplorerApp;
 use texplore::scene::{MappingDesc, load_preset};
-
-/// Steps until a label containing `text` shows (one minute at most); returns its text.
-pub fn wait_for_label(h: &mut Harness<'_, ExplorerApp>, text: &str) -> String {
-    let started = Instant::now();
-    loop {
-        h.step();
-        if let Some(n) = h.query_by_label_contains(text) {
-            let node = n.accesskit_node();
-            return node.value().or_else(|| node.label()).unwrap_or_default();
-        }
-        assert!(
-            started.elapsed() < Duration::from_mins(1),
-            "no label with '{text}' appeared"
-        );
-        std::thread::sleep(Duration::from_millis(20));
-    }
-}
 
 /// The percentage a verdict starts with (`97.3 % of ...`, `Correct: 100.0 % of ...`).
 pub fn percent(text: &str) -> f64 {

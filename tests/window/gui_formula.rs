@@ -96,7 +96,8 @@ fn count(image: &[u8], test: impl Fn(u8, u8, u8) -> bool) -> usize {
 
 #[test]
 fn comparing_with_a_built_in_mapping_paints_the_difference_and_gives_the_hint() {
-    use crate::gui_exercise::{percent, wait_for_label};
+    use crate::gui_common::wait_for_label;
+    use crate::gui_exercise::percent;
     let dir = tempfile::tempdir().expect("temp dir");
     let mut h = harness(small_earth(dir.path()));
     choose(&mut h, "Mapping", "formula");
@@ -150,7 +151,8 @@ fn comparing_with_a_built_in_mapping_paints_the_difference_and_gives_the_hint() 
 
 #[test]
 fn the_tolerance_decides_what_agrees() {
-    use crate::gui_exercise::{percent, wait_for_label};
+    use crate::gui_common::wait_for_label;
+    use crate::gui_exercise::percent;
     let dir = tempfile::tempdir().expect("temp dir");
     let mut h = harness(small_earth(dir.path()));
     choose(&mut h, "Mapping", "formula");

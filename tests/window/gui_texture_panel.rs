@@ -1,10 +1,10 @@
 //! The texture panel and the iso-lines, driven headless with `egui_kittest` as a user would
 //! (View menu, pointer, checkbox) and checked on what the window shows: labels and pixels.
 
-use crate::gui_common::{harness, small_earth};
+use crate::gui_common::{harness, small_earth, wait_for_label};
 use egui::accesskit::Role;
 use egui_kittest::Harness;
-use egui_kittest::kittest::{NodeT as _, Queryable as _};
+use egui_kittest::kittest::Queryable as _;
 use std::time::{Duration, Instant};
 use texplore::gui::ExplorerApp;
 
@@ -37,23 +37,6 @@ fn click_at(h: &mut Harness<'_, ExplorerApp>, at: egui::Pos2) {
     h.step();
     h.drop_at(at);
     h.run_steps(2);
-}
-
-/// Steps until a label containing `text` shows (one minute at most); returns its text.
-fn wait_for_label(h: &mut Harness<'_, ExplorerApp>, text: &str) -> String {
-    let started = Instant::now();
-    loop {
-        h.step();
-        if let Some(n) = h.query_by_label_contains(text) {
-            let node = n.accesskit_node();
-            return node.value().or_else(|| node.label()).unwrap_or_default();
-        }
-        assert!(
-            started.elapsed() < Duration::from_mins(1),
-            "no label with '{text}' appeared"
-        );
-        std::thread::sleep(Duration::from_millis(20));
-    }
 }
 
 /// How many pixels of the window's picture inside `rect` (points) are within 12 of `colour`.

@@ -76,11 +76,17 @@ impl Agreement {
     /// The share of points that agree, 0 to 1.
     #[must_use]
     pub fn share(&self) -> f64 {
-        if self.points == 0 {
-            0.0
-        } else {
-            self.agreeing as f64 / self.points as f64
-        }
+        share_of(self.agreeing, self.points)
+    }
+}
+
+/// `agreeing` out of `points` as a share, 0 to 1 (0 of none).
+#[must_use]
+pub fn share_of(agreeing: usize, points: usize) -> f64 {
+    if points == 0 {
+        0.0
+    } else {
+        agreeing as f64 / points as f64
     }
 }
 

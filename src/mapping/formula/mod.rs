@@ -141,27 +141,11 @@ impl Expr {
         tokens: Vec<Token>,
         vars: &[&str],
     ) -> Result<Self, String> {
-        let slots = flat
-            .var_names()
-            .iter()
-            .map(|n| {
-                vars.iter()
-                    .position(|v| v == n)
-                    .ok_or_else(|| format!("unknown name `{n}`"))
-            })
-            .collect::<Result<Vec<_>, _>>()?;
+        let slots = slots_of(flat.var_names(), vars)?;
         // exmex evaluating the formula over symbols records the tree it evaluates.
         let symbolic = FlatEx::<Sym, SymOps>::parse(text)
             .map_err(|e| format!("exmex cannot parse it: {}", e.msg()))?;
-        let sym_slots = symbolic
-            .var_names()
-            .iter()
-            .map(|n| {
-                vars.iter()
-                    .position(|v| v == n)
-                    .ok_or_else(|| format!("unknown name `{n}`"))
-            })
-            .collect::<Result<Vec<_>, _>>()?;
+        let sym_slots = slots_of(symbolic.var_names(), vars)?;
         let inputs: Vec<Sym> = (0..sym_slots.len()).map(Sym::Var).collect();
         let tree = symbolic
             .eval(&inputs)
@@ -548,6 +532,18 @@ fn symbolic(u: &Expr, v: &Expr) -> Result<[[Option<Expr>; 5]; 2], String> {
 const NOT_DIFFERENTIABLE: [&str; 10] = [
     "atan2", "min", "max", "abs", "floor", "fract", "sign", "clamp", "ceil", "round",
 ];
+
+/// Where each of a formula's variables `names` sits among the inputs `vars`.
+fn slots_of(names: &[String], vars: &[&str]) -> Result<Vec<usize>, String> {
+    names
+        .iter()
+        .map(|n| {
+            vars.iter()
+                .position(|v| v == n)
+                .ok_or_else(|| format!("unknown name `{n}`"))
+        })
+        .collect()
+}
 
 /// The inputs of a mapping formula: the point, then mesh_u and mesh_v.
 #[must_use]

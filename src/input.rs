@@ -62,6 +62,16 @@ pub fn file_id(file: &Input, path: &Path) -> FileId {
     FileId::Path(std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf()))
 }
 
+/// Whether a file or folder is at `path`; in a page, whether a file is mounted there or in that
+/// folder (a page has no file system: `Path::exists` is always false there).
+#[must_use]
+pub fn exists(path: &Path) -> bool {
+    #[cfg(target_arch = "wasm32")]
+    return mounted::exists(path);
+    #[cfg(not(target_arch = "wasm32"))]
+    path.exists()
+}
+
 /// The entries of the folder `dir` (as `dir` joined with each name), in no particular order;
 /// in a page, the files mounted in it.
 ///

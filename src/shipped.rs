@@ -11,7 +11,6 @@
 use crate::error::{Error, Result};
 use include_dir::Dir;
 use std::path::{Path, PathBuf};
-use std::sync::OnceLock;
 
 #[cfg(not(target_arch = "wasm32"))]
 static LESSONS: Dir<'static> = include_dir::include_dir!("$CARGO_MANIFEST_DIR/lessons");
@@ -135,19 +134,27 @@ fn same(path: &Path, bytes: &[u8]) -> bool {
 
 /// The copy of the store (made or checked on the first call of the process, see
 /// [`copy_folder`]): `lessons/`, `presets/` and `assets/` side by side, as in the source tree.
+/// In a page, the relative root under which the page mounted the files beside it (`gui::web`):
+/// a page has no folder to copy into.
 ///
 /// # Errors
 /// The copy could not be made (the message names the file).
 pub fn root() -> std::result::Result<&'static Path, String> {
-    static ROOT: OnceLock<std::result::Result<PathBuf, String>> = OnceLock::new();
-    ROOT.get_or_init(|| {
-        let dir = copy_folder();
-        copy_to(&dir).map_err(|e| format!("the shipped lessons and presets: {e}"))?;
-        Ok(dir)
-    })
-    .as_ref()
-    .map(PathBuf::as_path)
-    .map_err(Clone::clone)
+    #[cfg(target_arch = "wasm32")]
+    return Ok(Path::new(""));
+    #[cfg(not(target_arch = "wasm32"))]
+    {
+        static ROOT: std::sync::OnceLock<std::result::Result<PathBuf, String>> =
+            std::sync::OnceLock::new();
+        ROOT.get_or_init(|| {
+            let dir = copy_folder();
+            copy_to(&dir).map_err(|e| format!("the shipped lessons and presets: {e}"))?;
+            Ok(dir)
+        })
+        .as_ref()
+        .map(PathBuf::as_path)
+        .map_err(Clone::clone)
+    }
 }
 
 /// The shipped lessons' folder in the copy.

@@ -42,6 +42,14 @@ pub fn is_mounted(path: &Path) -> bool {
     files.contains_key(&normalise(path))
 }
 
+/// Whether a file is mounted at `path` or in the folder `path`.
+#[must_use]
+pub fn exists(path: &Path) -> bool {
+    let files = FILES.lock().unwrap_or_else(PoisonError::into_inner);
+    let p = normalise(path);
+    files.contains_key(&p) || files.keys().any(|f| f.starts_with(&p))
+}
+
 /// The mounted file at `path`, ready to read.
 pub(super) fn open(path: &Path) -> Result<Cursor<Arc<[u8]>>> {
     let files = FILES.lock().unwrap_or_else(PoisonError::into_inner);

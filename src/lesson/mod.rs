@@ -384,11 +384,11 @@ fn load_with(file: &Path, cache: &mut AssetCache) -> Result<Lesson> {
 /// shipped lesson, naming `../presets/earth.ron`) the shipped file of that name.
 fn preset_path(folder: &Path, named: &Path) -> PathBuf {
     let beside = folder.join(named);
-    if beside.exists() || named.is_absolute() {
+    if crate::input::exists(&beside) || named.is_absolute() {
         return beside;
     }
     match crate::shipped::lessons_dir() {
-        Ok(shipped) if shipped.join(named).exists() => shipped.join(named),
+        Ok(shipped) if crate::input::exists(&shipped.join(named)) => shipped.join(named),
         _ => beside,
     }
 }
@@ -420,7 +420,7 @@ pub fn default_dirs() -> Vec<PathBuf> {
 pub fn load_dirs(dirs: &[PathBuf]) -> Lessons {
     let mut out = Lessons::default();
     for d in dirs {
-        if !d.exists() {
+        if !crate::input::exists(d) {
             continue;
         }
         match load_dir(d) {

@@ -37,11 +37,12 @@ REFERENCE = os.path.join(ROOT, "web", "smoke-earth.png")
 BLOCK = 16
 MAX_BLOCK_DIFF = 40.0
 MAX_MEAN_DIFF = 6.0
-# Where to click in the window as laid out at WIDTH x HEIGHT: View, its Lessons toggle, then the
-# first lesson's "Open the lesson's scene"; then that lesson's first experiment, "A constant
-# blue", which takes the button's place.
-OPEN_LESSON = [(146, 12), (177, 131), (1306, 338)]
-EXPERIMENT = (1282, 338)
+# Where to click in the page's viewport (1600 x 857 at WIDTH x HEIGHT: the window's size less
+# headless Chromium's frame), as the docked layout lays the window out: View, its Lessons
+# toggle, then the first lesson's "Open the lesson's scene"; then that lesson's first
+# experiment, "A constant blue, seen from the side", just below where the button was.
+OPEN_LESSON = [(146, 12), (177, 62), (1170, 380)]
+EXPERIMENT = (1203, 398)
 
 
 def free_port():
@@ -153,6 +154,10 @@ class Driver:
                     # No GPU here: WebGL2 on SwiftShader, Chromium's CPU implementation.
                     "--use-angle=swiftshader", "--enable-unsafe-swiftshader",
                     "--ignore-gpu-blocklist", "--force-device-scale-factor=1",
+                    # No network beyond localhost here: Chromium's own background connections
+                    # would only be refused, many at a time.
+                    "--no-first-run", "--disable-background-networking", "--disable-quic",
+                    "--disable-component-update", "--disable-sync",
                 ],
             },
         }

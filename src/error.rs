@@ -1,6 +1,7 @@
 //! The library's error type: every error names the file it is about and, where a parser stopped,
 //! the position.
 
+use crate::field::{FieldPath, Refusal, field_name};
 use std::path::{Path, PathBuf};
 
 /// Why a preset, image or mesh could not be used.
@@ -53,15 +54,31 @@ pub enum Error {
         message: String,
     },
     /// A file a preset's field names could not be used: the preset, the field, and the file's
-    /// own error (`p.ron: objects[0] (Earth).material: earth.jpg: No such file or directory`).
-    #[error("{}: {field}: {cause}", path.display())]
+    /// own error (`p.ron: objects[0].material.kd (object "Earth"): earth.jpg: No such file or
+    /// directory`).
+    #[error("{}: {}: {cause}", path.display(), field_name(field, object.as_deref()))]
     InField {
         /// The preset.
         path: PathBuf,
-        /// The field, as a lesson's path spells it (`objects[0].material`).
-        field: String,
+        /// The field, as a lesson's path spells it (`objects[0].material.kd`).
+        field: FieldPath,
+        /// The name of the object the field is in, if it has one (said after the path).
+        object: Option<String>,
         /// The asset's error (kept out of the error chain: the message already includes it).
         cause: Box<Error>,
+    },
+    /// A preset's field holds a value out of range or inconsistent: the preset, the field and
+    /// why (`p.ron: objects[0].material.kd (object "Ball"): -1 must be finite and not negative`).
+    #[error("{}: {}: {message}", path.display(), field_name(field, object.as_deref()))]
+    InvalidField {
+        /// The preset.
+        path: PathBuf,
+        /// The field, as a lesson's path spells it.
+        field: FieldPath,
+        /// The name of the object the field is in, if it has one (said after the path).
+        object: Option<String>,
+        /// Why.
+        message: String,
     },
     /// A value is out of range or inconsistent (a zero scale, spp = 0, an absurd resolution).
     #[error("{}: {message}", path.display())]
@@ -94,17 +111,73 @@ impl Error {
 }
 
 impl Error {
-    /// `cause` (an asset's error) as the error of `field` of the preset at `path`; an error
-    /// that already names the preset and a field is returned as it is.
+    /// An [`Error::InvalidField`]: `refusal`'s field of the preset at `path`.
     #[must_use]
-    pub fn in_field(path: &Path, field: impl Into<String>, cause: Self) -> Self {
-        match cause {
-            e @ (Self::InField { .. } | Self::Invalid { .. } | Self::Preset { .. }) => e,
+    pub fn refused(path: &Path, refusal: Refusal) -> Self {
+        Self::InvalidField {
+            path: path.to_path_buf(),
+            field: refusal.field,
+            object: None,
+            message: refusal.message,
+        }
+    }
+
+    /// This error, met below field `prefix` of the preset at `path`: a field's error has
+    /// `prefix` put in front of its field; an asset's error (a file that cannot be read, or
+    /// whose content is refused) becomes the error of `prefix`; a preset's parse error is
+    /// returned as it is.
+    #[must_use]
+    pub fn under(self, path: &Path, prefix: &FieldPath) -> Self {
+        let path = path.to_path_buf();
+        match self {
+            Self::InField {
+                field,
+                object,
+                cause,
+                ..
+            } => Self::InField {
+                path,
+                field: prefix.clone().join(&field),
+                object,
+                cause,
+            },
+            Self::InvalidField {
+                field,
+                object,
+                message,
+                ..
+            } => Self::InvalidField {
+                path,
+                field: prefix.clone().join(&field),
+                object,
+                message,
+            },
+            e @ Self::Preset { .. } => e,
             cause => Self::InField {
-                path: path.to_path_buf(),
-                field: field.into(),
+                path,
+                field: prefix.clone(),
+                object: None,
                 cause: Box::new(cause),
             },
+        }
+    }
+
+    /// This error, its field (if it names one) said to be in the object named `name` (none
+    /// for an unnamed object).
+    #[must_use]
+    pub fn in_object(mut self, name: &str) -> Self {
+        if let Self::InField { object, .. } | Self::InvalidField { object, .. } = &mut self {
+            *object = (!name.is_empty()).then(|| name.to_owned());
+        }
+        self
+    }
+
+    /// The field the error names, if any.
+    #[must_use]
+    pub const fn field(&self) -> Option<&FieldPath> {
+        match self {
+            Self::InField { field, .. } | Self::InvalidField { field, .. } => Some(field),
+            _ => None,
         }
     }
 }

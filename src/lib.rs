@@ -12,6 +12,7 @@ pub mod camera;
 pub mod cli;
 pub mod coverage;
 pub mod error;
+pub mod field;
 pub mod geometry;
 pub mod input;
 pub mod inspect;

@@ -1,5 +1,6 @@
 //! `texplore render`.
 
+use crate::field::FieldPath;
 use crate::names::value_parser;
 use crate::output::check_output;
 use crate::render::render_blocking;
@@ -147,12 +148,16 @@ pub fn run(a: &RenderArgs, simd: crate::scene::SimdMode) -> Result<()> {
         );
     }
     // A student's formula that is NaN or infinite somewhere: the pixels are magenta; say why.
-    for (i, obj) in scene.objects.iter().enumerate() {
+    for (i, (obj, o)) in scene.objects.iter().zip(&desc.objects).enumerate() {
         let n = scene.materials[obj.material].texture().non_finite_count();
         if n > 0 {
+            let field = FieldPath::field("objects")
+                .at(i)
+                .then("material")
+                .then(o.material.kind().colour_name());
             eprintln!(
-                "warning: objects[{i}] ({}): its texture's formula was NaN or infinite at {n} hits, drawn magenta",
-                obj.name
+                "warning: {}: its formula was NaN or infinite at {n} hits, drawn magenta",
+                desc.name_field(&field)
             );
         }
     }

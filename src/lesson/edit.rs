@@ -136,7 +136,8 @@ pub fn set_path(desc: &SceneDesc, path: &str, ron_value: &str) -> Result<SceneDe
         raw: ron_value,
     })
     .map_err(|e| format!("`{path}` = {ron_value}: {}", e.0))?;
-    check_numbers(&new).map_err(|m| format!("`{path}` = {ron_value}: {m}"))?;
+    check_numbers(&new)
+        .map_err(|r| format!("`{path}` = {ron_value}: {}", new.refusal_message(&r)))?;
     // What the preset reader refuses, an edit may not make: another format version.
     if new.version != crate::scene::PRESET_VERSION {
         return Err(format!(

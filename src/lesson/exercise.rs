@@ -20,7 +20,7 @@ use crate::mapping::Mapping;
 use crate::mapping::formula::compare::{agreement, mistakes, one_texel, sample_points};
 use crate::mapping::formula::{FormulaError, FormulaMapping};
 use crate::math::Rgb;
-use crate::scene::{MappingDesc, SceneDesc, TextureDesc};
+use crate::scene::{FieldPath, MappingDesc, SceneDesc, TextureDesc};
 use crate::texture::{Checker, Filter, FormulaColour};
 use std::fmt::Write as _;
 
@@ -183,11 +183,15 @@ impl Exercise {
             .objects
             .get_mut(self.object)
             .ok_or_else(|| format!("the scene has no objects[{}]", self.object))?;
+        let colour = FieldPath::field("objects")
+            .at(self.object)
+            .then("material")
+            .then(obj.material.kind().colour_name());
         let tex = obj.material.texture_mut();
         let mapping = tex
             .mapping()
             .cloned()
-            .ok_or_else(|| format!("objects[{}]'s colour has no mapping", self.object))?;
+            .ok_or_else(|| format!("{}: has no mapping", desc.name_field(&colour)))?;
         match self.target {
             Target::Mapping(_) => tex.set_mapping(MappingDesc::Formula {
                 u: field(0),

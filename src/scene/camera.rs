@@ -3,6 +3,7 @@
 
 use super::values::finite_vec;
 use crate::camera::{Camera, Projection};
+use crate::field::{FieldPath, Refusal};
 use crate::math::Vec3;
 use serde::{Deserialize, Serialize};
 
@@ -124,22 +125,28 @@ pub(super) fn camera(
     c: &CameraDesc,
     width: u32,
     height: u32,
-) -> std::result::Result<Camera, String> {
-    let eye = finite_vec("camera.eye", c.eye)?;
-    let look_at = finite_vec("camera.look_at", c.look_at)?;
-    let up = finite_vec("camera.up", c.up)?;
+) -> std::result::Result<Camera, Refusal> {
+    let at = |field: FieldPath, m: String| Refusal::new(FieldPath::field("camera").join(&field), m);
+    let camera = FieldPath::field("camera");
+    let eye = finite_vec("eye", c.eye).map_err(|r| r.under(&camera))?;
+    let look_at = finite_vec("look_at", c.look_at).map_err(|r| r.under(&camera))?;
+    let up = finite_vec("up", c.up).map_err(|r| r.under(&camera))?;
     if (eye - look_at).length_squared() == 0.0 {
-        return Err("camera: eye and look_at are the same point".into());
+        return Err(at(
+            FieldPath::root(),
+            "eye and look_at are the same point".into(),
+        ));
     }
     if up.length_squared() == 0.0 {
-        return Err("camera.up: must not be zero".into());
+        return Err(at("up".into(), "must not be zero".into()));
     }
     let in_range = |what: &str, v: f32, max: f32| {
         if v > 0.0 && v <= max {
             Ok(v.to_radians())
         } else {
-            Err(format!(
-                "camera.{what}: {v} degrees is out of range (0, {max}]"
+            Err(at(
+                FieldPath::field("projection").then(what),
+                format!("{v} degrees is out of range (0, {max}]"),
             ))
         }
     };
@@ -157,8 +164,9 @@ pub(super) fn camera(
         },
         ProjectionDesc::Orthographic { height } => {
             if !(height > 0.0 && height <= 1e9) {
-                return Err(format!(
-                    "camera.projection.height: {height} is out of range (0, 1e9] world units"
+                return Err(at(
+                    FieldPath::field("projection").then("height"),
+                    format!("{height} is out of range (0, 1e9] world units"),
                 ));
             }
             Projection::Orthographic { height }

@@ -2,6 +2,7 @@
 //! their kinds with defaults, and the check and build of the runtime [`Light`].
 
 use super::values::{finite_non_negative, finite_vec, one, white, yes};
+use crate::field::{FieldPath, Refusal};
 use crate::material::Light;
 use crate::math::{Rgb, Vec3};
 use serde::{Deserialize, Serialize};
@@ -117,7 +118,8 @@ impl LightDesc {
     }
 }
 
-pub(super) fn light(l: &LightDesc) -> std::result::Result<Light, String> {
+/// The runtime light; a refusal names the field relative to the light (`color`).
+pub(super) fn light(l: &LightDesc) -> std::result::Result<Light, Refusal> {
     Ok(match *l {
         LightDesc::Directional {
             direction,
@@ -126,7 +128,9 @@ pub(super) fn light(l: &LightDesc) -> std::result::Result<Light, String> {
             shadows,
         } => {
             let d = finite_vec("direction", direction)?;
-            let to_light = d.try_normalize().ok_or("direction: must not be zero")?;
+            let to_light = d
+                .try_normalize()
+                .ok_or_else(|| Refusal::new("direction".into(), "must not be zero"))?;
             finite_non_negative("ls", &[ls])?;
             finite_non_negative("color", &color.to_array())?;
             Light::Directional {
@@ -153,8 +157,9 @@ pub(super) fn light(l: &LightDesc) -> std::result::Result<Light, String> {
 }
 
 /// The ambient radiance `ls * color`, both finite and not negative.
-pub(super) fn ambient(a: &AmbientDesc) -> std::result::Result<Rgb, String> {
-    finite_non_negative("ambient.ls", &[a.ls])?;
-    finite_non_negative("ambient.color", &a.color.to_array())?;
+pub(super) fn ambient(a: &AmbientDesc) -> std::result::Result<Rgb, Refusal> {
+    let ambient = FieldPath::field("ambient");
+    finite_non_negative("ls", &[a.ls]).map_err(|r| r.under(&ambient))?;
+    finite_non_negative("color", &a.color.to_array()).map_err(|r| r.under(&ambient))?;
     Ok(a.color * a.ls)
 }

@@ -2,6 +2,8 @@
 //! student's formulas (`Formula(u: "fract(atan2(x, z) / tau)", v: "1 - acos(y) / pi")`), and
 //! its build into the runtime [`AnyMapping`] (the formulas compiled once, here).
 
+use crate::field::{FieldPath, Refusal};
+use crate::mapping::formula::FormulaError;
 use crate::mapping::{AnyMapping, FormulaMapping, Mapping};
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;
@@ -44,19 +46,28 @@ impl MappingDesc {
         }
     }
 
-    /// The runtime mapping: formulas compiled. `what` names the field in the error
-    /// (`Image.mapping`): `Image.mapping.u: column 7: unknown name `w` ...`.
+    /// The runtime mapping: formulas compiled.
     ///
     /// # Errors
-    /// A formula's mistake, with its column.
-    pub fn build(&self, what: &str) -> Result<AnyMapping, String> {
+    /// A formula's mistake, naming its field relative to the mapping's (`u`) and its column:
+    /// `column 7: unknown name `w` ...`.
+    pub fn build(&self) -> Result<AnyMapping, Refusal> {
         match self {
             Self::Builtin(m) => Ok(AnyMapping::Builtin(*m)),
             Self::Formula { u, v } => FormulaMapping::new(u, v)
                 .map(|f| AnyMapping::Formula(Arc::new(f)))
-                .map_err(|e| format!("{what}.{e}")),
+                .map_err(|e| formula_refusal(&e)),
         }
     }
+}
+
+/// A formula's mistake as the refusal of its field (`u`, `grey`): its column, then why.
+pub(super) fn formula_refusal(e: &FormulaError) -> Refusal {
+    let message = match e.column {
+        Some(c) => format!("column {c}: {}", e.message),
+        None => e.message.clone(),
+    };
+    Refusal::new(FieldPath::field(&e.field), message)
 }
 
 /// The preset's spelling: the built-in names as unit variants beside `Formula`, so `Spherical`
@@ -142,9 +153,10 @@ mod tests {
             u: "x + w".into(),
             v: "y".into(),
         };
-        let e = d.build("Image.mapping").expect_err("unknown name");
+        let e = d.build().expect_err("unknown name");
+        assert_eq!(e.field.to_string(), "u");
         assert!(
-            e.starts_with("Image.mapping.u: column 5: unknown name `w`"),
+            e.to_string().starts_with("u: column 5: unknown name `w`"),
             "{e}"
         );
     }

@@ -8,7 +8,6 @@
 
 mod assets;
 mod camera;
-mod field;
 mod light;
 mod mapping;
 mod material;
@@ -19,11 +18,11 @@ mod texture;
 mod trace;
 mod values;
 
+pub use crate::field::{FieldPath, Refusal, Step, field_name};
 pub use assets::{
     AssetCache, DISPLACED_KEPT, MAX_SCENE_DISPLACED_TRIANGLES, MAX_SCENE_TEXEL_BYTES, UV_GRID_SIZE,
 };
 pub use camera::{CameraDesc, ProjectionDesc, ProjectionKind};
-pub use field::{FieldPath, Step};
 pub use light::{AmbientDesc, LightDesc, LightKind};
 pub use mapping::MappingDesc;
 pub use material::{

@@ -4,6 +4,7 @@
 use super::preset::SceneDesc;
 use super::texture::TextureDesc;
 use super::values::finite_non_negative;
+use crate::field::{FieldPath, Refusal};
 use crate::math::Rgb;
 use crate::sampler::{PixelFilter, PixelSampler};
 use crate::texture::{Compare, Filter, MAX_COMPARE_TOLERANCE, View};
@@ -214,11 +215,15 @@ impl RenderSettings {
     }
 }
 
-pub(super) fn render_settings(r: &RenderDesc) -> std::result::Result<RenderSettings, String> {
+pub(super) fn render_settings(r: &RenderDesc) -> std::result::Result<RenderSettings, Refusal> {
+    let at = |field: FieldPath, m: String| Refusal::new(FieldPath::field("render").join(&field), m);
     if !(1..=MAX_RESOLUTION).contains(&r.width) || !(1..=MAX_RESOLUTION).contains(&r.height) {
-        return Err(format!(
-            "render: resolution {}x{} is out of range (1 to {MAX_RESOLUTION} per side)",
-            r.width, r.height
+        return Err(at(
+            FieldPath::root(),
+            format!(
+                "resolution {}x{} is out of range (1 to {MAX_RESOLUTION} per side)",
+                r.width, r.height
+            ),
         ));
     }
     let bytes = u64::from(r.width) * u64::from(r.height) * RENDER_BYTES_PER_PIXEL;
@@ -227,53 +232,64 @@ pub(super) fn render_settings(r: &RenderDesc) -> std::result::Result<RenderSetti
             .sqrt()
             .floor();
         let gib = |b: u64| b as f64 / f64::from(1u32 << 30);
-        return Err(format!(
-            "render: {}x{} pixels need {:.1} GiB for the film and the image \
+        return Err(at(
+            FieldPath::root(),
+            format!(
+                "{}x{} pixels need {:.1} GiB for the film and the image \
              ({RENDER_BYTES_PER_PIXEL} bytes a pixel), above the {:.0} GiB render budget \
              (about {side}x{side} at most)",
-            r.width,
-            r.height,
-            gib(bytes),
-            gib(MAX_RENDER_BYTES)
+                r.width,
+                r.height,
+                gib(bytes),
+                gib(MAX_RENDER_BYTES)
+            ),
         ));
     }
     if !(1..=MAX_SPP).contains(&r.spp) {
-        return Err(format!(
-            "render.spp: {} is out of range (1 to {MAX_SPP})",
-            r.spp
+        return Err(at(
+            "spp".into(),
+            format!("{} is out of range (1 to {MAX_SPP})", r.spp),
         ));
     }
     if !r.exposure.is_finite() || r.exposure.abs() > 64.0 {
-        return Err(format!(
-            "render.exposure: {} stops is out of range (-64 to 64)",
-            r.exposure
+        return Err(at(
+            "exposure".into(),
+            format!("{} stops is out of range (-64 to 64)", r.exposure),
         ));
     }
-    finite_non_negative("render.background", &r.background.to_array())?;
+    finite_non_negative("background", &r.background.to_array())
+        .map_err(|r| r.under(&FieldPath::field("render")))?;
     if let Some(a) = r.adaptive {
         if !(r.spp..=MAX_SPP).contains(&a.max_spp) {
-            return Err(format!(
-                "render.adaptive.max_spp: {} is out of range ({} = render.spp to {MAX_SPP})",
-                a.max_spp, r.spp
+            return Err(at(
+                FieldPath::field("adaptive").then("max_spp"),
+                format!(
+                    "{} is out of range ({} = render.spp to {MAX_SPP})",
+                    a.max_spp, r.spp
+                ),
             ));
         }
         if !(a.threshold.is_finite() && a.threshold > 0.0 && a.threshold <= 1.0) {
-            return Err(format!(
-                "render.adaptive.threshold: {} is out of range (0, 1]",
-                a.threshold
+            return Err(at(
+                FieldPath::field("adaptive").then("threshold"),
+                format!("{} is out of range (0, 1]", a.threshold),
             ));
         }
     }
     let tol = r.compare.tolerance;
     if !(tol.is_finite() && tol > 0.0 && tol <= MAX_COMPARE_TOLERANCE) {
-        return Err(format!(
-            "render.compare.tolerance: {tol} texels is out of range (above 0, at most {MAX_COMPARE_TOLERANCE})"
+        return Err(at(
+            FieldPath::field("compare").then("tolerance"),
+            format!("{tol} texels is out of range (above 0, at most {MAX_COMPARE_TOLERANCE})"),
         ));
     }
     if r.reflection_depth > MAX_REFLECTION_DEPTH {
-        return Err(format!(
-            "render.reflection_depth: {} is out of range (0 to {})",
-            r.reflection_depth, MAX_REFLECTION_DEPTH
+        return Err(at(
+            "reflection_depth".into(),
+            format!(
+                "{} is out of range (0 to {})",
+                r.reflection_depth, MAX_REFLECTION_DEPTH
+            ),
         ));
     }
     Ok(RenderSettings {

@@ -2,10 +2,11 @@
 //! build of the runtime [`Texture`] (images through the [`AssetCache`]).
 
 use super::assets::AssetCache;
-use super::mapping::MappingDesc;
+use super::mapping::{MappingDesc, formula_refusal};
 use super::values::{finite_non_negative, one, yes};
 use crate::error::{Error, Result};
-use crate::mapping::{Mapping, UvAffine, UvTransform};
+use crate::field::{FieldPath, Refusal};
+use crate::mapping::{AnyMapping, Mapping, UvAffine, UvTransform};
 use crate::math::Rgb;
 use crate::texture::{
     Checker, DEFAULT_MAX_ANISOTROPY, Filter, ImageTexture, Lookup, MAX_ANISOTROPY_LIMIT, Texture,
@@ -336,39 +337,24 @@ impl TextureDesc {
 }
 
 /// An image's path must name a file: an empty one would name the preset's folder.
-fn check_path(path: &str) -> std::result::Result<(), String> {
+fn check_path(path: &str) -> std::result::Result<(), Refusal> {
     if path.is_empty() {
-        Err("Image.path is empty: name an image file".to_owned())
+        Err(Refusal::new("path".into(), "is empty: name an image file"))
     } else {
         Ok(())
     }
 }
 
-/// A texture of parameter `what`, its messages prefixed with the parameter's name
-/// (`ks.Image.scale: ...`).
+/// A texture of field `what` (`ks`, `bump.height`, relative to the object or material), its
+/// errors naming their fields below `what` (`ks.scale`); `build_object` puts the preset and
+/// the object in front.
 pub(super) fn param_texture(
-    what: &str,
+    what: &FieldPath,
     t: &TextureDesc,
     base: &Path,
     cache: &mut AssetCache,
 ) -> Result<Texture> {
-    texture(t, base, cache).map_err(|e| match e {
-        Error::Invalid { path, message } => Error::Invalid {
-            path,
-            message: format!("{what}.{message}"),
-        },
-        other => asset_in_field(base, what, other),
-    })
-}
-
-/// An asset's error (a file that cannot be read, an image above the budget) as the error of
-/// the field `what` (`kd`, `bump.height`), relative to the object: `build_object` puts the
-/// preset and the object in front. A value's error is returned as it is.
-pub(super) fn asset_in_field(base: &Path, what: &str, e: Error) -> Error {
-    match e {
-        e @ Error::Invalid { .. } => e,
-        other => Error::in_field(base, what, other),
-    }
+    texture(t, base, cache).map_err(|e| e.under(base, what))
 }
 
 /// The alpha channel of an `Image` texture, read through its mapping, filter, wrap and
@@ -389,17 +375,19 @@ pub(super) fn alpha_texture(
         ..
     } = t
     else {
-        return Err(Error::invalid(
+        return Err(Error::refused(
             base,
-            format!("channel Alpha needs an Image texture, not {}", t.kind()),
+            Refusal::new(
+                FieldPath::root(),
+                format!("channel Alpha needs an Image texture, not {}", t.kind()),
+            ),
         ));
     };
-    check_anisotropy("Image", *max_anisotropy).map_err(|m| Error::invalid(base, m))?;
-    let transform = uv_transform("Image", uv).map_err(|m| Error::invalid(base, m))?;
-    check_path(path).map_err(|m| Error::invalid(base, m))?;
-    let mapping = mapping
-        .build("Image.mapping")
-        .map_err(|m| Error::invalid(base, m))?;
+    let refused = |r: Refusal| Error::refused(base, r);
+    check_anisotropy(*max_anisotropy).map_err(refused)?;
+    let transform = uv_transform(uv).map_err(refused)?;
+    check_path(path).map_err(refused)?;
+    let mapping = build_mapping(mapping).map_err(refused)?;
     let image = cache.alpha(&base.join(path))?;
     let mip = filter.needs_mip().then(|| cache.mip(&image));
     Ok(Texture::Image(ImageTexture {
@@ -415,11 +403,13 @@ pub(super) fn alpha_texture(
     }))
 }
 
+/// The runtime texture; errors name their fields relative to the texture's (`scale`,
+/// `mapping.u`), or no field for the texture's own.
 pub(super) fn texture(t: &TextureDesc, base: &Path, cache: &mut AssetCache) -> Result<Texture> {
-    let invalid = |m: String| Error::invalid(base, m);
+    let invalid = |r: Refusal| Error::refused(base, r);
     Ok(match t {
         TextureDesc::Constant(c) => {
-            finite_non_negative("Constant", &c.to_array()).map_err(invalid)?;
+            finite_non_negative(FieldPath::root(), &c.to_array()).map_err(invalid)?;
             Texture::Constant(*c)
         }
         TextureDesc::Image {
@@ -433,11 +423,11 @@ pub(super) fn texture(t: &TextureDesc, base: &Path, cache: &mut AssetCache) -> R
             max_anisotropy,
             uv,
         } => {
-            finite_non_negative("Image.scale", &[*scale]).map_err(invalid)?;
-            let transform = uv_transform("Image", uv).map_err(invalid)?;
-            check_anisotropy("Image", *max_anisotropy).map_err(invalid)?;
+            finite_non_negative("scale", &[*scale]).map_err(invalid)?;
+            let transform = uv_transform(uv).map_err(invalid)?;
+            check_anisotropy(*max_anisotropy).map_err(invalid)?;
             check_path(path).map_err(invalid)?;
-            let mapping = mapping.build("Image.mapping").map_err(invalid)?;
+            let mapping = build_mapping(mapping).map_err(invalid)?;
             let image = cache.image(&base.join(path), *srgb)?;
             let mip = filter.needs_mip().then(|| cache.mip(&image));
             Texture::Image(ImageTexture {
@@ -459,20 +449,21 @@ pub(super) fn texture(t: &TextureDesc, base: &Path, cache: &mut AssetCache) -> R
             filter,
             uv,
         } => {
-            let transform = uv_transform("Checker", uv).map_err(invalid)?;
+            let transform = uv_transform(uv).map_err(invalid)?;
             let ok = |s: f32| s.is_finite() && s > 0.0 && s <= 1e6;
             if !ok(squares.0) || !ok(squares.1) {
-                return Err(invalid(format!(
-                    "Checker.squares: {squares:?} must be positive and at most 1e6"
+                return Err(invalid(Refusal::new(
+                    "squares".into(),
+                    format!("{squares:?} must be positive and at most 1e6"),
                 )));
             }
             finite_non_negative(
-                "Checker.colors",
+                "colors",
                 &[colors.0.to_array(), colors.1.to_array()].concat(),
             )
             .map_err(invalid)?;
             Texture::Checker(Checker {
-                mapping: mapping.build("Checker.mapping").map_err(invalid)?,
+                mapping: build_mapping(mapping).map_err(invalid)?,
                 squares: *squares,
                 colors: *colors,
                 filter: *filter,
@@ -480,9 +471,10 @@ pub(super) fn texture(t: &TextureDesc, base: &Path, cache: &mut AssetCache) -> R
             })
         }
         TextureDesc::MeshMaterial { .. } => {
-            return Err(invalid(
-                "MeshMaterial: only a Mesh shape names a material".into(),
-            ));
+            return Err(invalid(Refusal::new(
+                FieldPath::root(),
+                "MeshMaterial: only a Mesh shape names a material",
+            )));
         }
         TextureDesc::UvGrid {
             mapping,
@@ -491,9 +483,9 @@ pub(super) fn texture(t: &TextureDesc, base: &Path, cache: &mut AssetCache) -> R
             max_anisotropy,
             uv,
         } => {
-            check_anisotropy("UvGrid", *max_anisotropy).map_err(invalid)?;
-            let transform = uv_transform("UvGrid", uv).map_err(invalid)?;
-            let mapping = mapping.build("UvGrid.mapping").map_err(invalid)?;
+            check_anisotropy(*max_anisotropy).map_err(invalid)?;
+            let transform = uv_transform(uv).map_err(invalid)?;
+            let mapping = build_mapping(mapping).map_err(invalid)?;
             let image = cache.uv_grid();
             let mip = filter.needs_mip().then(|| cache.mip(&image));
             Texture::Image(ImageTexture {
@@ -516,8 +508,8 @@ pub(super) fn texture(t: &TextureDesc, base: &Path, cache: &mut AssetCache) -> R
             b,
             uv,
         } => {
-            let transform = uv_transform("Formula", uv).map_err(invalid)?;
-            let mapping = mapping.build("Formula.mapping").map_err(invalid)?;
+            let transform = uv_transform(uv).map_err(invalid)?;
+            let mapping = build_mapping(mapping).map_err(invalid)?;
             let colour = formula_colour(grey, [r, g, b]).map_err(invalid)?;
             Texture::Formula(FormulaTexture {
                 mapping,
@@ -532,7 +524,7 @@ pub(super) fn texture(t: &TextureDesc, base: &Path, cache: &mut AssetCache) -> R
 fn formula_colour(
     grey: &str,
     [r, g, b]: [&String; 3],
-) -> std::result::Result<FormulaColour, String> {
+) -> std::result::Result<FormulaColour, Refusal> {
     let channels = [("r", r), ("g", g), ("b", b)];
     let given: Vec<&str> = channels
         .iter()
@@ -543,9 +535,12 @@ fn formula_colour(
         (false, 0) => FormulaColour::grey(grey),
         (true, 3) => FormulaColour::rgb(r, g, b),
         (false, _) => {
-            return Err(format!(
-                "Formula: grey and {} both given; write grey alone, or r, g and b",
-                given.join(", ")
+            return Err(Refusal::new(
+                FieldPath::root(),
+                format!(
+                    "Formula: grey and {} both given; write grey alone, or r, g and b",
+                    given.join(", ")
+                ),
             ));
         }
         (true, _) => {
@@ -554,37 +549,49 @@ fn formula_colour(
                 .filter(|(_, t)| t.trim().is_empty())
                 .map(|(n, _)| *n)
                 .collect();
-            return Err(format!(
-                "Formula: {} missing; write grey alone, or r, g and b",
-                missing.join(", ")
+            return Err(Refusal::new(
+                FieldPath::root(),
+                format!(
+                    "Formula: {} missing; write grey alone, or r, g and b",
+                    missing.join(", ")
+                ),
             ));
         }
     };
-    colour.map_err(|e| format!("Formula.{e}"))
+    colour.map_err(|e| formula_refusal(&e))
+}
+
+/// A texture's mapping, its formulas' mistakes named below `mapping` (`mapping.u`).
+fn build_mapping(m: &MappingDesc) -> std::result::Result<AnyMapping, Refusal> {
+    m.build().map_err(|r| r.under(&"mapping".into()))
 }
 
 /// The runtime (u, v) transform (`None` for the identity); the scale must be finite and at
 /// least 1e-6 in size on both axes, the rest finite.
-fn uv_transform(what: &str, t: &UvTransform) -> std::result::Result<Option<UvAffine>, String> {
+fn uv_transform(t: &UvTransform) -> std::result::Result<Option<UvAffine>, Refusal> {
     let ok = |s: f32| s.is_finite() && s.abs() >= 1e-6 && s.abs() <= 1e6;
     if !ok(t.scale.x) || !ok(t.scale.y) {
-        return Err(format!(
-            "{what}.uv.scale: {} must be non-zero, between 1e-6 and 1e6 in size",
-            t.scale
+        return Err(Refusal::new(
+            FieldPath::field("uv").then("scale"),
+            format!("{} must be non-zero, between 1e-6 and 1e6 in size", t.scale),
         ));
     }
     if !t.rotate.is_finite() || !t.offset.is_finite() {
-        return Err(format!("{what}.uv: rotate and offset must be finite"));
+        return Err(Refusal::new(
+            "uv".into(),
+            "rotate and offset must be finite",
+        ));
     }
     Ok(t.affine())
 }
 
-fn check_anisotropy(what: &str, a: f32) -> std::result::Result<(), String> {
+fn check_anisotropy(a: f32) -> std::result::Result<(), Refusal> {
     if (1.0..=MAX_ANISOTROPY_LIMIT).contains(&a) {
         Ok(())
     } else {
-        Err(format!(
-            "{what}.max_anisotropy: {a} is out of range (1 to {MAX_ANISOTROPY_LIMIT})"
+        Err(Refusal::new(
+            "max_anisotropy".into(),
+            format!("{a} is out of range (1 to {MAX_ANISOTROPY_LIMIT})"),
         ))
     }
 }

@@ -1,6 +1,7 @@
 //! Small pieces the concepts share: serde defaults every concept writes the same way, and the
 //! checks of finite and non-negative numbers.
 
+use crate::field::{FieldPath, Refusal};
 use crate::math::{Rgb, Vec3, Vec3A};
 
 pub(super) fn one() -> f32 {
@@ -15,17 +16,28 @@ pub(super) fn yes() -> bool {
     true
 }
 
-pub(super) fn finite_vec(what: &str, v: Vec3) -> std::result::Result<Vec3A, String> {
+/// `v` if it is finite, else the refusal of `field`.
+pub(super) fn finite_vec(
+    field: impl Into<FieldPath>,
+    v: Vec3,
+) -> std::result::Result<Vec3A, Refusal> {
     if v.is_finite() {
         Ok(v.into())
     } else {
-        Err(format!("{what}: {v} is not finite"))
+        Err(Refusal::new(field.into(), format!("{v} is not finite")))
     }
 }
 
-pub(super) fn finite_non_negative(what: &str, values: &[f32]) -> std::result::Result<(), String> {
+/// The refusal of `field` unless every value is finite and not negative.
+pub(super) fn finite_non_negative(
+    field: impl Into<FieldPath>,
+    values: &[f32],
+) -> std::result::Result<(), Refusal> {
     match values.iter().find(|v| !(v.is_finite() && **v >= 0.0)) {
-        Some(v) => Err(format!("{what}: {v} must be finite and not negative")),
+        Some(v) => Err(Refusal::new(
+            field.into(),
+            format!("{v} must be finite and not negative"),
+        )),
         None => Ok(()),
     }
 }

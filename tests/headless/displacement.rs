@@ -503,7 +503,7 @@ fn bad_displacements_are_refused_with_the_field_named() {
         material: Matte(cd: Constant((1, 1, 1))), displace: (height: Constant((1, 1, 1))))])";
     let e = build(sphere, &at).unwrap_err().to_string();
     assert!(
-        e.contains("objects[0] (Ball).displace: a displacement map needs a Mesh shape")
+        e.contains("objects[0].displace (object \"Ball\"): a displacement map needs a Mesh shape")
             && e.contains("bump map"),
         "{e}"
     );

@@ -335,22 +335,25 @@ fn build_error(material: &str) -> String {
 fn preset_formula_errors_name_the_field_and_the_column() {
     let e = build_error(r#"Matte(cd: Checker(mapping: Formula(u: "x", v: "acos(y) / pj")))"#);
     assert!(
-        e.contains("objects[0].material: Checker.mapping.v: column 11: unknown name `pj`"),
+        e.contains("objects[0].material.cd.mapping.v: column 11: unknown name `pj`"),
         "{e}"
     );
     let e = build_error(r#"Matte(cd: Formula(grey: "floor(8 * u"))"#);
     assert!(
-        e.contains("material: Formula.grey: column 6: this `(` is never closed"),
+        e.contains("objects[0].material.cd.grey: column 6: this `(` is never closed"),
         "{e}"
     );
     let e = build_error(r#"Matte(cd: Formula(r: "u", g: "v"))"#);
-    assert!(e.contains("material: Formula: b missing"), "{e}");
+    assert!(
+        e.contains("objects[0].material.cd: Formula: b missing"),
+        "{e}"
+    );
     // A textured coefficient names its parameter.
     let e = build_error(
         r#"Phong(cd: Constant((1, 1, 1)), ks: Checker(mapping: Formula(u: "x", v: "y +")))"#,
     );
     assert!(
-        e.contains("material: ks.Checker.mapping.v: column 4: missing a value at the end"),
+        e.contains("objects[0].material.ks.mapping.v: column 4: missing a value at the end"),
         "{e}"
     );
     let e = build_error(r#"Matte(cd: Formula(grey: "u", r: "v"))"#);
@@ -433,7 +436,9 @@ fn render_warns_of_a_formula_that_is_not_finite() {
     let err = String::from_utf8_lossy(&out.stderr).into_owned();
     success(&out);
     assert!(
-        err.contains("warning: objects[0] (ball): its texture's formula was NaN or infinite at"),
+        err.contains(
+            "warning: objects[0].material.cd (object \"ball\"): its formula was NaN or infinite at"
+        ),
         "{err}"
     );
 }

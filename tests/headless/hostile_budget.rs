@@ -66,8 +66,9 @@ fn two_bombs_in_one_material_are_refused_naming_the_second_field() {
     let e = stderr(&out);
     assert_eq!(out.status.code(), Some(1), "{e}");
     assert!(
-        e.contains("p.ron: objects[0] (Ball).material.kd.texture: b.png: cannot load image: ")
-            && e.contains("16384 x 16384 texels need 1.0 GiB as sRGB")
+        e.contains(
+            "p.ron: objects[0].material.kd.texture (object \"Ball\"): b.png: cannot load image: "
+        ) && e.contains("16384 x 16384 texels need 1.0 GiB as sRGB")
             && e.contains("of the scene's 1.0 GiB texture budget (its other images take 1.0 GiB)"),
         "{e}"
     );
@@ -82,7 +83,7 @@ fn two_bombs_in_one_material_are_refused_naming_the_second_field() {
     let e = stderr(&out);
     assert_eq!(out.status.code(), Some(1), "{e}");
     assert!(
-        e.contains("p.ron: objects[0] (Ball).bump.height: b.png: cannot load image: ")
+        e.contains("p.ron: objects[0].bump.height (object \"Ball\"): b.png: cannot load image: ")
             && e.contains("texture budget"),
         "{e}"
     );
@@ -105,7 +106,7 @@ fn a_clip_map_bomb_is_refused_from_its_header() {
     let e = stderr(&out);
     assert_eq!(out.status.code(), Some(1), "{e}");
     assert!(
-        e.contains("p.ron: objects[0] (Ball).alpha.texture: ga.png: cannot load image: 16384 x 16384 texels need 3.0 GiB as a linear alpha channel")
+        e.contains("p.ron: objects[0].alpha.texture (object \"Ball\"): ga.png: cannot load image: 16384 x 16384 texels need 3.0 GiB as a linear alpha channel")
             && e.contains("above the 1.0 GiB texture budget"),
         "{e}"
     );
@@ -124,7 +125,7 @@ fn a_clip_map_bomb_is_refused_from_its_header() {
     let e = stderr(&out);
     assert_eq!(out.status.code(), Some(1), "{e}");
     assert!(
-        e.contains("objects[0] (Ball).alpha.texture: small.png: ")
+        e.contains("objects[0].alpha.texture (object \"Ball\"): small.png: ")
             && e.contains("2048 x 2048 texels need 48.0 MiB as a linear alpha channel"),
         "{e}"
     );
@@ -272,7 +273,7 @@ fn the_displaced_meshes_of_a_scene_share_one_triangle_budget() {
     };
     let e = e.to_string();
     assert!(
-        e.contains("p.ron: objects[2] (Knot 2).displace.subdivide: 4 levels of the 6144 triangles in ")
+        e.contains("p.ron: objects[2].displace.subdivide (object \"Knot 2\"): 4 levels of the 6144 triangles in ")
             && e.contains("make 1572864 triangles, and the scene's other displaced meshes hold 3145728: 4718592 in all, above the 4194304 (4 M) a scene may hold"),
         "{e}"
     );
@@ -297,7 +298,7 @@ fn a_displacement_that_overflows_names_its_scale_not_the_mesh_file() {
     let e = e.to_string();
     assert!(
         e.starts_with(&format!(
-            "{}: objects[0] (Knot 0).displace.scale: 1000000 times the height texture's values",
+            "{}: objects[0].displace.scale (object \"Knot 0\"): 1000000 times the height texture's values",
             dir.path().join("p.ron").display()
         )) && e.contains("beyond the largest finite coordinate"),
         "{e}"
@@ -436,7 +437,7 @@ fn lesson_list_counts_displacements_without_subdividing() {
     assert!(o.starts_with("01-knots") && o.contains("Knots"), "{o}{e}");
     assert!(
         e.contains("02-three.toml")
-            && e.contains("objects[2] (Knot 0).displace.subdivide: 4 levels")
+            && e.contains("objects[2].displace.subdivide (object \"Knot 0\"): 4 levels")
             && e.contains("4718592 in all"),
         "{o}{e}"
     );

@@ -782,11 +782,13 @@ fn every_float_of_the_format_refuses_infinity_naming_its_field() {
     for (path, field) in &leaves {
         // The edit checks the numbers of the scene it makes, as loading a preset does.
         let refused = match set_path(&desc, path, "inf") {
-            Ok(d) => texplore::scene::check_numbers(&d),
+            Ok(d) => texplore::scene::check_numbers(&d).map_err(|r| d.refusal_message(&r)),
             Err(e) => Err(e),
         };
+        // The field as every message names it (with the object's name, if it has one).
+        let named = desc.name_field(&texplore::field::FieldPath::parse(field).unwrap());
         match refused {
-            Err(e) if e.contains(&format!("{field}: inf is not finite")) => {}
+            Err(e) if e.contains(&format!("{named}: inf is not finite")) => {}
             Err(e) => failures.push(format!("{path}: refused without naming {field}: {e}")),
             Ok(()) => failures.push(format!("{path}: inf accepted")),
         }

@@ -15,9 +15,11 @@ use std::path::{Path, PathBuf};
 /// The layers, lowest first. A module may use modules of lower layers only: not those of its own
 /// layer (peers stay independent) and never those above.
 const LAYERS: &[&[&str]] = &[
-    // Foundations every layer may use: the error type, then the names of closed sets (strum
+    // Foundations every layer may use: the field path, the error type, then the names of closed sets (strum
     // helpers), the bounded reader of every input file and the atomic writer of every output
     // (both return the error type).
+    // The one spelling of a field of a scene description, which the error type carries.
+    &["field"],
     &["error"],
     &["names", "input", "output"],
     // The shipped files built into the binary, and their copy on disk (through input/output).

@@ -10,6 +10,7 @@ mod cli;
 mod closed_ends;
 mod displacement;
 mod exercises;
+mod field_paths;
 mod footprint;
 mod formula;
 mod fuzz;

@@ -154,7 +154,7 @@ fn a_bad_texture_in_a_coefficient_names_the_parameter() {
         .unwrap_err()
         .to_string();
     assert!(
-        e.starts_with("p.ron: objects[0].material: ks.Checker.squares:"),
+        e.starts_with("p.ron: objects[0].material.ks.squares: (0.0, 4.0) must be positive"),
         "{e}"
     );
     let text = SCENE.replace(

@@ -178,14 +178,16 @@ fn a_missing_or_empty_asset_path_names_the_preset_the_object_and_the_file() {
     let e = build_error(d, r#"shape: Sphere, material: Matte(cd: Image(path: ""))"#);
     assert_eq!(
         e,
-        format!("{p}: objects[0] (Ball).material: Image.path is empty: name an image file")
+        format!("{p}: objects[0].material.cd.path (object \"Ball\"): is empty: name an image file")
     );
     let e = build_error(
         d,
         r#"shape: Mesh(path: ""), material: Matte(cd: Constant((1, 1, 1)))"#,
     );
     assert!(
-        e.starts_with(&format!("{p}: objects[0] (Ball).shape: Mesh.path is empty")),
+        e.starts_with(&format!(
+            "{p}: objects[0].shape.path (object \"Ball\"): is empty: name a PLY or OBJ file"
+        )),
         "{e}"
     );
     let e = build_error(
@@ -193,7 +195,9 @@ fn a_missing_or_empty_asset_path_names_the_preset_the_object_and_the_file() {
         r#"shape: Sphere, material: Matte(cd: Constant((1, 1, 1))), alpha: (texture: Image(path: ""), channel: Alpha)"#,
     );
     assert!(
-        e.starts_with(&format!("{p}: objects[0] (Ball)")) && e.contains("Image.path is empty"),
+        e.starts_with(&format!(
+            "{p}: objects[0].alpha.texture.path (object \"Ball\"): is empty"
+        )),
         "{e}"
     );
     // Missing: the preset and the field first, then the file's own error.
@@ -202,7 +206,8 @@ fn a_missing_or_empty_asset_path_names_the_preset_the_object_and_the_file() {
         r#"shape: Sphere, material: Phong(cd: Constant((1, 1, 1)), ks: Image(path: "gone.png"))"#,
     );
     assert!(
-        e.starts_with(&format!("{p}: objects[0] (Ball).material.ks: ")) && e.contains("gone.png"),
+        e.starts_with(&format!("{p}: objects[0].material.ks (object \"Ball\"): "))
+            && e.contains("gone.png"),
         "{e}"
     );
     let e = build_error(
@@ -210,7 +215,7 @@ fn a_missing_or_empty_asset_path_names_the_preset_the_object_and_the_file() {
         r#"shape: Sphere, material: Matte(cd: Image(path: "gone.png"))"#,
     );
     assert!(
-        e.starts_with(&format!("{p}: objects[0] (Ball).material.cd: "))
+        e.starts_with(&format!("{p}: objects[0].material.cd (object \"Ball\"): "))
             && e.contains("gone.png: No such file"),
         "{e}"
     );
@@ -219,7 +224,7 @@ fn a_missing_or_empty_asset_path_names_the_preset_the_object_and_the_file() {
         r#"shape: Sphere, material: Matte(cd: Constant((1, 1, 1))), bump: (height: Image(path: "gone.png"))"#,
     );
     assert!(
-        e.starts_with(&format!("{p}: objects[0] (Ball).bump.height: "))
+        e.starts_with(&format!("{p}: objects[0].bump.height (object \"Ball\"): "))
             && e.contains("gone.png: No such file"),
         "{e}"
     );
@@ -228,7 +233,8 @@ fn a_missing_or_empty_asset_path_names_the_preset_the_object_and_the_file() {
         r#"shape: Mesh(path: "gone.ply"), material: Matte(cd: Constant((1, 1, 1)))"#,
     );
     assert!(
-        e.starts_with(&format!("{p}: objects[0] (Ball).shape: ")) && e.contains("gone.ply"),
+        e.starts_with(&format!("{p}: objects[0].shape (object \"Ball\"): "))
+            && e.contains("gone.ply"),
         "{e}"
     );
 }

@@ -217,7 +217,9 @@ fn too_many_levels_show_the_builders_error_and_keep_the_scene() {
         panic!("no error; the scene: {:?}", desc(&h).objects[1].displace);
     };
     assert!(
-        err.contains("subdivide: 5 levels would make 6291456 triangles"),
+        err.contains(
+            "objects[1].displace.subdivide (object \"Bumped knot\"): 5 levels would make 6291456 triangles"
+        ),
         "{err}"
     );
     assert!(err.contains("use fewer levels"), "{err}");

@@ -79,9 +79,11 @@ fn typing_a_formula_changes_the_image_and_a_mistake_shows_under_the_field() {
     type_formula(&mut h, "u =", "fract(atan2(x, z) / tau + w)");
     built(&mut h);
     assert!(
-        h.query_by_label_contains("u: column 27: unknown name `w`")
-            .is_some(),
-        "the mistake is shown under the field"
+        h.query_by_label_contains(
+            "objects[0].material.cd.mapping.u (object \"Earth\"): column 27: unknown name `w`"
+        )
+        .is_some(),
+        "the mistake is shown, naming the field"
     );
     assert_eq!(image_bytes(&h), turned, "the last good image stays");
 }

@@ -3,9 +3,10 @@
 //! runtime [`Scalar`] and [`Colour`].
 
 use super::super::assets::AssetCache;
-use super::super::texture::{TextureDesc, alpha_texture, asset_in_field, param_texture};
+use super::super::texture::{TextureDesc, alpha_texture, param_texture};
 use super::super::values::finite_non_negative;
 use crate::error::{Error, Result};
+use crate::field::FieldPath;
 use crate::material::{Colour, Scalar, ScalarTexture};
 use crate::math::Rgb;
 use crate::texture::{Channel, Texture};
@@ -277,36 +278,25 @@ pub(in crate::scene) fn scalar(
 ) -> Result<Scalar> {
     let (t, channel) = match s {
         ScalarDesc::Value(v) => {
-            finite_non_negative(what, &[*v]).map_err(|m| Error::invalid(base, m))?;
+            finite_non_negative(what, &[*v]).map_err(|r| Error::refused(base, r))?;
             return Ok(Scalar::Const(*v));
         }
         ScalarDesc::Texture(t) => (t, Channel::Luminance),
         ScalarDesc::Channel(c) => (&c.texture, c.channel),
     };
+    // One channel of a texture is one step deeper in the preset: `kd.texture`.
+    let field = match s {
+        ScalarDesc::Channel(_) => FieldPath::field(what).then("texture"),
+        _ => FieldPath::field(what),
+    };
     if channel == Channel::Alpha {
-        let texture = alpha_texture(t, base, cache).map_err(|e| match e {
-            Error::Invalid { path, message } => Error::Invalid {
-                path,
-                message: format!("{what}.{message}"),
-            },
-            other => asset_in_field(base, &format!("{what}.texture"), other),
-        })?;
+        let texture = alpha_texture(t, base, cache).map_err(|e| e.under(base, &field))?;
         return Ok(Scalar::Texture(Box::new(ScalarTexture {
             texture,
             channel,
         })));
     }
-    // One channel of a texture is one step deeper in the preset: `kd.texture`.
-    let texture = param_texture(what, t, base, cache).map_err(|e| match e {
-        Error::InField { path, field, cause } if matches!(s, ScalarDesc::Channel(_)) => {
-            Error::InField {
-                path,
-                field: format!("{field}.texture"),
-                cause,
-            }
-        }
-        e => e,
-    })?;
+    let texture = param_texture(&field, t, base, cache)?;
     Ok(match texture {
         Texture::Constant(c) => Scalar::Const(channel.of(c)),
         texture => Scalar::Texture(Box::new(ScalarTexture { texture, channel })),
@@ -317,10 +307,10 @@ pub(in crate::scene) fn scalar(
 fn colour(what: &str, c: &ColorDesc, base: &Path, cache: &mut AssetCache) -> Result<Colour> {
     Ok(match c {
         ColorDesc::Value(c) => {
-            finite_non_negative(what, &c.to_array()).map_err(|m| Error::invalid(base, m))?;
+            finite_non_negative(what, &c.to_array()).map_err(|r| Error::refused(base, r))?;
             Colour::Const(*c)
         }
-        ColorDesc::Texture(t) => match param_texture(what, t, base, cache)? {
+        ColorDesc::Texture(t) => match param_texture(&what.into(), t, base, cache)? {
             Texture::Constant(c) => Colour::Const(c),
             texture => Colour::Texture(Box::new(texture)),
         },
@@ -333,7 +323,7 @@ pub(super) trait BuildParam {
     /// The runtime parameter.
     type Runtime;
 
-    /// Builds it; `what` (the parameter's name) starts its messages.
+    /// Builds it; its errors name fields below `what` (the parameter's name).
     fn build(&self, what: &str, base: &Path, cache: &mut AssetCache) -> Result<Self::Runtime>;
 }
 

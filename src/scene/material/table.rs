@@ -2,7 +2,7 @@
 //! the kinds' rows and defaults, the parameter accessors and the build of the runtime material.
 
 use super::super::assets::AssetCache;
-use super::super::texture::{TextureDesc, TextureKind, asset_in_field, texture};
+use super::super::texture::{TextureDesc, TextureKind, texture};
 use super::param::{BuildParam, ColorDesc, ScalarDesc};
 use super::{MaterialDesc, MaterialKind, ParamMut, ParamRef};
 use crate::error::Result;
@@ -106,7 +106,8 @@ macro_rules! desc_params {
         }
 
         /// The runtime material: constants stay plain numbers and colours, textures are loaded
-        /// through `cache` (paths relative to `base`); messages start with the parameter.
+        /// through `cache` (paths relative to `base`); errors name fields below the material's
+        /// (`kd.scale`).
         pub(in crate::scene) fn material(
             m: &MaterialDesc,
             base: &Path,
@@ -115,7 +116,7 @@ macro_rules! desc_params {
             Ok(match m {
                 $(MaterialDesc::$kind { $colour, $($name),* } => Material::$kind {
                     $colour: texture($colour, base, cache).map_err(|e| {
-                        asset_in_field(base, stringify!($colour), e)
+                        e.under(base, &stringify!($colour).into())
                     })?,
                     $($name: $name.build(stringify!($name), base, cache)?,)*
                 },)*

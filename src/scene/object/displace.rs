@@ -6,6 +6,7 @@ use super::super::texture::{param_texture, texture_words};
 use super::super::trace::natural_mapping;
 use super::maps::DisplaceDesc;
 use crate::error::{Error, Result};
+use crate::field::Refusal;
 use crate::geometry::displace::{
     Displacement, MAX_DISPLACED_TRIANGLES, displace, subdivide, subdivided_triangle_count,
 };
@@ -18,8 +19,8 @@ use std::sync::Arc;
 
 /// `base` (read from `file`) subdivided and displaced as `d` says, through the cache (each
 /// displacement of a file is made once; the file's own mesh stays shared and untouched).
-/// Messages start with the field (`subdivide: ...`, `height.Image.scale: ...`); the caller
-/// prefixes the object and `displace`.
+/// Errors name their fields relative to `displace` (`subdivide`, `height.scale`); the caller
+/// puts the object and `displace` in front.
 pub(super) fn displaced_mesh(
     base: &Arc<Mesh>,
     file: &Path,
@@ -27,37 +28,43 @@ pub(super) fn displaced_mesh(
     dir: &Path,
     cache: &mut AssetCache,
 ) -> Result<Arc<Mesh>> {
-    let invalid = |m: String| Error::invalid(dir, m);
+    let invalid = |field: &str, m: String| Error::refused(dir, Refusal::new(field.into(), m));
     if !(d.scale.is_finite() && d.scale.abs() <= 1e6) {
-        return Err(invalid(format!(
-            "scale: {} is out of range (-1e6 to 1e6 mesh units)",
-            d.scale
-        )));
+        return Err(invalid(
+            "scale",
+            format!("{} is out of range (-1e6 to 1e6 mesh units)", d.scale),
+        ));
     }
     let limit = MAX_DISPLACED_TRIANGLES;
     let triangles = subdivided_triangle_count(base.triangle_count(), d.subdivide);
     if triangles > limit {
-        return Err(invalid(format!(
-            "subdivide: {} levels would make {} triangles of the {} in {} (each level makes \
+        return Err(invalid(
+            "subdivide",
+            format!(
+                "{} levels would make {} triangles of the {} in {} (each level makes \
              4 of every triangle); at most {limit} (4 M) are allowed: use fewer levels",
-            d.subdivide,
-            if triangles == usize::MAX {
-                "more than 2^64".to_owned()
-            } else {
-                triangles.to_string()
-            },
-            base.triangle_count(),
-            file.display()
-        )));
+                d.subdivide,
+                if triangles == usize::MAX {
+                    "more than 2^64".to_owned()
+                } else {
+                    triangles.to_string()
+                },
+                base.triangle_count(),
+                file.display()
+            ),
+        ));
     }
     let key: DisplacedKey = (file.to_path_buf(), dir.to_path_buf(), format!("{d:?}"));
     cache.count_displaced(&key, triangles).map_err(|m| {
-        invalid(format!(
-            "subdivide: {} levels of the {} triangles in {} make {m}",
-            d.subdivide,
-            base.triangle_count(),
-            file.display()
-        ))
+        invalid(
+            "subdivide",
+            format!(
+                "{} levels of the {} triangles in {} make {m}",
+                d.subdivide,
+                base.triangle_count(),
+                file.display()
+            ),
+        )
     })?;
     if let Some(m) = cache.displaced(&key) {
         return Ok(m);
@@ -68,13 +75,16 @@ pub(super) fn displaced_mesh(
             .mapping()
             .and_then(crate::scene::MappingDesc::builtin)
     {
-        return Err(invalid(format!(
-            "height: {} has no texture coordinates; choose a generated mapping (spherical, \
+        return Err(invalid(
+            "height",
+            format!(
+                "{} has no texture coordinates; choose a generated mapping (spherical, \
              cylindrical, rectangular)",
-            file.display()
-        )));
+                file.display()
+            ),
+        ));
     }
-    let height = param_texture("height", &d.height, dir, cache)?;
+    let height = param_texture(&"height".into(), &d.height, dir, cache)?;
     let moves_nothing = match &height {
         Texture::Constant(c) => c.luminance() * d.scale == 0.0,
         _ => d.scale == 0.0,
@@ -112,11 +122,14 @@ pub(super) fn displaced_mesh(
     displace(&mut data, &heights, d.scale);
     if data.positions.iter().any(|p| !p.is_finite()) {
         let highest = heights.iter().fold(0.0f32, |m, h| m.max(h.abs()));
-        return Err(invalid(format!(
-            "scale: {} times the height texture's values (up to {highest:e}) moves the surface \
+        return Err(invalid(
+            "scale",
+            format!(
+                "{} times the height texture's values (up to {highest:e}) moves the surface \
              beyond the largest finite coordinate; use a smaller scale or height",
-            d.scale
-        )));
+                d.scale
+            ),
+        ));
     }
     let what = Displacement {
         height: texture_words(&d.height),

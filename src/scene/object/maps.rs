@@ -6,6 +6,7 @@ use super::super::assets::AssetCache;
 use super::super::texture::{TextureDesc, param_texture};
 use super::super::values::one;
 use crate::error::{Error, Result};
+use crate::field::{FieldPath, Refusal};
 use crate::material::{Bump, NormalMap};
 use crate::texture::Texture;
 use serde::{Deserialize, Serialize};
@@ -96,20 +97,28 @@ pub(super) fn normal_map(
     base: &Path,
     cache: &mut AssetCache,
 ) -> Result<NormalMap> {
+    let normal = FieldPath::field("normal");
     if !n.strength.is_finite() {
-        return Err(Error::invalid(
+        return Err(Error::refused(
             base,
-            format!("normal.strength: {} is not finite", n.strength),
+            Refusal::new(
+                normal.clone().then("strength"),
+                format!("{} is not finite", n.strength),
+            ),
         ));
     }
     let mut raw = n.map.clone();
     if let TextureDesc::Image { srgb, .. } = &mut raw {
         *srgb = false;
     }
-    match param_texture("normal.map", &raw, base, cache)? {
-        Texture::Constant(_) => Err(Error::invalid(
+    let field = normal.then("map");
+    match param_texture(&field, &raw, base, cache)? {
+        Texture::Constant(_) => Err(Error::refused(
             base,
-            "normal.map: a constant has no (u, v) mapping, so no tangent frame; use an image",
+            Refusal::new(
+                field,
+                "a constant has no (u, v) mapping, so no tangent frame; use an image",
+            ),
         )),
         map => Ok(NormalMap {
             map,
@@ -118,17 +127,18 @@ pub(super) fn normal_map(
     }
 }
 
-/// A bump map, or `None` for a constant height (which has no slope). Messages start with the
-/// field (`bump.scale: ...`); the caller prefixes the object.
+/// A bump map, or `None` for a constant height (which has no slope). Errors name their fields
+/// relative to the object (`bump.scale`); the caller puts the object in front.
 pub(super) fn bump(b: &BumpDesc, base: &Path, cache: &mut AssetCache) -> Result<Option<Bump>> {
+    let bump = FieldPath::field("bump");
     if !b.scale.is_finite() {
-        return Err(Error::invalid(
+        return Err(Error::refused(
             base,
-            format!("bump.scale: {} is not finite", b.scale),
+            Refusal::new(bump.then("scale"), format!("{} is not finite", b.scale)),
         ));
     }
     Ok(
-        match param_texture("bump.height", &b.height, base, cache)? {
+        match param_texture(&bump.then("height"), &b.height, base, cache)? {
             Texture::Constant(_) => None,
             height => Some(Bump {
                 height,

@@ -3,6 +3,7 @@
 
 use super::super::material::MaterialDesc;
 use super::super::texture::TextureDesc;
+use crate::field::Refusal;
 use crate::geometry::Mesh;
 use crate::mapping::Mapping;
 use crate::scene::MappingDesc;
@@ -12,11 +13,13 @@ use std::borrow::Cow;
 /// `map_Kd` image, else its `Kd` colour.
 ///
 /// # Errors
-/// A message (the caller names the object) when the mesh names no material.
+/// The refusal of the material's colour texture (`cd`; the caller puts the object and
+/// `material` in front) when the mesh names no material.
 pub(super) fn resolve_mesh_material<'a>(
     m: &'a MaterialDesc,
     mesh: Option<&Mesh>,
-) -> Result<Cow<'a, MaterialDesc>, String> {
+) -> Result<Cow<'a, MaterialDesc>, Refusal> {
+    let refused = |message: String| Refusal::new(m.kind().colour_name().into(), message);
     let TextureDesc::MeshMaterial {
         mapping,
         filter,
@@ -29,15 +32,19 @@ pub(super) fn resolve_mesh_material<'a>(
         return Ok(Cow::Borrowed(m));
     };
     let Some(mesh) = mesh else {
-        return Err("MeshMaterial: only a Mesh shape names a material".into());
+        return Err(refused(
+            "MeshMaterial: only a Mesh shape names a material".into(),
+        ));
     };
     let file = mesh.path().display();
-    let material = mesh
-        .material()
-        .ok_or_else(|| match mesh.material_problem() {
+    let material = mesh.material().ok_or_else(|| {
+        refused(match mesh.material_problem() {
             Some(p) => format!("MeshMaterial: {file}: {p}"),
-            None => format!("MeshMaterial: {file} names no material (no .mtl with Kd or map_Kd)"),
-        })?;
+            None => {
+                format!("MeshMaterial: {file} names no material (no .mtl with Kd or map_Kd)")
+            }
+        })
+    })?;
     let texture = match (&material.diffuse_texture, material.diffuse) {
         (Some(image), _) => TextureDesc::Image {
             // Absolute: the preset's folder must not be prefixed again.
@@ -56,10 +63,10 @@ pub(super) fn resolve_mesh_material<'a>(
         },
         (None, Some(kd)) => TextureDesc::Constant(crate::math::Rgb::from_array(kd)),
         (None, None) => {
-            return Err(format!(
+            return Err(refused(format!(
                 "MeshMaterial: material '{}' of {file} has neither map_Kd nor Kd",
                 material.name
-            ));
+            )));
         }
     };
     let mut m = m.clone();
@@ -68,7 +75,7 @@ pub(super) fn resolve_mesh_material<'a>(
 }
 
 /// Refuses the `Uv` mapping on a mesh without texture coordinates, saying what to do instead.
-pub(super) fn check_uv_mapping(m: &MaterialDesc, mesh: &Mesh) -> Result<(), String> {
+pub(super) fn check_uv_mapping(m: &MaterialDesc, mesh: &Mesh) -> Result<(), Refusal> {
     if mesh.has_uv() {
         return Ok(());
     }
@@ -77,9 +84,12 @@ pub(super) fn check_uv_mapping(m: &MaterialDesc, mesh: &Mesh) -> Result<(), Stri
         .into_iter()
         .find(|(_, t)| t.mapping().and_then(MappingDesc::builtin) == Some(Mapping::Uv))
     {
-        Some((name, _)) => Err(format!(
-            "{name}: {} has no texture coordinates; choose a generated mapping (spherical, cylindrical, rectangular)",
-            mesh.path().display()
+        Some((name, _)) => Err(Refusal::new(
+            name.into(),
+            format!(
+                "{} has no texture coordinates; choose a generated mapping (spherical, cylindrical, rectangular)",
+                mesh.path().display()
+            ),
         )),
         None => Ok(()),
     }

@@ -13,6 +13,7 @@ use super::material::{MaterialDesc, ScalarDesc, material, scalar};
 use super::trace::{Perturbation, Surface};
 use super::values::finite_vec;
 use crate::error::{Error, Result};
+use crate::field::{FieldPath, Refusal};
 use crate::geometry::{MeshShape, Object, Shading, Shape};
 use crate::material::{Material, Scalar};
 use crate::math::{Affine3A, Quat, Vec3};
@@ -217,14 +218,14 @@ impl ShapeDesc {
     }
 }
 
-fn transform(t: &TransformDesc) -> std::result::Result<Affine3A, String> {
+fn transform(t: &TransformDesc) -> std::result::Result<Affine3A, Refusal> {
     let translate = finite_vec("translate", t.translate)?;
     let rotate = finite_vec("rotate", t.rotate)?;
     let scale = finite_vec("scale", t.scale)?;
     if scale.abs().min_element() < 1e-30 || scale.abs().max_element() > 1e30 {
-        return Err(format!(
-            "scale: {} must be non-zero and below 1e30 on every axis",
-            t.scale
+        return Err(Refusal::new(
+            "scale".into(),
+            format!("{} must be non-zero and below 1e30 on every axis", t.scale),
         ));
     }
     let r = Quat::from_rotation_z(rotate.z.to_radians())
@@ -251,8 +252,8 @@ pub(super) struct BuiltObject {
 }
 
 /// Builds object `i` of a preset, with `material_index` as its material's index. Errors name
-/// the preset file `preset_path` and the field (`objects[2] (floor).material: ...`); asset paths
-/// are relative to the preset's folder.
+/// the preset file `preset_path`, the field and the object (`objects[2].material.kd (object
+/// "floor"): ...`); asset paths are relative to the preset's folder.
 pub(super) fn build_object(
     o: &ObjectDesc,
     i: usize,
@@ -261,49 +262,30 @@ pub(super) fn build_object(
     cache: &mut AssetCache,
 ) -> Result<BuiltObject> {
     let base = preset_path.parent().unwrap_or(Path::new("."));
-    let bad = |msg: String| Error::invalid(preset_path, msg);
-    let what = if o.name.is_empty() {
-        format!("objects[{i}]")
-    } else {
-        format!("objects[{i}] ({})", o.name)
+    let here = FieldPath::field("objects").at(i);
+    // A refusal of a field of the object (relative to it), as the preset's error.
+    let bad = |r: Refusal| Error::refused(preset_path, r.under(&here)).in_object(&o.name);
+    // An error met building the field `field` of the object (`material`, or none for the
+    // object's own maps, whose errors name `bump.height`): its field below the object's, a
+    // file's error (an image or mesh that cannot be read) the error of that field.
+    let within = |field: Option<&'static str>| {
+        let prefix = field.map_or_else(|| here.clone(), |f| here.clone().then(f));
+        move |e: Error| e.under(preset_path, &prefix).in_object(&o.name)
     };
-    // A message of a field of the object, prefixed with the object; a file's error (an image
-    // or mesh that cannot be read) names the preset and the field too.
-    let within = |prefix: &'static str| {
-        let (what, bad) = (&what, &bad);
-        move |e: Error| {
-            let field = format!("{what}{}", prefix.trim_end_matches([':', ' ', '.']));
-            match e {
-                Error::Invalid { message, .. } => bad(format!("{what}{prefix}{message}")),
-                // A field of the material or map (`kd`, `bump.height`), below the object.
-                Error::InField {
-                    field: below,
-                    cause,
-                    ..
-                } => Error::InField {
-                    path: preset_path.to_path_buf(),
-                    field: format!("{field}.{below}"),
-                    cause,
-                },
-                other => Error::in_field(preset_path, field, other),
-            }
-        }
-    };
-    let transform = transform(&o.transform).map_err(|m| bad(format!("{what}.transform: {m}")))?;
+    let transform = transform(&o.transform).map_err(|r| bad(r.under(&"transform".into())))?;
     let shape = match (&o.shape, &o.displace) {
         (ShapeDesc::Mesh { path, shading }, displace) => {
             if path.is_empty() {
-                return Err(bad(format!(
-                    "{what}.shape: Mesh.path is empty: name a PLY or OBJ file"
+                return Err(bad(Refusal::new(
+                    FieldPath::field("shape").then("path"),
+                    "is empty: name a PLY or OBJ file",
                 )));
             }
             let file = base.join(path);
-            let mut mesh = cache
-                .mesh(&file)
-                .map_err(|e| Error::in_field(preset_path, format!("{what}.shape"), e))?;
+            let mut mesh = cache.mesh(&file).map_err(within(Some("shape")))?;
             if let Some(d) = displace {
-                mesh =
-                    displaced_mesh(&mesh, &file, d, base, cache).map_err(within(".displace."))?;
+                mesh = displaced_mesh(&mesh, &file, d, base, cache)
+                    .map_err(within(Some("displace")))?;
             }
             Shape::Mesh(MeshShape {
                 mesh,
@@ -311,25 +293,31 @@ pub(super) fn build_object(
             })
         }
         (generic, Some(_)) => {
-            return Err(bad(format!(
-                "{what}.displace: a displacement map needs a Mesh shape, and {} is a generic \
-                 shape; use a mesh (which is subdivided and displaced at load), or a bump map \
-                 (bump: ...) for the look without moving the surface",
-                generic.kind()
+            return Err(bad(Refusal::new(
+                "displace".into(),
+                format!(
+                    "a displacement map needs a Mesh shape, and {} is a generic shape; use a \
+                     mesh (which is subdivided and displaced at load), or a bump map (bump: \
+                     ...) for the look without moving the surface",
+                    generic.kind()
+                ),
             )));
         }
-        (generic, None) => generic
-            .generic()
-            .ok_or_else(|| bad(format!("{what}.shape: {generic:?} is not a generic shape")))?,
+        (generic, None) => generic.generic().ok_or_else(|| {
+            bad(Refusal::new(
+                "shape".into(),
+                format!("{generic:?} is not a generic shape"),
+            ))
+        })?,
     };
     let mesh = match &shape {
         Shape::Mesh(m) => Some(&*m.mesh),
         _ => None,
     };
-    let material_desc = resolve_mesh_material(&o.material, mesh)
-        .map_err(|m| bad(format!("{what}.material: {m}")))?;
+    let in_material = |r: Refusal| bad(r.under(&"material".into()));
+    let material_desc = resolve_mesh_material(&o.material, mesh).map_err(in_material)?;
     if let Some(mesh) = mesh {
-        check_uv_mapping(&material_desc, mesh).map_err(|m| bad(format!("{what}.material: {m}")))?;
+        check_uv_mapping(&material_desc, mesh).map_err(in_material)?;
         // The maps read (u, v) the same way: a clip, bump or normal map under `Uv` on a mesh
         // without it is refused like the material's textures.
         if !mesh.has_uv()
@@ -339,14 +327,17 @@ pub(super) fn build_object(
                         == Some(crate::mapping::Mapping::Uv)
             })
         {
-            return Err(bad(format!(
-                "{what}.{field}: {} has no texture coordinates; choose a generated mapping \
-                 (spherical, cylindrical, rectangular)",
-                mesh.path().display()
+            return Err(bad(Refusal::new(
+                field,
+                format!(
+                    "{} has no texture coordinates; choose a generated mapping (spherical, \
+                     cylindrical, rectangular)",
+                    mesh.path().display()
+                ),
             )));
         }
     }
-    let material = material(&material_desc, base, cache).map_err(within(".material: "))?;
+    let material = material(&material_desc, base, cache).map_err(within(Some("material")))?;
     let name = match (&o.shape, o.name.is_empty()) {
         (_, false) => o.name.clone(),
         (ShapeDesc::Mesh { path, .. }, true) => format!("{path} {i}"),
@@ -354,7 +345,7 @@ pub(super) fn build_object(
     };
     let clip = match &o.alpha {
         None => None,
-        Some(a) => match scalar("alpha", a, base, cache).map_err(within("."))? {
+        Some(a) => match scalar("alpha", a, base, cache).map_err(within(None))? {
             // Solid everywhere: no clip map at all.
             Scalar::Const(v) if v >= 1.0 => None,
             s => Some(s),
@@ -362,16 +353,17 @@ pub(super) fn build_object(
     };
     let bump = match &o.bump {
         None => None,
-        Some(b) => bump(b, base, cache).map_err(within("."))?,
+        Some(b) => bump(b, base, cache).map_err(within(None))?,
     };
     let normal_map = match &o.normal {
         None => None,
         Some(_) if o.bump.is_some() => {
-            return Err(bad(format!(
-                "{what}: has both a bump map and a normal map; an object has one or the other"
+            return Err(bad(Refusal::new(
+                FieldPath::root(),
+                "has both a bump map and a normal map; an object has one or the other",
             )));
         }
-        Some(n) => Some(normal_map(n, base, cache).map_err(within("."))?),
+        Some(n) => Some(normal_map(n, base, cache).map_err(within(None))?),
     };
     let perturbation = bump
         .map(Perturbation::Bump)

@@ -1,10 +1,10 @@
 //! The one walk over every texture an object reads: its material's (the colour, then each
 //! textured coefficient and colour), then its clip, bump, normal and displacement maps.
 
-use super::super::field::FieldPath;
 use super::super::material::{ParamRef, ScalarDesc};
 use super::super::texture::TextureDesc;
 use super::ObjectDesc;
+use crate::field::FieldPath;
 
 /// The walk, written once for shared and mutable borrows: `$textures` is the material's list
 /// (`textures` or `textures_mut`), `$texture` the clip map's accessor (`texture` or

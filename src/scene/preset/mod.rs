@@ -22,6 +22,7 @@ use super::object::{ObjectDesc, build_object};
 use super::settings::{RenderDesc, SnapshotDesc, render_settings};
 use super::trace::Scene;
 use crate::error::{Error, Result};
+use crate::field::{FieldPath, Refusal, field_name};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
@@ -57,6 +58,35 @@ pub struct SceneDesc {
     pub snapshot: SnapshotDesc,
 }
 
+impl SceneDesc {
+    /// The name of the object `path` is in, if the path is in an object that has a name.
+    #[must_use]
+    pub fn object_name(&self, path: &FieldPath) -> Option<&str> {
+        path.object()
+            .and_then(|i| self.objects.get(i))
+            .map(|o| o.name.as_str())
+            .filter(|n| !n.is_empty())
+    }
+
+    /// Field `path` as every message names it ([`field_name`]): `objects[0].material.ka
+    /// (object "Ball")`.
+    #[must_use]
+    pub fn name_field(&self, path: &FieldPath) -> String {
+        field_name(path, self.object_name(path))
+    }
+
+    /// A refusal of one of this description's fields as a message: the field named by
+    /// [`SceneDesc::name_field`], then why.
+    #[must_use]
+    pub fn refusal_message(&self, r: &Refusal) -> String {
+        if r.field.steps().is_empty() {
+            r.message.clone()
+        } else {
+            format!("{}: {}", self.name_field(&r.field), r.message)
+        }
+    }
+}
+
 /// Builds the runtime scene. `preset_path` names the file in errors; asset paths are resolved
 /// relative to its directory. The scene's images together must fit
 /// [`MAX_SCENE_TEXEL_BYTES`](super::MAX_SCENE_TEXEL_BYTES) and its displaced meshes
@@ -71,7 +101,10 @@ pub fn build_scene(desc: &SceneDesc, preset_path: &Path, cache: &mut AssetCache)
 }
 
 fn build(desc: &SceneDesc, preset_path: &Path, cache: &mut AssetCache) -> Result<Scene> {
-    let bad = |msg: String| Error::invalid(preset_path, msg);
+    let bad = |r: Refusal| {
+        let object = desc.object_name(&r.field).unwrap_or_default();
+        Error::refused(preset_path, r).in_object(object)
+    };
     check_numbers(desc).map_err(bad)?;
     let settings = render_settings(&desc.render).map_err(bad)?;
     let camera = camera(&desc.camera, settings.width, settings.height).map_err(bad)?;
@@ -79,7 +112,8 @@ fn build(desc: &SceneDesc, preset_path: &Path, cache: &mut AssetCache) -> Result
 
     let mut lights = Vec::with_capacity(desc.lights.len());
     for (i, l) in desc.lights.iter().enumerate() {
-        lights.push(light(l).map_err(|m| bad(format!("lights[{i}]: {m}")))?);
+        let here = FieldPath::field("lights").at(i);
+        lights.push(light(l).map_err(|r| bad(r.under(&here)))?);
     }
 
     let mut objects = Vec::with_capacity(desc.objects.len());

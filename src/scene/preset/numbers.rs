@@ -8,14 +8,14 @@
 //! data format a crate provides.
 
 use super::SceneDesc;
-use crate::scene::field::{FieldPath, Step};
+use crate::field::{FieldPath, Refusal, Step};
 use serde::Serialize;
 use serde::ser::{self, Serializer};
 use std::fmt;
 
 /// Refuses a preset holding a NaN or an infinity anywhere (every `f32`, point and colour),
-/// naming the field: `ambient.color: NaN is not a number`,
-/// `objects[2].material.cd.scale: inf is not finite`. A point or colour is named whole
+/// naming the field (`ambient.color`: `NaN is not a number`, `objects[2].material.cd.scale`:
+/// `inf is not finite`; [`SceneDesc::refusal_message`] writes it as a message). A point or colour is named whole
 /// (`camera.eye`), a list item by its index. Ranges are checked by
 /// [`build_scene`](super::build_scene); this check needs no files, so it also guards every
 /// preset written out (a saved preset or the one a PNG carries never holds a value that does
@@ -23,11 +23,11 @@ use std::fmt;
 ///
 /// # Errors
 /// The first field that is not a finite number.
-pub fn check_numbers(desc: &SceneDesc) -> std::result::Result<(), String> {
+pub fn check_numbers(desc: &SceneDesc) -> std::result::Result<(), Refusal> {
     let mut walk = Walk::default();
     match desc.serialize(&mut walk) {
-        Err(Stop::NotFinite(path, v)) => Err(format!("{path}: {}", not_finite(v))),
-        Err(Stop::Custom(m)) => Err(m),
+        Err(Stop::NotFinite(path, v)) => Err(Refusal::new(path, not_finite(v))),
+        Err(Stop::Custom(m)) => Err(Refusal::new(FieldPath::root(), m)),
         Ok(()) => Ok(()),
     }
 }

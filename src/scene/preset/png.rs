@@ -210,8 +210,10 @@ pub fn save_render_png_checked(
         .copied()
         .chain(assets.iter().map(PathBuf::as_path))
         .collect();
-    check_numbers(desc)
-        .map_err(|m| Error::invalid(path, format!("not saved: the preset's {m}")))?;
+    check_numbers(desc).map_err(|r| {
+        let m = desc.refusal_message(&r);
+        Error::invalid(path, format!("not saved: the preset's {m}"))
+    })?;
     let mut desc = desc.clone();
     rebase_assets(&mut desc, preset_dir, png_dir);
     save_png_checked(

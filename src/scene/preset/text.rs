@@ -62,7 +62,8 @@ pub fn to_ron(desc: &SceneDesc) -> String {
 /// A value is not a finite number ("FILE: not saved: ambient.color: NaN is not a number"), or
 /// the file is refused or cannot be written: "cannot write FILE: reason".
 pub fn save_preset(desc: &SceneDesc, path: &Path) -> Result<()> {
-    check_numbers(desc).map_err(|m| Error::invalid(path, format!("not saved: {m}")))?;
+    check_numbers(desc)
+        .map_err(|r| Error::invalid(path, format!("not saved: {}", desc.refusal_message(&r))))?;
     let folder = path
         .parent()
         .filter(|p| !p.as_os_str().is_empty())

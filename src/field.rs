@@ -76,6 +76,15 @@ impl FieldPath {
         })
     }
 
+    /// The object the path is in (`2` for `objects[2].material.ka`), if it starts in one.
+    #[must_use]
+    pub fn object(&self) -> Option<usize> {
+        match self.0.as_slice() {
+            [Step::Field(list), Step::Index(i), ..] if list == "objects" => Some(*i),
+            _ => None,
+        }
+    }
+
     /// Reads `objects[0].material.cd.mapping`.
     ///
     /// # Errors
@@ -109,6 +118,70 @@ impl FieldPath {
             }
         }
         Ok(Self(steps))
+    }
+}
+
+/// A field as every message names it: its path, then the object it is in when that object has
+/// a name, `objects[0].material.ka (object "Ball")`. The path comes first and alone, so it can be
+/// copied into a lesson edit as it is; an empty or missing name adds nothing.
+#[must_use]
+pub fn field_name(path: &FieldPath, object: Option<&str>) -> String {
+    match object.filter(|n| !n.is_empty()) {
+        Some(name) => format!("{path} (object {name:?})"),
+        None => path.to_string(),
+    }
+}
+
+/// A value refused: the field (relative to what was checked; the caller puts its own path in
+/// front with [`Refusal::under`]) and why.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Refusal {
+    /// The field.
+    pub field: FieldPath,
+    /// Why (`-1 must be finite and not negative`).
+    pub message: String,
+}
+
+impl Refusal {
+    /// Field `field` is refused for `message`.
+    #[must_use]
+    pub fn new(field: FieldPath, message: impl Into<String>) -> Self {
+        Self {
+            field,
+            message: message.into(),
+        }
+    }
+
+    /// The same refusal, its field below `prefix`.
+    #[must_use]
+    pub fn under(self, prefix: &FieldPath) -> Self {
+        Self {
+            field: prefix.clone().join(&self.field),
+            message: self.message,
+        }
+    }
+}
+
+impl fmt::Display for Refusal {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.field.steps().is_empty() {
+            f.write_str(&self.message)
+        } else {
+            write!(f, "{}: {}", self.field, self.message)
+        }
+    }
+}
+
+impl From<Refusal> for String {
+    fn from(r: Refusal) -> Self {
+        r.to_string()
+    }
+}
+
+/// The path of one field (`"ka".into()` is `ka`).
+impl From<&str> for FieldPath {
+    fn from(name: &str) -> Self {
+        Self::field(name)
     }
 }
 

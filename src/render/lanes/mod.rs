@@ -335,8 +335,8 @@ pub fn sphere(o: &V3, d: &V3, t_max: &F) -> (F, M) {
     (t, hit)
 }
 
-/// The explicit 8-wide kernels (AVX2 `ymm` operations), each bit for bit its loop twin here.
-#[cfg(target_arch = "x86_64")]
+/// The explicit kernels, generic over pulp's `Simd` (16 lanes per instruction on AVX-512, 8 on
+/// AVX2, 4 on NEON), each bit for bit its loop twin here.
 pub mod wide;
 
 /// The sphere's hit point per lane: `o + t d` projected onto the unit sphere (also its normal).
@@ -384,7 +384,7 @@ pub fn flat(o: &V3, d: &V3, t_max: &F, flat: Flat) -> (F, V3, M) {
 /// One light's term added to the radiance `l` and the cosine sum `lit` where `reach` (the
 /// light loop of the packet path's direct light): `f = diffuse + spec pw` where the highlight
 /// is on, else `diffuse`; `l += f li (n . wi)`; `lit += n . wi`. `wide::add_light` is its
-/// 8-wide twin.
+/// explicit twin, generic over pulp's `Simd`.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 pub fn add_light(

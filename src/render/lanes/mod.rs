@@ -17,8 +17,9 @@
 use crate::math::{ATAN_POLY, Affine3A, PI, TAU, Vec3A};
 use std::f32::consts::FRAC_PI_2;
 
-/// Rays per packet: 8 f32 lanes fill an AVX2 register (two SSE2 registers, half an AVX-512 one).
-pub const LANES: usize = 8;
+/// Rays per packet: 16 f32 lanes fill an AVX-512 register (two AVX2 registers, four NEON or
+/// SSE2 ones).
+pub const LANES: usize = 16;
 
 /// One f32 per lane.
 pub type F = [f32; LANES];

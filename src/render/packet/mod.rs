@@ -73,8 +73,8 @@ impl pulp::WithSimd for Width {
     }
 }
 
-/// The instruction set [`arch`] picks on this CPU and the explicit kernels' width there, for
-/// `texplore bench`.
+/// The instruction set the packet path picks on this CPU and the explicit kernels' width
+/// there, for `texplore bench`.
 #[must_use]
 pub fn simd_level() -> String {
     let arch = arch();

@@ -179,7 +179,7 @@ pub fn render_tiles_with(
     let stats_on = s.adaptive.is_some();
     let rows = width * TILE_ROWS;
     let plan = packet::PacketPlan::new(scene, mode).ok();
-    let arch = pulp::Arch::new();
+    let arch = packet::arch();
     let (sums, stats, keys) = film.buffers_mut();
     let end = (tiles.end * rows).min(sums.len());
     let start = (tiles.start * rows).min(end);
@@ -279,7 +279,8 @@ fn scalar_row(scene: &Scene, row: &mut Row, y: u32, sample: u32, mask: Option<&[
 
 /// [`packet_row`] as pulp's operation: `with_simd` is inlined into the `#[target_feature]`
 /// function [`pulp::Arch::dispatch`] picks, and everything below it is `#[inline(always)]`, so
-/// the whole packet kernel is compiled for that instruction set. (A closure would not do: its
+/// the whole packet kernel is compiled for that instruction set; its token `S` sets the explicit
+/// kernels' width. (A closure would not do: its
 /// body stays a separate function compiled for the baseline.)
 struct PacketRow<'s, 'r, 'f> {
     scene: &'s Scene,
@@ -294,8 +295,9 @@ impl pulp::WithSimd for PacketRow<'_, '_, '_> {
     type Output = ();
 
     #[inline(always)]
-    fn with_simd<S: pulp::Simd>(self, _simd: S) {
+    fn with_simd<S: pulp::Simd>(self, simd: S) {
         packet_row(
+            simd,
             self.scene,
             self.plan,
             self.row,
@@ -309,7 +311,8 @@ impl pulp::WithSimd for PacketRow<'_, '_, '_> {
 /// The packet path over one row: [`LANES`] consecutive pixels at a time, the lanes the packet
 /// path cannot shade traced again by the scalar path.
 #[inline(always)]
-fn packet_row(
+fn packet_row<S: pulp::Simd>(
+    simd: S,
     scene: &Scene,
     plan: &packet::PacketPlan,
     row: &mut Row,
@@ -340,7 +343,7 @@ fn packet_row(
             }
             (px, py)
         });
-        let (rgb, keys, fallback) = plan.trace(&px, &py, active);
+        let (rgb, keys, fallback) = plan.trace(simd, &px, &py, active);
         for i in 0..LANES {
             if !active[i] {
                 continue;

@@ -17,8 +17,9 @@
 use crate::math::{ATAN_POLY, Affine3A, PI, TAU, Vec3A};
 use std::f32::consts::FRAC_PI_2;
 
-/// Rays per packet: 8 f32 lanes fill an AVX2 register (two SSE2 registers, half an AVX-512 one).
-pub const LANES: usize = 8;
+/// Rays per packet: 16 f32 lanes fill an AVX-512 register (two AVX2 registers, four NEON or
+/// SSE2 ones).
+pub const LANES: usize = 16;
 
 /// One f32 per lane.
 pub type F = [f32; LANES];
@@ -335,8 +336,8 @@ pub fn sphere(o: &V3, d: &V3, t_max: &F) -> (F, M) {
     (t, hit)
 }
 
-/// The explicit 8-wide kernels (AVX2 `ymm` operations), each bit for bit its loop twin here.
-#[cfg(target_arch = "x86_64")]
+/// The explicit kernels, generic over pulp's `Simd` (16 lanes per instruction on AVX-512, 8 on
+/// AVX2, 4 on NEON), each bit for bit its loop twin here.
 pub mod wide;
 
 /// The sphere's hit point per lane: `o + t d` projected onto the unit sphere (also its normal).
@@ -384,7 +385,7 @@ pub fn flat(o: &V3, d: &V3, t_max: &F, flat: Flat) -> (F, V3, M) {
 /// One light's term added to the radiance `l` and the cosine sum `lit` where `reach` (the
 /// light loop of the packet path's direct light): `f = diffuse + spec pw` where the highlight
 /// is on, else `diffuse`; `l += f li (n . wi)`; `lit += n . wi`. `wide::add_light` is its
-/// 8-wide twin.
+/// explicit twin, generic over pulp's `Simd`.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 pub fn add_light(

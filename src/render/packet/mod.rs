@@ -17,10 +17,12 @@
 //! needs what the packet path lacks (a mirror, a textured coefficient, a bump or normal map) is
 //! traced again by the scalar path ([`super::radiance_keyed_cell`]), exactly as before.
 //!
-//! Runtime dispatch: the pass runs inside [`pulp::Arch::dispatch`], which calls it through a
-//! function compiled for the best instruction set the CPU has (AVX-512, AVX2 + FMA, else the
-//! SSE2 baseline; NEON on aarch64). Everything on the packet's hot path is `#[inline(always)]`,
-//! so it is compiled for that level.
+//! Runtime dispatch: the pass runs inside [`pulp::Arch::dispatch`] (the token [`arch`] picks),
+//! which calls it through a function compiled for the best instruction set the CPU has (AVX-512,
+//! AVX2 + FMA, else the SSE2 baseline; NEON on aarch64), and hands the stages that token `S`:
+//! the explicit kernels ([`super::lanes::wide`]) run `S::F32_LANES` lanes per instruction (16
+//! on AVX-512, 8 on AVX2, 4 on NEON); under pulp's `Scalar` the stages take the lane loops.
+//! Everything on the packet's hot path is `#[inline(always)]`, so it is compiled for that level.
 
 // Lane loops index several arrays by the lane (`for i in 0..LANES`), the form the vectoriser
 // reads best; `&` and `|` between lane conditions keep them branch-free (selects, not jumps).
@@ -40,25 +42,54 @@ use crate::texture::{Texture, View};
 use nearest::Nearest;
 use std::fmt;
 
-/// The instruction set [`pulp::Arch::dispatch`] picks on this CPU, for `texplore bench`.
+/// The instruction set the packet path runs on: pulp's best for this CPU
+/// ([`pulp::Arch::new`]), except that AVX-512 gives way to AVX2 while a packet is narrower than
+/// its 16 lanes (the explicit kernels would otherwise run every lane through pulp's `Scalar`).
 #[must_use]
-pub fn simd_level() -> &'static str {
+pub(crate) fn arch() -> pulp::Arch {
+    let arch = pulp::Arch::new();
     #[cfg(any(target_arch = "x86", target_arch = "x86_64"))]
+    if let pulp::Arch::V4(v4) = arch
+        && !LANES.is_multiple_of(16)
     {
-        match pulp::Arch::new() {
-            pulp::Arch::V4(_) => "AVX-512 (x86-64-v4)",
-            pulp::Arch::V3(_) => "AVX2 + FMA (x86-64-v3)",
-            _ => "SSE2 (x86-64 baseline)",
+        return pulp::Arch::V3(*v4);
+    }
+    arch
+}
+
+/// How wide `S` is, as [`simd_level`] says it.
+struct Width;
+
+impl pulp::WithSimd for Width {
+    type Output = String;
+
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _simd: S) -> String {
+        if S::IS_SCALAR {
+            "the lane loops alone (no explicit kernels)".to_owned()
+        } else {
+            format!("explicit kernels {} lanes wide", S::F32_LANES)
         }
     }
+}
+
+/// The instruction set the packet path picks on this CPU and the explicit kernels' width
+/// there, for `texplore bench`.
+#[must_use]
+pub fn simd_level() -> String {
+    let arch = arch();
+    let width = arch.dispatch(Width);
+    #[cfg(any(target_arch = "x86", target_arch = "x86_64"))]
+    let name = match arch {
+        pulp::Arch::V4(_) => "AVX-512 (x86-64-v4)",
+        pulp::Arch::V3(_) => "AVX2 + FMA (x86-64-v3)",
+        _ => "SSE2 (x86-64 baseline)",
+    };
     #[cfg(target_arch = "aarch64")]
-    {
-        "NEON (aarch64)"
-    }
+    let name = "NEON (aarch64)";
     #[cfg(not(any(target_arch = "x86", target_arch = "x86_64", target_arch = "aarch64")))]
-    {
-        "scalar (no SIMD dispatch on this architecture)"
-    }
+    let name = "scalar (no SIMD dispatch on this architecture)";
+    format!("{name}, {width}")
 }
 
 /// Why a scene takes the scalar path.
@@ -163,9 +194,6 @@ pub(crate) struct PacketPlan<'a> {
     scene: &'a Scene,
     orthographic: bool,
     objects: Vec<ObjectPlan<'a>>,
-    /// The explicit 8-wide kernels' token (AVX2 and up); `None`: the lane loops alone.
-    #[cfg(target_arch = "x86_64")]
-    wide: Option<pulp::x86::V3>,
 }
 
 fn constant(s: &Scalar) -> Option<f32> {
@@ -291,19 +319,18 @@ impl<'a> PacketPlan<'a> {
             scene,
             orthographic,
             objects,
-            #[cfg(target_arch = "x86_64")]
-            wide: lanes::wide::token(),
         })
     }
 
-    /// The spherical map per lane, 8 wide where the CPU allows.
+    /// The spherical map per lane: the explicit kernel at `S`'s width, or the lane loops
+    /// where `S` is pulp's `Scalar` (which LLVM vectorises for the baseline instruction set).
     #[inline(always)]
-    fn spherical(&self, p: &V3) -> (F, F) {
-        #[cfg(target_arch = "x86_64")]
-        if let Some(s) = self.wide {
-            return lanes::wide::spherical(s, p);
+    fn spherical<S: pulp::Simd>(s: S, p: &V3) -> (F, F) {
+        if S::IS_SCALAR {
+            lanes::spherical(p)
+        } else {
+            lanes::wide::spherical(s, p)
         }
-        lanes::spherical(p)
     }
 
     /// The camera rays through the lanes' film positions (`Camera::primary_ray`).

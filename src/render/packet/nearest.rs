@@ -124,15 +124,15 @@ impl<'a> Nearest<'a> {
 /// The (u, v) of object-space points `p` under `mapping`, then the (u, v) transform `affine`
 /// (`UvAffine::apply`: non-finite results become (0, 0)).
 #[inline(always)]
-pub(super) fn map_lanes(
-    plan: &PacketPlan,
+pub(super) fn map_lanes<S: pulp::Simd>(
+    s: S,
     mapping: LaneMapping,
     affine: Option<&UvAffine>,
     p: &V3,
     mine: M,
 ) -> (F, F) {
     let (mut u, mut v) = match mapping {
-        LaneMapping::Spherical => plan.spherical(p),
+        LaneMapping::Spherical => PacketPlan::spherical(s, p),
         LaneMapping::Cylindrical => lanes::cylindrical(p),
         LaneMapping::Rectangular => lanes::rectangular(p),
         LaneMapping::Formula(f, natural) => formula_lanes(f, natural, p, mine),

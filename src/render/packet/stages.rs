@@ -55,12 +55,19 @@ struct Facing {
 }
 
 impl PacketPlan<'_> {
-    /// Traces one packet: film positions `px`, `py` for the `active` lanes. Returns the radiance
-    /// (r, g, b per lane), the edge keys, and the lanes the scalar path must trace instead.
+    /// Traces one packet: film positions `px`, `py` for the `active` lanes, the explicit
+    /// kernels at `s`'s width. Returns the radiance (r, g, b per lane), the edge keys, and the
+    /// lanes the scalar path must trace instead.
     #[inline(always)]
-    pub(crate) fn trace(&self, px: &F, py: &F, active: M) -> (C3, [u32; LANES], M) {
+    pub(crate) fn trace<S: pulp::Simd>(
+        &self,
+        s: S,
+        px: &F,
+        py: &F,
+        active: M,
+    ) -> (C3, [u32; LANES], M) {
         let (o, d) = self.camera_rays(px, py);
-        let hits = self.nearest_hit(&o, &d, active);
+        let hits = self.nearest_hit(s, &o, &d, active);
 
         // Background for misses; the scalar path for lanes whose object it must shade.
         let bg = self.scene.settings.background;
@@ -77,16 +84,17 @@ impl PacketPlan<'_> {
         if !shaded.contains(&true) {
             return (rgb, [0; LANES], fallback);
         }
-        let terms = self.material_terms(&hits, shaded);
+        let terms = self.material_terms(s, &hits, shaded);
         let facing = facing(&d, terms.ng);
-        let (l, lit, keys) = self.direct_light(&hits, &terms, &facing, shaded);
+        let (l, lit, keys) = self.direct_light(s, &hits, &terms, &facing, shaded);
         finish(&mut rgb, shaded, &terms.glow, &l, &lit);
         (rgb, keys, fallback)
     }
 
-    /// The nearest hit over the objects, in preset order (`Scene::intersect`).
+    /// The nearest hit over the objects, in preset order (`Scene::intersect`): the explicit
+    /// sphere and selects at `s`'s width, the lane loops where `s` is pulp's `Scalar`.
     #[inline(always)]
-    fn nearest_hit(&self, o: &V3, d: &V3, active: M) -> Hits {
+    fn nearest_hit<S: pulp::Simd>(&self, s: S, o: &V3, d: &V3, active: M) -> Hits {
         let mut t_best = [0.0_f32; LANES];
         for i in 0..LANES {
             t_best[i] = if active[i] { f32::INFINITY } else { 0.0 };
@@ -103,8 +111,7 @@ impl PacketPlan<'_> {
                     d.linear(&ob.object_from_world.matrix3),
                 )
             };
-            #[cfg(target_arch = "x86_64")]
-            if let Some(s) = self.wide {
+            if !S::IS_SCALAR {
                 use lanes::wide;
                 let (t, p, n, hit) = match ob.kind {
                     Kind::Sphere => {
@@ -162,7 +169,7 @@ impl PacketPlan<'_> {
     /// World-space point and normal per lane (`Scene::resolve`), the (u, v) and the material's
     /// terms (`Material::shade_point`), object by object for the objects this packet hit.
     #[inline(always)]
-    fn material_terms(&self, hits: &Hits, shaded: M) -> Terms {
+    fn material_terms<S: pulp::Simd>(&self, s: S, hits: &Hits, shaded: M) -> Terms {
         let (lp, ln) = (&hits.point, &hits.normal);
         let mut t = Terms {
             p: *lp,
@@ -201,7 +208,7 @@ impl PacketPlan<'_> {
                     }
                 }
             }
-            let tex = self.texels(sh, lp, mine);
+            let tex = Self::texels(s, sh, lp, mine);
             match sh.response {
                 Response::Lit {
                     ka,
@@ -265,12 +272,12 @@ impl PacketPlan<'_> {
     /// mapping and the (u, v) transform, then the lane-wise nearest lookup where it applies,
     /// else the scalar filter per lane (a gather).
     #[inline(always)]
-    fn texels(&self, sh: &super::Shading, lp: &V3, mine: M) -> C3 {
+    fn texels<S: pulp::Simd>(s: S, sh: &super::Shading, lp: &V3, mine: M) -> C3 {
         // A function, not a closure: a closure this size stays out of line, compiled for the
         // baseline instead of the dispatched level.
         #[allow(clippy::manual_map)]
         let uv = match sh.mapping {
-            Some(m) => Some(map_lanes(self, m, sh.affine.as_ref(), lp, mine)),
+            Some(m) => Some(map_lanes(s, m, sh.affine.as_ref(), lp, mine)),
             None => None,
         };
         let mut tex = [[0.0; LANES]; 3];
@@ -311,7 +318,14 @@ impl PacketPlan<'_> {
     /// the point past its shadow ray. Returns the radiance, the sum of the lit cosines (for the
     /// glow's weight) and the edge keys (object, and one bit per shadowing light).
     #[inline(always)]
-    fn direct_light(&self, hits: &Hits, t: &Terms, f: &Facing, shaded: M) -> (C3, F, [u32; LANES]) {
+    fn direct_light<S: pulp::Simd>(
+        &self,
+        s: S,
+        hits: &Hits,
+        t: &Terms,
+        f: &Facing,
+        shaded: M,
+    ) -> (C3, F, [u32; LANES]) {
         let (p, ns, ng, wo) = (&t.p, &f.n, &f.n, &f.wo);
         let mut l = t.base;
         let pmax = p.max_abs();
@@ -379,8 +393,7 @@ impl PacketPlan<'_> {
                 }
             }
             let li_c = [radiance.0, radiance.1, radiance.2];
-            #[cfg(target_arch = "x86_64")]
-            if let Some(s) = self.wide {
+            if !S::IS_SCALAR {
                 lanes::wide::add_light(
                     s,
                     &reach,

@@ -24,7 +24,7 @@ pub use task::Task;
 #[cfg(target_arch = "wasm32")]
 pub use slices::run_slices;
 
-use crate::math::{Rgb, Vec2, hash3};
+use crate::math::{Ray, RayDifferential, Rgb, Vec2, hash3};
 use crate::sampler::{PixelFilter, permute};
 use crate::scene::{RenderSettings, Scene};
 use rayon::prelude::*;
@@ -343,7 +343,21 @@ fn packet_row<S: pulp::Simd>(
             }
             (px, py)
         });
-        let (rgb, keys, fallback) = plan.trace(simd, &px, &py, active);
+        // Each lane's cell, where a texture is filtered over the sample's footprint.
+        // The first `spp` samples' cell is the same for every pixel.
+        let mut cells = [Vec2::ZERO; LANES];
+        if plan.needs_cells() {
+            if sample < s.spp {
+                cells = [s.sampler.cell_size(sample, s.spp); LANES];
+            } else {
+                for i in 0..LANES {
+                    if active[i] {
+                        cells[i] = sample_position_and_cell(s, (x0 + i) as u32, y, sample).1;
+                    }
+                }
+            }
+        }
+        let (rgb, keys, fallback) = plan.trace(simd, &px, &py, &cells, active);
         for i in 0..LANES {
             if !active[i] {
                 continue;
@@ -483,20 +497,7 @@ pub fn radiance(scene: &Scene, pos: Vec2, spacing: f32) -> Rgb {
 #[must_use]
 #[inline]
 pub fn radiance_keyed(scene: &Scene, pos: Vec2, spacing: f32) -> (Rgb, u32) {
-    // Without a footprint filter only the main ray is needed (saves two camera directions).
-    if !scene.needs_differentials() {
-        return scene
-            .camera
-            .primary_ray(pos)
-            .map_or((Rgb::BLACK, 0), |ray| scene.trace_keyed(&ray, None));
-    }
-    match scene.camera.ray(pos, spacing) {
-        Some((ray, diff)) => {
-            let diff = diff.scaled_about(&ray, spacing.max(MIN_FOOTPRINT_SCALE));
-            scene.trace_keyed(&ray, Some(&diff))
-        }
-        None => (Rgb::BLACK, 0),
-    }
+    radiance_keyed_cell(scene, pos, Vec2::splat(spacing))
 }
 
 /// [`radiance_keyed`] for a sample standing for a `cell` (pixels along x and y) of its pixel:
@@ -505,25 +506,45 @@ pub fn radiance_keyed(scene: &Scene, pos: Vec2, spacing: f32) -> (Rgb, u32) {
 #[must_use]
 #[inline]
 pub fn radiance_keyed_cell(scene: &Scene, pos: Vec2, cell: Vec2) -> (Rgb, u32) {
-    if cell.x == cell.y || !scene.needs_differentials() {
-        return radiance_keyed(scene, pos, cell.x);
+    // Without a footprint filter only the main ray is needed (saves two camera directions).
+    if !scene.needs_differentials() {
+        return scene
+            .camera
+            .primary_ray(pos)
+            .map_or((Rgb::BLACK, 0), |ray| scene.trace_keyed(&ray, None));
     }
-    match scene.camera.ray(pos, cell.x.min(cell.y)) {
-        Some((ray, d)) => {
-            let (sx, sy) = (
-                cell.x.max(MIN_FOOTPRINT_SCALE),
-                cell.y.max(MIN_FOOTPRINT_SCALE),
-            );
-            let diff = crate::math::RayDifferential {
-                rx_origin: ray.origin + (d.rx_origin - ray.origin) * sx,
-                rx_dir: ray.dir + (d.rx_dir - ray.dir) * sx,
-                ry_origin: ray.origin + (d.ry_origin - ray.origin) * sy,
-                ry_dir: ray.dir + (d.ry_dir - ray.dir) * sy,
-            };
-            scene.trace_keyed(&ray, Some(&diff))
-        }
+    match footprint_ray(scene, pos, cell) {
+        Some((ray, diff)) => scene.trace_keyed(&ray, Some(&diff)),
         None => (Rgb::BLACK, 0),
     }
+}
+
+/// The camera ray through film position `pos` with its ray differentials for a sample standing
+/// for a `cell` of its pixel (pixels along x and y, each at least [`MIN_FOOTPRINT_SCALE`]):
+/// the neighbours' rays `cell.x` pixels right and `cell.y` pixels down. `None` where the
+/// camera has no ray. The scalar and the packet path both take a footprint from here.
+#[must_use]
+#[inline]
+pub fn footprint_ray(scene: &Scene, pos: Vec2, cell: Vec2) -> Option<(Ray, RayDifferential)> {
+    if cell.x == cell.y {
+        let (ray, diff) = scene.camera.ray(pos, cell.x)?;
+        return Some((
+            ray,
+            diff.scaled_about(&ray, cell.x.max(MIN_FOOTPRINT_SCALE)),
+        ));
+    }
+    let (ray, d) = scene.camera.ray(pos, cell.x.min(cell.y))?;
+    let (sx, sy) = (
+        cell.x.max(MIN_FOOTPRINT_SCALE),
+        cell.y.max(MIN_FOOTPRINT_SCALE),
+    );
+    let diff = RayDifferential {
+        rx_origin: ray.origin + (d.rx_origin - ray.origin) * sx,
+        rx_dir: ray.dir + (d.rx_dir - ray.dir) * sx,
+        ry_origin: ray.origin + (d.ry_origin - ray.origin) * sy,
+        ry_dir: ray.dir + (d.ry_dir - ray.dir) * sy,
+    };
+    Some((ray, diff))
 }
 
 /// A preview at one ray per `block` x `block` pixels, drawn as blocks: linear RGB, row-major.

@@ -145,9 +145,17 @@ fn every_filter_digest() -> (u64, usize) {
                                     Filter::Bicubic => image.bicubic(uv, wu, wv),
                                     Filter::Trilinear => mip.trilinear(uv, dx, dy, wu, wv),
                                     Filter::Ewa => mip.ewa(uv, dx, dy, 8.0, wu, wv),
-                                    Filter::Footprint => {
-                                        footprint::footprint(Some(&mip), &image, uv, dx, dy, wu, wv)
-                                    }
+                                    // The tap grid (the filter's path without a table):
+                                    // the summed-area table came after this digest.
+                                    Filter::Footprint => footprint::supersampled(
+                                        Some(&mip),
+                                        &image,
+                                        Wrap::reduce_uv(wu, wv, uv),
+                                        dx,
+                                        dy,
+                                        wu,
+                                        wv,
+                                    ),
                                 };
                                 for x in c.to_array() {
                                     for b in x.to_bits().to_le_bytes() {
@@ -167,7 +175,9 @@ fn every_filter_digest() -> (u64, usize) {
 
 /// Every filter under every pair of wraps gives, bit for bit, the colours the lookups gave
 /// before the wrap-free fetches: the digest was recorded from the build before them (commit
-/// 05894ee, `Wrap::index` by Euclidean remainder, `Wrap::reduce` by `f32::floor`).
+/// 05894ee, `Wrap::index` by Euclidean remainder, `Wrap::reduce` by `f32::floor`). The
+/// footprint filter is read through its tap grid, its only path then (its summed-area path is
+/// checked against exact integrals in `summed/tests.rs` and `footprint.rs`).
 #[test]
 fn every_filter_reads_what_it_read_before_the_wrap_free_fetches() {
     let (hash, count) = every_filter_digest();

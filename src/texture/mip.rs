@@ -13,7 +13,7 @@
 
 use super::{ImageData, Texels, Wrap};
 use crate::math::{Rgb, Vec2, linear_to_srgb8};
-use std::sync::{Arc, LazyLock};
+use std::sync::{Arc, LazyLock, OnceLock};
 
 /// The default largest ratio of the footprint's major to minor axis that EWA honours; longer
 /// footprints are widened (blurrier, but the work per lookup stays bounded).
@@ -26,6 +26,9 @@ pub const MAX_ANISOTROPY_LIMIT: f32 = 64.0;
 #[derive(Clone, Debug)]
 pub struct MipPyramid {
     levels: Vec<Arc<ImageData>>,
+    /// The summed-area table the footprint filter reads, built on first use
+    /// ([`MipPyramid::summed_area`]); the error when its memory could not be had.
+    table: OnceLock<Result<super::SummedArea, String>>,
 }
 
 impl MipPyramid {
@@ -41,7 +44,27 @@ impl MipPyramid {
             let next = downsample(last);
             levels.push(Arc::new(next));
         }
-        Self { levels }
+        Self {
+            levels,
+            table: OnceLock::new(),
+        }
+    }
+
+    /// The summed-area table of the image (of its finest level within
+    /// [`super::MAX_TABLE_TEXELS`]), built on the first call and kept; `None` when its memory
+    /// could not be had (the footprint filter then takes its taps).
+    #[must_use]
+    pub fn summed_area(&self) -> Option<&super::SummedArea> {
+        self.table
+            .get_or_init(|| super::SummedArea::for_pyramid(self))
+            .as_ref()
+            .ok()
+    }
+
+    /// Whether the summed-area table has been built.
+    #[must_use]
+    pub fn has_summed_area(&self) -> bool {
+        self.table.get().is_some_and(Result::is_ok)
     }
 
     /// Number of levels (1 for a 1 x 1 image).
@@ -62,13 +85,19 @@ impl MipPyramid {
         &self.levels[i.min(self.levels.len() - 1)]
     }
 
-    /// Bytes taken by the levels above the base (the base belongs to the texture).
+    /// Bytes taken by the levels above the base (the base belongs to the texture) and by the
+    /// summed-area table once built.
     #[must_use]
     pub fn extra_bytes(&self) -> usize {
+        let table = match self.table.get() {
+            Some(Ok(t)) => t.bytes(),
+            _ => 0,
+        };
         self.levels[1..]
             .iter()
             .map(|l| l.width() as usize * l.height() as usize * l.bytes_per_texel())
-            .sum()
+            .sum::<usize>()
+            + table
     }
 
     /// The continuous level whose texels are `texels` base texels wide (0 when magnified).

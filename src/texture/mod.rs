@@ -11,6 +11,7 @@ mod formula;
 mod image;
 mod mip;
 mod procedural;
+mod summed;
 
 pub use debug::{
     AGREE_COLOUR, Compare, DEFAULT_TEXELS, MAX_COMPARE_TOLERANCE, View, difference_color,
@@ -25,6 +26,7 @@ pub use image::{
 };
 pub use mip::{DEFAULT_MAX_ANISOTROPY, EWA_FOOTPRINT_SCALE, MAX_ANISOTROPY_LIMIT, MipPyramid};
 pub use procedural::{Checker, uv_grid_image};
+pub use summed::{MAX_TABLE_TEXELS, SummedArea};
 
 use crate::mapping::{AnyMapping, Mapping, TexCoord, UvAffine};
 use crate::math::{Rgb, Vec2, Vec3A};
@@ -435,8 +437,9 @@ pub enum Filter {
         message = "Elliptical weighted average: follows the pixel's stretched footprint; sharp and alias-free."
     )]
     Ewa,
-    /// The mean of the bilinear texture over the pixel's footprint parallelogram (texture-space
-    /// supersampling, `footprint.rs`): one sample per pixel converges to the box-filtered image.
+    /// The mean of the bilinear texture over the pixel's footprint parallelogram (from a
+    /// summed-area table, `footprint.rs`): one sample per pixel converges to the box-filtered
+    /// image.
     #[strum(
         message = "Integrates the texture over the pixel's footprint: one sample gives the supersampled pixel, no blur."
     )]

@@ -16,12 +16,9 @@ use texplore::snapshot::{MAX_BAD_FRACTION, MAX_MEAN_DIFF, compare};
 /// The presets the packet path does not take, with the reason it gives. Adding packet support
 /// for one of them makes this test fail until it moves to the compared list.
 const SCALAR_PRESETS: &[(&str, &str)] = &[
-    ("bumps", "a filter that needs ray differentials"),
-    ("checker-plane", "a filter that needs ray differentials"),
-    ("cutout", "a filter that needs ray differentials"),
+    ("cutout", "a clip map"),
     ("cylinder", "a cylinder"),
-    ("displaced", "a filter that needs ray differentials"),
-    ("earth-day-night", "a filter that needs ray differentials"),
+    ("displaced", "a mesh"),
     ("mesh", "a mesh"),
     ("panorama", "a fisheye or spherical camera"),
     ("two-triangles", "a mesh"),
@@ -106,8 +103,9 @@ fn every_preset_renders_the_same_on_both_paths() {
         scalar_only, expected,
         "presets on the scalar path (compared: {compared:?})"
     );
-    // The packet path covers the common case: the lecture's Earth and the peer scene.
-    for must in ["earth", "peer-sphere"] {
+    // The packet path covers the common case: the lecture's Earth and the peer scene, and
+    // textures filtered over the footprint (EWA on the checker plane, trilinear on the Earth).
+    for must in ["earth", "peer-sphere", "checker-plane", "earth-day-night"] {
         assert!(
             compared.iter().any(|(n, _)| n == must),
             "{must} should take the packet path"
@@ -291,5 +289,66 @@ fn nearest_image_lookups_and_lane_samplers_are_bit_identical_to_the_scalar_path(
         desc.render.spp = 3;
         let scene = build_scene(&desc, path, &mut cache).unwrap_or_else(|e| panic!("{e}"));
         assert_films_identical(&format!("{name} jittered 3 spp"), &scene, 3);
+    }
+}
+
+#[test]
+fn footprint_filters_on_the_packet_path_are_bit_identical_to_the_scalar_path() {
+    // Textures filtered over the pixel's footprint read it per lane from the lane's ray
+    // differentials: the peer sphere under each footprint filter, a matte sphere turned and
+    // scaled (object space differs from world space) and a tiled plane at a grazing angle,
+    // at 1 spp (its second set per lane, non-square cells past it) and 4 spp.
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("presets");
+    let mut cache = AssetCache::new();
+    let peer = std::fs::read_to_string(dir.join("peer-sphere.ron")).expect("preset");
+    let mut cases = Vec::new();
+    for filter in ["Footprint", "Ewa", "Trilinear"] {
+        let text = peer.replace("filter: Bilinear", &format!("filter: {filter}"));
+        assert_ne!(text, peer, "peer-sphere.ron names its filter");
+        cases.push((format!("peer-sphere {filter}"), text));
+    }
+    cases.push((
+        "turned matte sphere and tiled plane".to_owned(),
+        r#"(
+            version: 1,
+            camera: (eye: (0, 1.2, 4), look_at: (0, 0, 0), projection: Pinhole(fov: 50)),
+            render: (width: 64, height: 48, spp: 1),
+            ambient: (ls: 0.4),
+            lights: [Point(position: (2, 3, 3), ls: 3.0, shadows: true)],
+            objects: [
+                (shape: Sphere, transform: (rotate: (20, 50, 0), scale: (0.8, 0.8, 0.8)),
+                    material: Matte(cd: Image(path: "../assets/earth_2048x1024.jpg",
+                        mapping: Spherical, filter: Footprint))),
+                (shape: Plane, transform: (translate: (0, -1, 0)),
+                    material: Matte(cd: Image(path: "../assets/checker_512.png",
+                        mapping: Rectangular, filter: Footprint, wrap: Mirror,
+                        uv: (scale: (6, 6), offset: (0.3, -0.2))))),
+            ],
+        )"#
+        .to_owned(),
+    ));
+    for (name, text) in &cases {
+        let path = dir.join("footprint-case.ron");
+        let mut desc = parse_preset(text, &path).unwrap_or_else(|e| panic!("{name}: {e}"));
+        desc.render.width = 67; // not a multiple of the packet width
+        desc.render.height = 41;
+        desc.render.adaptive = None;
+        for (sampler, spp) in [
+            (PixelSampler::Regular, 1),
+            (PixelSampler::Jittered, 1),
+            (PixelSampler::Regular, 4),
+        ] {
+            desc.render.sampler = sampler;
+            desc.render.spp = spp;
+            let scene = build_scene(&desc, &path, &mut cache).unwrap_or_else(|e| panic!("{e}"));
+            packet_eligibility(&scene, SimdMode::Auto)
+                .unwrap_or_else(|why| panic!("{name} should take the packet path: {why}"));
+            assert_films_identical(&format!("{name} {sampler} {spp} spp"), &scene, spp + 2);
+        }
+        // Adaptive sampling reads the edge keys, whose bit 31 says "filtered over the footprint".
+        desc.render.spp = 1;
+        desc.render.adaptive = Some(ADAPTIVE);
+        let scene = build_scene(&desc, &path, &mut cache).unwrap_or_else(|e| panic!("{e}"));
+        assert_paths_agree(name, &scene);
     }
 }

@@ -9,11 +9,14 @@
 //! kernels in [`super::lanes`], operation for operation as the scalar code computes them. Per
 //! lane, the texel lookup (the existing `Texture::eval_tex_coord`: wrap, nearest or bilinear
 //! index, the compact storage's decode) and each shadow ray (`Scene::occluded_except`, with the
-//! same self-shadow rule as `Scene::shade_at_depth`) run the scalar code.
+//! same self-shadow rule as `Scene::shade_at_depth`) run the scalar code. A texture filtered
+//! over the pixel's footprint (trilinear, EWA, footprint) is read per lane too, from the
+//! lane's hit: its ray differentials ([`super::footprint_ray`], the sample's cell), their
+//! footprint on the tangent plane and the scalar `Texture::eval`, as the scalar path reads it.
 //!
 //! Eligibility ([`PacketPlan::new`]) is decided once per pass from the scene: pinhole or
-//! orthographic camera, the shaded view, no footprint filter (so no ray differentials), no clip
-//! map, and only spheres, planes, rectangles and disks. Within an eligible scene a lane whose hit
+//! orthographic camera, the shaded view, no clip map, and only spheres, planes, rectangles and
+//! disks. Within an eligible scene a lane whose hit
 //! needs what the packet path lacks (a mirror, a textured coefficient, a bump or normal map) is
 //! traced again by the scalar path ([`super::radiance_keyed_cell`]), exactly as before.
 //!
@@ -142,6 +145,11 @@ struct Shading<'a> {
     mapping: Option<LaneMapping<'a>>,
     affine: Option<UvAffine>,
     response: Response,
+    /// Whether the texture is filtered over the pixel's footprint (trilinear, EWA, footprint):
+    /// its lanes find their footprint from the ray differentials and read the texture per lane.
+    footprint: bool,
+    /// The shape's own mapping (what `Uv` and formulas read as mesh_u, mesh_v).
+    natural: Mapping,
 }
 
 /// The mappings the packet path computes lane-wise ([`nearest::map_lanes`]); a texture under
@@ -194,6 +202,8 @@ pub(crate) struct PacketPlan<'a> {
     scene: &'a Scene,
     orthographic: bool,
     objects: Vec<ObjectPlan<'a>>,
+    /// Whether some object's shading has `footprint` set.
+    footprint: bool,
 }
 
 fn constant(s: &Scalar) -> Option<f32> {
@@ -242,9 +252,6 @@ fn shading<'a>(material: &'a Material, shape: &Shape) -> Option<Shading<'a>> {
         Material::Emissive { ls, ce } => (ce, Response::Emissive { ls: constant(ls)? }),
         Material::Reflective { .. } => return None,
     };
-    if texture.needs_differentials() {
-        return None;
-    }
     let mapping = match texture.mapping() {
         None => None,
         Some(AnyMapping::Builtin(m)) => Some(LaneMapping::of(*m, shape)?),
@@ -256,6 +263,8 @@ fn shading<'a>(material: &'a Material, shape: &Shape) -> Option<Shading<'a>> {
         mapping,
         affine: texture.uv_affine(),
         response,
+        footprint: texture.needs_differentials(),
+        natural: natural_mapping(shape),
     })
 }
 
@@ -268,9 +277,6 @@ impl<'a> PacketPlan<'a> {
         }
         if scene.settings.view != View::Shaded {
             return no("a debug view");
-        }
-        if scene.needs_differentials() {
-            return no("a filter that needs ray differentials");
         }
         if scene.has_clips() {
             return no("a clip map");
@@ -315,11 +321,21 @@ impl<'a> PacketPlan<'a> {
                 shading,
             });
         }
+        let footprint = objects
+            .iter()
+            .any(|o| o.shading.is_some_and(|s| s.footprint));
         Ok(Self {
             scene,
             orthographic,
             objects,
+            footprint,
         })
+    }
+
+    /// Whether some object's texture is filtered over the pixel's footprint: then
+    /// [`PacketPlan::trace`] needs each lane's sample cell.
+    pub(crate) const fn needs_cells(&self) -> bool {
+        self.footprint
     }
 
     /// The spherical map per lane: the explicit kernel at `S`'s width, or the lane loops

@@ -16,6 +16,7 @@ use crate::mapping::TexCoord;
 use crate::material::{Light, ShadePoint};
 use crate::math::{Ray, Rgb, Vec2, Vec3A};
 use crate::scene::SHADOW_OFFSET_RELATIVE;
+use crate::texture::TextureContext;
 
 /// Three colour channels per lane.
 type C3 = [F; 3];
@@ -45,6 +46,8 @@ struct Terms {
     /// The object's translation's largest coordinate, for the shadow offset.
     trans: F,
     self_shadowing_sphere: M,
+    /// Lanes whose texture was filtered over the pixel's footprint (the edge key's bit 31).
+    prefiltered: M,
 }
 
 /// The direction toward the viewer and the normal turned to face it.
@@ -64,6 +67,7 @@ impl PacketPlan<'_> {
         s: S,
         px: &F,
         py: &F,
+        cells: &[Vec2; LANES],
         active: M,
     ) -> (C3, [u32; LANES], M) {
         let (o, d) = self.camera_rays(px, py);
@@ -84,7 +88,7 @@ impl PacketPlan<'_> {
         if !shaded.contains(&true) {
             return (rgb, [0; LANES], fallback);
         }
-        let terms = self.material_terms(s, &hits, shaded);
+        let terms = self.material_terms(s, &hits, shaded, (px, py, cells));
         let facing = facing(&d, terms.ng);
         let (l, lit, keys) = self.direct_light(s, &hits, &terms, &facing, shaded);
         finish(&mut rgb, shaded, &terms.glow, &l, &lit);
@@ -169,7 +173,13 @@ impl PacketPlan<'_> {
     /// World-space point and normal per lane (`Scene::resolve`), the (u, v) and the material's
     /// terms (`Material::shade_point`), object by object for the objects this packet hit.
     #[inline(always)]
-    fn material_terms<S: pulp::Simd>(&self, s: S, hits: &Hits, shaded: M) -> Terms {
+    fn material_terms<S: pulp::Simd>(
+        &self,
+        s: S,
+        hits: &Hits,
+        shaded: M,
+        samples: (&F, &F, &[Vec2; LANES]),
+    ) -> Terms {
         let (lp, ln) = (&hits.point, &hits.normal);
         let mut t = Terms {
             p: *lp,
@@ -183,6 +193,7 @@ impl PacketPlan<'_> {
             lit_material: [false; LANES],
             trans: [0.0; LANES],
             self_shadowing_sphere: [false; LANES],
+            prefiltered: [false; LANES],
         };
         let ambient = self.scene.ambient;
         let amb = [ambient.0, ambient.1, ambient.2];
@@ -208,7 +219,14 @@ impl PacketPlan<'_> {
                     }
                 }
             }
-            let tex = Self::texels(s, sh, lp, mine);
+            let tex = if sh.footprint {
+                for i in 0..LANES {
+                    t.prefiltered[i] |= mine[i];
+                }
+                self.footprint_texels(ob, sh, hits, samples, mine)
+            } else {
+                Self::texels(s, sh, lp, mine)
+            };
             match sh.response {
                 Response::Lit {
                     ka,
@@ -314,6 +332,52 @@ impl PacketPlan<'_> {
         tex
     }
 
+    /// The texture's colour at the lanes in `mine` for a texture filtered over the pixel's
+    /// footprint, per lane as `Scene::texture_context` and `Texture::eval` give it on the scalar
+    /// path: the sample's ray differentials ([`crate::render::footprint_ray`]) in object space,
+    /// their footprint on the plane tangent at the hit, the mapping with its gradients, the
+    /// filter.
+    #[inline(always)]
+    fn footprint_texels(
+        &self,
+        ob: &super::ObjectPlan,
+        sh: &super::Shading,
+        hits: &Hits,
+        (px, py, cells): (&F, &F, &[Vec2; LANES]),
+        mine: M,
+    ) -> C3 {
+        let mut tex = [[0.0; LANES]; 3];
+        for i in 0..LANES {
+            if !mine[i] {
+                continue;
+            }
+            let p = hits.point.lane(i);
+            let n = hits.normal.lane(i);
+            let pos = Vec2::new(px[i], py[i]);
+            let (dpdx, dpdy) = match crate::render::footprint_ray(self.scene, pos, cells[i]) {
+                Some((_, d)) => {
+                    let d = if ob.identity {
+                        d
+                    } else {
+                        d.transformed(&ob.object_from_world)
+                    };
+                    d.footprint_on_plane(p, n)
+                }
+                None => (Vec3A::ZERO, Vec3A::ZERO),
+            };
+            let ctx = TextureContext {
+                p,
+                dpdx,
+                dpdy,
+                shape_uv: None,
+                natural: sh.natural,
+            };
+            let c = sh.texture.eval(&ctx);
+            (tex[0][i], tex[1][i], tex[2][i]) = (c.0, c.1, c.2);
+        }
+        tex
+    }
+
     /// Direct light (`Scene::shade_at_depth`): the ambient term, then each light that reaches
     /// the point past its shadow ray. Returns the radiance, the sum of the lit cosines (for the
     /// glow's weight) and the edge keys (object, and one bit per shadowing light).
@@ -334,7 +398,7 @@ impl PacketPlan<'_> {
         for i in 0..LANES {
             offset[i] = SHADOW_OFFSET_RELATIVE * (pmax[i] + t.trans[i]).max(f32::MIN_POSITIVE);
             keys[i] = if shaded[i] {
-                (hits.object[i] + 1) & 0xffff
+                (hits.object[i] + 1) & 0xffff | u32::from(t.prefiltered[i]) << 31
             } else {
                 0
             };

@@ -97,8 +97,7 @@ fn sample_position_impl<const CELL: bool>(
     let (offset, cell) = if k < s.spp {
         (s.sampler.sample(s.seed, pixel, k, s.spp), cell_of(k, s.spp))
     } else {
-        let n = s.max_spp().saturating_sub(s.spp).max(1);
-        let j = permute((k - s.spp) % n, n, hash3(s.seed, pixel, ADAPTIVE_STREAM));
+        let (j, n) = second_set_index(s, pixel, k);
         (
             s.sampler.sample(s.seed ^ ADAPTIVE_STREAM, pixel, j, n),
             cell_of(j, n),
@@ -111,6 +110,42 @@ fn sample_position_impl<const CELL: bool>(
         f => corner + Vec2::splat(0.5) + f.warp(offset),
     };
     (pos, cell)
+}
+
+/// Sample `k` (at least `spp`) of pixel number `pixel` as sample `j` of the second set of `n`,
+/// shuffled per pixel.
+#[inline]
+fn second_set_index(s: &RenderSettings, pixel: u32, k: u32) -> (u32, u32) {
+    let n = s.max_spp().saturating_sub(s.spp).max(1);
+    let j = permute((k - s.spp) % n, n, hash3(s.seed, pixel, ADAPTIVE_STREAM));
+    (j, n)
+}
+
+/// The cell of sample `k` (as [`sample_position_and_cell`] gives it) when it is the same for
+/// every pixel: in the first set, and in a second set of one sample; `None` when the second
+/// set is shuffled per pixel.
+#[must_use]
+#[inline]
+pub fn uniform_cell(s: &RenderSettings, k: u32) -> Option<Vec2> {
+    if k < s.spp {
+        Some(s.sampler.cell_size(k, s.spp))
+    } else if s.max_spp().saturating_sub(s.spp) <= 1 {
+        Some(s.sampler.cell_size(0, 1))
+    } else {
+        None
+    }
+}
+
+/// The cell of sample `k` of pixel (x, y), as [`sample_position_and_cell`] gives it, without the
+/// position.
+#[must_use]
+#[inline]
+pub fn sample_cell(s: &RenderSettings, x: u32, y: u32, k: u32) -> Vec2 {
+    if k < s.spp {
+        return s.sampler.cell_size(k, s.spp);
+    }
+    let (j, n) = second_set_index(s, y * s.width + x, k);
+    s.sampler.cell_size(j, n)
 }
 
 /// Seeds the second sample set of adaptive passes apart from the first.
@@ -344,15 +379,15 @@ fn packet_row<S: pulp::Simd>(
             (px, py)
         });
         // Each lane's cell, where a texture is filtered over the sample's footprint.
-        // The first `spp` samples' cell is the same for every pixel.
+        // Usually one cell for the whole packet (see `uniform_cell`).
         let mut cells = [Vec2::ZERO; LANES];
         if plan.needs_cells() {
-            if sample < s.spp {
-                cells = [s.sampler.cell_size(sample, s.spp); LANES];
+            if let Some(c) = uniform_cell(s, sample) {
+                cells = [c; LANES];
             } else {
                 for i in 0..LANES {
                     if active[i] {
-                        cells[i] = sample_position_and_cell(s, (x0 + i) as u32, y, sample).1;
+                        cells[i] = sample_cell(s, (x0 + i) as u32, y, sample);
                     }
                 }
             }

@@ -62,6 +62,7 @@ const MIN_LEVEL_SPAN: f64 = 4.0;
 /// pyramid has one, else by supersampling. Without a mip pyramid, footprints longer than
 /// [`MAX_TAPS`] taps are sampled by [`MAX_TAPS`] taps at full resolution.
 #[must_use]
+#[inline(always)]
 pub fn footprint(
     mip: Option<&MipPyramid>,
     image: &ImageData,
@@ -85,7 +86,7 @@ pub fn footprint(
 
 /// The summed-area path (see the module documentation), or `None` for a footprint it does not
 /// take: magnified, or too small for a table of a coarser level.
-#[inline]
+#[inline(always)]
 fn summed(t: &SummedArea, uv: Vec2, duvdx: Vec2, duvdy: Vec2, wu: Wrap, wv: Wrap) -> Option<Rgb> {
     let (w, h) = (f64::from(t.width()), f64::from(t.height()));
     let (ax, ay) = (f64::from(duvdx.x) * w, f64::from(duvdx.y) * h);

@@ -513,7 +513,7 @@ impl ImageTexture {
 
     /// The colour at a hit; the [`mark`] where a formula mapping is not finite.
     #[must_use]
-    #[inline]
+    #[inline(always)]
     pub fn eval(&self, ctx: &TextureContext) -> Rgb {
         let tc = self.tex_coord(ctx);
         if tc.uv.is_finite() {

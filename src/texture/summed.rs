@@ -143,7 +143,7 @@ impl SummedArea {
     /// quadratic B-spline. The box's integral is the antiderivative at its four
     /// corners, added and subtracted: 36 reads, and exact.
     #[must_use]
-    #[inline]
+    #[inline(always)]
     pub fn box_sum(&self, x0: f64, x1: f64, y0: f64, y1: f64, wu: Wrap, wv: Wrap) -> [f64; 3] {
         let (sx0, sx1, sy0, sy1) = (
             Spline::at(x0),
@@ -190,7 +190,7 @@ impl SummedArea {
     /// The mean of the bilinear image over the box centred at (`cx`, `cy`) with half-widths
     /// `hx`, `hy` (texel units of the summed level, both positive).
     #[must_use]
-    #[inline]
+    #[inline(always)]
     pub fn box_mean(&self, cx: f64, cy: f64, hx: f64, hy: f64, wu: Wrap, wv: Wrap) -> Rgb {
         let s = self.box_sum(cx - hx, cx + hx, cy - hy, cy + hy, wu, wv);
         let k = 0.25 / (hx * hy);

@@ -372,7 +372,11 @@ impl PacketPlan<'_> {
                 shape_uv: None,
                 natural: sh.natural,
             };
-            let c = sh.texture.eval(&ctx);
+            // An image's read inlined here, so it is compiled for the dispatched level.
+            let c = match sh.texture {
+                crate::texture::Texture::Image(t) => t.eval(&ctx),
+                t => t.eval(&ctx),
+            };
             (tex[0][i], tex[1][i], tex[2][i]) = (c.0, c.1, c.2);
         }
         tex

@@ -1,5 +1,6 @@
 //! The renderer's hot paths: ray-shape intersection per shape, each mapping, each texture filter
-//! per lookup, and one full 1-spp pass of the Earth.
+//! per lookup, the footprint filter's summed-area table against its tap grid by footprint size
+//! (and the table's build), and one full 1-spp pass of the Earth.
 //!
 //! `cargo bench --bench hot_paths -- --warm-up-time 1 --measurement-time 3`
 
@@ -15,7 +16,8 @@ use texplore::names::Named as _;
 use texplore::render::{Film, render_pass};
 use texplore::scene::{AssetCache, Overrides, apply_overrides, build_scene, load_preset};
 use texplore::texture::{
-    DEFAULT_MAX_ANISOTROPY, Filter, ImageData, ImageTexture, Lookup, MipPyramid, Wrap, load_image,
+    DEFAULT_MAX_ANISOTROPY, Filter, ImageData, ImageTexture, Lookup, MipPyramid, SummedArea, Wrap,
+    footprint, load_image,
 };
 
 /// Rays from a camera-like origin toward random points near the unit shapes, so hits and
@@ -128,6 +130,63 @@ fn filters(c: &mut Criterion) {
     g.finish();
 }
 
+/// The footprint filter per lookup on the peer's 2048x1024 checker: its summed-area table
+/// against the tap grid it replaced, for footprints 1, 4 and 16 texels wide (a quarter turned,
+/// so sheared against the texel grid); and the table's build.
+fn footprint_sizes(c: &mut Criterion) {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let image: Arc<ImageData> = Arc::new(
+        load_image(&root.join("assets/tex_checker_2048x1024.png"), false).expect("the checker"),
+    );
+    let mip = MipPyramid::build(image.clone());
+    let _ = mip.summed_area();
+    let mut rng = SampleRng::new(3, 5, 7);
+    let uvs: Vec<Vec2> = (0..4096)
+        .map(|_| Vec2::new(rng.next_f32(), rng.next_f32()))
+        .collect();
+    let (w, h) = (image.width() as f32, image.height() as f32);
+    let mut g = c.benchmark_group("footprint");
+    for texels in [1.0_f32, 4.0, 16.0] {
+        let dx = Vec2::new(texels * 0.97 / w, texels * 0.24 / h);
+        let dy = Vec2::new(-texels * 0.24 / w, texels * 0.97 / h);
+        let r = Wrap::Repeat;
+        let mut i = 0;
+        g.bench_function(format!("table-{texels}-texels"), |b| {
+            b.iter(|| {
+                i = (i + 1) % uvs.len();
+                black_box(footprint::footprint(
+                    Some(&mip),
+                    &image,
+                    uvs[i],
+                    dx,
+                    dy,
+                    r,
+                    r,
+                ))
+            });
+        });
+        g.bench_function(format!("taps-{texels}-texels"), |b| {
+            b.iter(|| {
+                i = (i + 1) % uvs.len();
+                black_box(footprint::supersampled(
+                    Some(&mip),
+                    &image,
+                    uvs[i],
+                    dx,
+                    dy,
+                    r,
+                    r,
+                ))
+            });
+        });
+    }
+    g.sample_size(10);
+    g.bench_function("table-build-2048x1024", |b| {
+        b.iter(|| black_box(SummedArea::build(&image, 0).expect("memory")));
+    });
+    g.finish();
+}
+
 fn earth_pass(c: &mut Criterion) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("presets/earth.ron");
     let mut desc = load_preset(&path).expect("presets/earth.ron");
@@ -152,5 +211,12 @@ fn earth_pass(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, intersection, mappings, filters, earth_pass);
+criterion_group!(
+    benches,
+    intersection,
+    mappings,
+    filters,
+    footprint_sizes,
+    earth_pass
+);
 criterion_main!(benches);

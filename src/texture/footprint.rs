@@ -50,7 +50,7 @@ pub const MAX_CELLS: u32 = 16;
 /// The narrowest half-width (texels) of a box the summed-area path reads: a box's mean is a
 /// difference of sums over the whole image divided by its area, so it must not be too thin.
 /// Footprints narrower on both axes are magnified and read bilinearly.
-const MIN_HALF_WIDTH: f64 = 0.01;
+pub const MIN_HALF_WIDTH: f64 = 0.01;
 
 /// How many level texels a footprint must span on both axes to be read from a table of a mip
 /// level above the base (the level's texels blur by their own width, which must stay small
@@ -158,8 +158,10 @@ fn clamp_shift(c: f64, reach: f64, n: f64, wrap: Wrap) -> f64 {
 }
 
 /// The supersampling path: the midpoint rule over the parallelogram (see the module
-/// documentation). `uv` is already reduced by the wraps.
-pub(crate) fn supersampled(
+/// documentation). `uv` is already reduced by the wraps. Public for the benchmark that sets the
+/// table against it; the filter calls it only where the table does not serve.
+#[must_use]
+pub fn supersampled(
     mip: Option<&MipPyramid>,
     image: &ImageData,
     uv: Vec2,

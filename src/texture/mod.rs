@@ -6,7 +6,7 @@
 
 mod debug;
 mod explain;
-mod footprint;
+pub mod footprint;
 mod formula;
 mod image;
 mod mip;

@@ -47,7 +47,7 @@ impl SummedArea {
             format!(
                 "out of memory for the summed-area table of {} ({} MB)",
                 image.name,
-                n * 24 >> 20
+                (n * 24) >> 20
             )
         })?;
         sums.resize(n, [0.0; 3]);

@@ -133,11 +133,32 @@ fn forcing_the_scalar_path_is_reported() {
 
 #[test]
 fn packet_renders_are_the_same_for_1_and_2_threads() {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("presets/earth.ron");
-    let scene = scene_of(&path, 64, 48, 2, &mut AssetCache::new());
-    let one = render(&scene, SimdMode::Auto, 1);
-    let two = render(&scene, SimdMode::Auto, 2);
-    assert!(one == two, "the film depends on the thread count");
+    // The Earth, the checker plane under EWA and the peer sphere under the footprint filter
+    // (whose summed-area table the first lookup builds, on whichever thread comes first).
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("presets");
+    let mut cache = AssetCache::new();
+    let mut scenes: Vec<(String, Scene)> = ["earth", "checker-plane"]
+        .iter()
+        .map(|n| {
+            let path = dir.join(format!("{n}.ron"));
+            ((*n).to_owned(), scene_of(&path, 64, 48, 2, &mut cache))
+        })
+        .collect();
+    let peer = std::fs::read_to_string(dir.join("peer-sphere.ron"))
+        .expect("preset")
+        .replace("filter: Bilinear", "filter: Footprint");
+    let path = dir.join("peer-sphere.ron");
+    let mut desc = parse_preset(&peer, &path).expect("the peer scene");
+    (desc.render.width, desc.render.height, desc.render.spp) = (64, 48, 2);
+    desc.render.adaptive = Some(ADAPTIVE);
+    let scene = build_scene(&desc, &path, &mut AssetCache::new()).expect("builds");
+    scenes.push(("peer-sphere footprint".to_owned(), scene));
+    for (name, scene) in &scenes {
+        packet_eligibility(scene, SimdMode::Auto).expect("the packet path");
+        let one = render(scene, SimdMode::Auto, 1);
+        let two = render(scene, SimdMode::Auto, 2);
+        assert!(one == two, "{name}: the film depends on the thread count");
+    }
 }
 
 /// A scene whose packets mix hits of a packet-shaded sphere, hits of a mirror the packet path

@@ -269,27 +269,12 @@ mod tests {
                 Vec2::new(0.0, 0.06),
             ),
         ] {
-            let n = 256;
-            let mut sum = Rgb::BLACK;
-            for j in 0..n {
-                for i in 0..n {
-                    let s = (i as f32 + 0.5) / n as f32 - 0.5;
-                    let t = (j as f32 + 0.5) / n as f32 - 0.5;
-                    sum += img.bilinear(uv + dx * s + dy * t, R, R);
-                }
-            }
-            let exact = sum / (n * n) as f32;
+            let want = exact(&img, uv, dx, dy);
             let f = footprint(None, &img, uv, dx, dy, R, R);
-            let centre = img.bilinear(uv, R, R);
-            let diff = |a: Rgb, b: Rgb| {
-                let (a, b) = (a.to_array(), b.to_array());
-                [0, 1, 2].map(|k| (a[k] - b[k]).abs())
-            };
-            let err = diff(f, exact);
-            assert!(err.iter().all(|e| *e < 0.02), "{f:?} vs {exact:?}");
+            assert!(max_diff(f, want) < 0.02, "{f:?} vs {want:?}");
             // ... where one bilinear tap at the centre is far off.
-            let off = diff(centre, exact);
-            assert!(off.iter().any(|e| *e > 0.05), "{centre:?} vs {exact:?}");
+            let centre = img.bilinear(uv, R, R);
+            assert!(max_diff(centre, want) > 0.05, "{centre:?} vs {want:?}");
         }
     }
 

@@ -15,7 +15,7 @@
 //! under this crate's wrap modes and texel layout.
 
 use super::{ImageData, MipPyramid, Wrap};
-use crate::math::Rgb;
+use crate::math::{Rgb, floor_fast_f64};
 
 /// The most texels one table sums: 4 M (a 2048 x 2048 image, about 100 MB of sums). A larger
 /// image's table sums its finest mip level within that ([`SummedArea::for_pyramid`]).
@@ -211,24 +211,12 @@ impl Spline {
     #[inline(always)]
     fn at(x: f64) -> Self {
         let xs = x - 0.5;
-        let k = floor(xs);
+        let k = floor_fast_f64(xs);
         let t = xs - k;
         Self {
             k: k as i64,
             w: [0.5 * (1.0 - t) * (1.0 - t), 0.5 + t - t * t, 0.5 * t * t],
         }
-    }
-}
-
-/// `x.floor()` without a libm call (one on the x86-64 baseline): through an integer for
-/// |x| < 2^52, where that conversion is exact.
-#[inline(always)]
-fn floor(x: f64) -> f64 {
-    if x.abs() < 4_503_599_627_370_496.0 {
-        let t = x as i64 as f64;
-        if t > x { t - 1.0 } else { t }
-    } else {
-        x.floor()
     }
 }
 

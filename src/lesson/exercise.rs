@@ -288,7 +288,7 @@ fn check_checker(f: &FormulaColour, squares: (f32, f32), colors: (Rgb, Rgb)) -> 
     let points = values.len();
     let non_finite = values.iter().filter(|(_, got)| got.is_none()).count();
     // The share of points where the formula gives `want(u, v)`.
-    let share = |want: &dyn Fn(f32, f32) -> Rgb| {
+    let share = |want: Pattern<'_>| {
         let k = values
             .iter()
             .filter(|&&((u, v), got)| got.is_some_and(|g| close(g, want(u, v))))
@@ -341,18 +341,21 @@ fn grey(c: Rgb) -> String {
     }
 }
 
+/// A colour at each (u, v): the checker, or one of its common mistakes.
+type Pattern<'a> = &'a dyn Fn(f32, f32) -> Rgb;
+
 /// The checker's two-step hint: the first common mistake the formula follows, else none.
 fn checker_hint(
     squares: (f32, f32),
     colors: (Rgb, Rgb),
-    share: &dyn Fn(&dyn Fn(f32, f32) -> Rgb) -> f64,
+    share: &dyn Fn(Pattern<'_>) -> f64,
     values: &[((f32, f32), Option<Rgb>)],
 ) -> Hint {
     let (a, b) = (grey(colors.0), grey(colors.1));
     let (n, m) = squares;
     let pattern = format!("floor({n} u) + floor({m} v)");
     let rule = format!("{a} where {pattern} is even and {b} where it is odd");
-    let follows = |want: &dyn Fn(f32, f32) -> Rgb| share(want) >= HINT_SHARE;
+    let follows = |want: Pattern<'_>| share(want) >= HINT_SHARE;
     // A stripe's colour: the first where floor(k t) is even.
     let stripe = |k: f32, t: f32| {
         if (k * t).floor().rem_euclid(2.0) == 0.0 {

@@ -85,182 +85,24 @@ fn steps(x: &Exercise, formulas: &[&str]) -> (String, String, String) {
     )
 }
 
-/// Every shipped exercise's start and three common mistakes on each: the verdict (which
-/// formula agrees), the first step (what is wrong, not how to write it) and the second (the
-/// fix, with the formula to write).
-#[test]
-fn each_start_and_three_common_mistakes_get_the_verdict_and_both_hint_steps() {
-    let probe = exercise("07");
-    let (pu, pv) = (probe.solution[0].clone(), probe.solution[1].clone());
-    // The light probe's r cos beta without (1 + ...) / 2, and its alpha measured from +x.
-    let unshifted = "acos(z / sqrt(x*x + y*y + z*z)) / pi * x / sqrt(x*x + y*y)";
-    let from_x = "(1 + acos(x / sqrt(x*x + y*y + z*z)) / pi * z / sqrt(z*z + y*y)) / 2";
-    let turned = format!("1 - {pv}");
-    let cases: Vec<(&str, Vec<&str>, &str, &str, &str)> = vec![
-        // Lesson 4, the rectangle: its start, then v upside down, u unshifted, v from y.
-        (
-            "04",
-            vec![],
-            "neither u nor v agrees",
-            "u and v are swapped",
-            "u = (z + 1) / 2 and v = (x + 1) / 2",
-        ),
-        (
-            "04",
-            vec!["(z + 1) / 2", "(1 - x) / 2"],
-            "u agrees",
-            "v is upside down",
-            "write v = (x + 1) / 2",
-        ),
-        (
-            "04",
-            vec!["z", "(x + 1) / 2"],
-            "v agrees",
-            "u runs over the wrong range",
-            "z runs from -1 to 1, so bring it into [0, 1]: write u = (z + 1) / 2",
-        ),
-        (
-            "04",
-            vec!["(z + 1) / 2", "(y + 1) / 2"],
-            "u agrees",
-            "v follows the wrong axis",
-            "v follows x: write v = (x + 1) / 2",
-        ),
-        // Lesson 5, the cylinder (it starts empty: see below): issue 37's v = y, an angle
-        // not divided by 2 pi, v from z, and u in degrees.
-        (
-            "05",
-            vec!["atan2(x, z) / (2 * pi)", "y"],
-            "u agrees",
-            "v runs over the wrong range",
-            "y runs from -1 to 1, so bring it into [0, 1]: write v = (y + 1) / 2",
-        ),
-        (
-            "05",
-            vec!["atan2(x, z)", "clamp((y + 1) / 2)"],
-            "v agrees",
-            "u is not a share of a whole turn",
-            "a whole turn is 2 pi (tau)",
-        ),
-        (
-            "05",
-            vec!["fract(atan2(x, z) / tau)", "(z + 1) / 2"],
-            "u agrees",
-            "v follows the wrong axis",
-            "the height along the cylinder's axis, y: write v = (y + 1) / 2",
-        ),
-        (
-            "05",
-            vec!["fract(atan2(x, z) / 360)", "(y + 1) / 2"],
-            "v agrees",
-            "u mixes degrees and radians",
-            "divide by tau (2 pi), not 360: write u = fract(atan2(x, z) / tau)",
-        ),
-        // Lesson 6, the sphere: its start (the missing 1 -), asin for acos, degrees, and u a
-        // half turn off.
-        (
-            "06",
-            vec![],
-            "u agrees",
-            "v is upside down at the poles",
-            "write v = 1 - acos(y) / pi",
-        ),
-        (
-            "06",
-            vec!["fract(atan2(x, z) / tau)", "asin(y) / pi"],
-            "u agrees",
-            "v is measured from the equator",
-            "theta = acos(y) is the angle from the north pole",
-        ),
-        (
-            "06",
-            vec!["fract(atan2(x, z) / tau)", "1 - acos(y) / 180"],
-            "u agrees",
-            "v mixes degrees and radians",
-            "divide by pi, not 180: write v = 1 - acos(y) / pi",
-        ),
-        (
-            "06",
-            vec!["fract(atan2(x, z) / tau + 0.5)", "1 - acos(y) / pi"],
-            "v agrees",
-            "u is a half turn off",
-            "do not add 0.5 or pi to it",
-        ),
-        // Lesson 7, the light probe: its start (mirrored), v upside down, the image turned,
-        // u without (1 + ...) / 2, and alpha from the wrong axis.
-        (
-            "07",
-            vec![],
-            "v agrees",
-            "the image is mirrored left to right",
-            "plus r cos beta, not minus: write u = (1 + acos(z",
-        ),
-        (
-            "07",
-            vec![&pu, &turned],
-            "u agrees",
-            "v is upside down",
-            "v = (1 + r sin beta) / 2",
-        ),
-        (
-            "07",
-            vec![&turned, &pu],
-            "neither u nor v agrees",
-            "the image is turned by a quarter turn",
-            "beta is measured from +x toward +y",
-        ),
-        (
-            "07",
-            vec![unshifted, &pv],
-            "v agrees",
-            "u runs over the wrong range",
-            "(t + 1) / 2 takes t from [-1, 1] into [0, 1]: write u = (1 + acos(z",
-        ),
-        (
-            "07",
-            vec![from_x, &pv],
-            "v agrees",
-            "u follows the wrong axis",
-            "the probe looks along +z",
-        ),
-        // Lesson 8, the checker: its start (stripes), the colours exchanged, 4 x 4 squares,
-        // and the right squares in the wrong greys.
-        (
-            "08",
-            vec![],
-            "-",
-            "the colour changes along u only: these are stripes, not squares",
-            "add v's term: 0.9 where floor(8 u) + floor(8 v) is even and 0.1 where it is odd",
-        ),
-        (
-            "08",
-            vec!["0.1 + 0.8 * 2 * fract((floor(8 * u) + floor(8 * v)) / 2)"],
-            "-",
-            "their colours are the wrong way round",
-            "the square at u, v = 0 has the first colour",
-        ),
-        (
-            "08",
-            vec!["0.9 - 0.8 * 2 * fract((floor(4 * u) + floor(4 * v)) / 2)"],
-            "-",
-            "the squares are the wrong size: 4 x 4 of them, not 8 x 8",
-            "multiply u by 8 and v by 8",
-        ),
-        (
-            "08",
-            vec!["0.8 - 0.6 * 2 * fract((floor(8 * u) + floor(8 * v)) / 2)"],
-            "-",
-            "the pattern is right but the greys are not: 0.8 and 0.2",
-            "0.9 where floor(8 u) + floor(8 v) is even",
-        ),
-    ];
-    for (lesson, formulas, verdict, what, fix) in cases {
-        let x = exercise(lesson);
+/// One case of a lesson's exercise: the formulas (none: the lesson's start), the verdict the
+/// first step starts with, words of the first step and words of the second.
+type Case<'a> = (Vec<&'a str>, &'a str, &'a str, &'a str);
+
+/// The exercise of lesson `prefix` on each case: the verdict (which formula agrees), the first
+/// step (what is wrong, not how to write it) and the second (the fix, the formula to write).
+fn expect_steps(prefix: &str, cases: &[Case<'_>]) {
+    let x = exercise(prefix);
+    for (formulas, verdict, what, fix) in cases {
         let start: Vec<&str> = x.start.iter().map(String::as_str).collect();
-        let formulas = if formulas.is_empty() { start } else { formulas };
-        let (v, w, f) = steps(&x, &formulas);
-        let case = format!("lesson {lesson}, {formulas:?}:\n  hint: {w}\n  fix: {f}");
-        assert_eq!(v, verdict, "{case}");
+        let formulas = if formulas.is_empty() {
+            &start
+        } else {
+            formulas
+        };
+        let (v, w, f) = steps(&x, formulas);
+        let case = format!("lesson {prefix}, {formulas:?}:\n  hint: {w}\n  fix: {f}");
+        assert_eq!(v, *verdict, "{case}");
         assert!(w.contains(what), "{what:?} in {case}");
         assert!(f.contains(fix), "{fix:?} in {case}");
         // The first step does not give the answer away.
@@ -269,12 +111,197 @@ fn each_start_and_three_common_mistakes_get_the_verdict_and_both_hint_steps() {
             assert!(!w.contains(answer.as_str()), "{case}");
         }
     }
-    // Lesson 5 starts from empty fields: Check names the empty formula instead.
+}
+
+/// Lesson 4, the rectangle: its start (swapped), then v upside down, u not brought into
+/// [0, 1], v from y.
+#[test]
+fn lesson_4_start_and_three_mistakes_get_the_verdict_and_both_hint_steps() {
+    expect_steps(
+        "04",
+        &[
+            (
+                vec![],
+                "neither u nor v agrees",
+                "u and v are swapped",
+                "u = (z + 1) / 2 and v = (x + 1) / 2",
+            ),
+            (
+                vec!["(z + 1) / 2", "(1 - x) / 2"],
+                "u agrees",
+                "v is upside down",
+                "write v = (x + 1) / 2",
+            ),
+            (
+                vec!["z", "(x + 1) / 2"],
+                "v agrees",
+                "u runs over the wrong range",
+                "z runs from -1 to 1, so bring it into [0, 1]: write u = (z + 1) / 2",
+            ),
+            (
+                vec!["(z + 1) / 2", "(y + 1) / 2"],
+                "u agrees",
+                "v follows the wrong axis",
+                "v follows x: write v = (x + 1) / 2",
+            ),
+        ],
+    );
+}
+
+/// Lesson 5, the cylinder: it starts from empty fields (Check names the empty formula);
+/// issue 37's v = y, an angle not divided by 2 pi, v from z, and u in degrees.
+#[test]
+fn lesson_5_start_and_four_mistakes_get_the_verdict_and_both_hint_steps() {
+    expect_steps(
+        "05",
+        &[
+            (
+                vec!["atan2(x, z) / (2 * pi)", "y"],
+                "u agrees",
+                "v runs over the wrong range",
+                "y runs from -1 to 1, so bring it into [0, 1]: write v = (y + 1) / 2",
+            ),
+            (
+                vec!["atan2(x, z)", "clamp((y + 1) / 2)"],
+                "v agrees",
+                "u is not a share of a whole turn",
+                "a whole turn is 2 pi (tau)",
+            ),
+            (
+                vec!["fract(atan2(x, z) / tau)", "(z + 1) / 2"],
+                "u agrees",
+                "v follows the wrong axis",
+                "the height along the cylinder's axis, y: write v = (y + 1) / 2",
+            ),
+            (
+                vec!["fract(atan2(x, z) / 360)", "(y + 1) / 2"],
+                "v agrees",
+                "u mixes degrees and radians",
+                "divide by tau (2 pi), not 360: write u = fract(atan2(x, z) / tau)",
+            ),
+        ],
+    );
     let x = exercise("05");
     let e = x
         .check(&x.start)
         .expect_err("empty formulas do not compile");
     assert!(e.to_string().starts_with("u: "), "{e}");
+}
+
+/// Lesson 6, the sphere: its start (the missing 1 -), asin for acos, degrees, and u a half
+/// turn off.
+#[test]
+fn lesson_6_start_and_three_mistakes_get_the_verdict_and_both_hint_steps() {
+    expect_steps(
+        "06",
+        &[
+            (
+                vec![],
+                "u agrees",
+                "v is upside down at the poles",
+                "write v = 1 - acos(y) / pi",
+            ),
+            (
+                vec!["fract(atan2(x, z) / tau)", "asin(y) / pi"],
+                "u agrees",
+                "v is measured from the equator",
+                "theta = acos(y) is the angle from the north pole",
+            ),
+            (
+                vec!["fract(atan2(x, z) / tau)", "1 - acos(y) / 180"],
+                "u agrees",
+                "v mixes degrees and radians",
+                "divide by pi, not 180: write v = 1 - acos(y) / pi",
+            ),
+            (
+                vec!["fract(atan2(x, z) / tau + 0.5)", "1 - acos(y) / pi"],
+                "v agrees",
+                "u is a half turn off",
+                "do not add 0.5 or pi to it",
+            ),
+        ],
+    );
+}
+
+/// Lesson 7, the light probe: its start (mirrored), v upside down, the image turned, u
+/// without (1 + ...) / 2, and alpha measured from +x.
+#[test]
+fn lesson_7_start_and_four_mistakes_get_the_verdict_and_both_hint_steps() {
+    let probe = exercise("07");
+    let (pu, pv) = (probe.solution[0].as_str(), probe.solution[1].as_str());
+    let unshifted = "acos(z / sqrt(x*x + y*y + z*z)) / pi * x / sqrt(x*x + y*y)";
+    let from_x = "(1 + acos(x / sqrt(x*x + y*y + z*z)) / pi * z / sqrt(z*z + y*y)) / 2";
+    let turned = format!("1 - {pv}");
+    expect_steps(
+        "07",
+        &[
+            (
+                vec![],
+                "v agrees",
+                "the image is mirrored left to right",
+                "plus r cos beta, not minus: write u = (1 + acos(z",
+            ),
+            (
+                vec![pu, &turned],
+                "u agrees",
+                "v is upside down",
+                "v = (1 + r sin beta) / 2",
+            ),
+            (
+                vec![&turned, pu],
+                "neither u nor v agrees",
+                "the image is turned by a quarter turn",
+                "beta is measured from +x toward +y",
+            ),
+            (
+                vec![unshifted, pv],
+                "v agrees",
+                "u runs over the wrong range",
+                "(t + 1) / 2 takes t from [-1, 1] into [0, 1]: write u = (1 + acos(z",
+            ),
+            (
+                vec![from_x, pv],
+                "v agrees",
+                "u follows the wrong axis",
+                "the probe looks along +z",
+            ),
+        ],
+    );
+}
+
+/// Lesson 8, the checker: its start (stripes), the colours exchanged, 4 x 4 squares, and the
+/// right squares in the wrong greys. A texture's first step has no u or v verdict.
+#[test]
+fn lesson_8_start_and_three_mistakes_get_both_hint_steps() {
+    expect_steps(
+        "08",
+        &[
+            (
+                vec![],
+                "-",
+                "the colour changes along u only: these are stripes, not squares",
+                "add v's term: 0.9 where floor(8 u) + floor(8 v) is even and 0.1 where it is odd",
+            ),
+            (
+                vec!["0.1 + 0.8 * 2 * fract((floor(8 * u) + floor(8 * v)) / 2)"],
+                "-",
+                "their colours are the wrong way round",
+                "the square at u, v = 0 has the first colour",
+            ),
+            (
+                vec!["0.9 - 0.8 * 2 * fract((floor(4 * u) + floor(4 * v)) / 2)"],
+                "-",
+                "the squares are the wrong size: 4 x 4 of them, not 8 x 8",
+                "multiply u by 8 and v by 8",
+            ),
+            (
+                vec!["0.8 - 0.6 * 2 * fract((floor(8 * u) + floor(8 * v)) / 2)"],
+                "-",
+                "the pattern is right but the greys are not: 0.8 and 0.2",
+                "0.9 where floor(8 u) + floor(8 v) is even",
+            ),
+        ],
+    );
 }
 
 /// A formula that fits no common mistake gets the verdict and, as its fix, the lesson's own

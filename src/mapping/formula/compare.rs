@@ -282,8 +282,8 @@ impl Mistake {
         match (self, on) {
             (Self::Swapped, On::Both)
             | (Self::MirroredU, On::U)
-            | (Self::FlippedV | Self::WrongAxis, On::V)
-            | (Self::WrongAxis, On::U) => true,
+            | (Self::FlippedV, On::V)
+            | (Self::WrongAxis, On::U | On::V) => true,
             (Self::QuarterTurn | Self::HalfTurn, On::Both) => matches!(k, Kind::Probe),
             (
                 Self::QuarterTurn

@@ -1,9 +1,7 @@
 //! `texplore map`: the lecture's formulas as a teaching tool, and a student's own
 //! (`texplore map formula --u ... --v ...`), compared with a built-in mapping (`--compare`).
 
-use crate::mapping::formula::compare::{
-    Mistake, agreement, difference, mistakes, one_texel, sample_points,
-};
+use crate::mapping::formula::compare::{Verdict, difference, one_texel, sample_points, share_of};
 use crate::mapping::formula::inputs_of;
 use crate::mapping::{FormulaError, FormulaMapping, Mapping, explain_mapping_f64, map_uv_f64};
 use crate::names::Named as _;
@@ -72,8 +70,9 @@ pub struct MapArgs {
     #[arg(long, num_args = 2, value_names = ["U", "V"], allow_hyphen_values = true, value_parser = super::parse_finite)]
     pub mesh_uv: Option<Vec<f64>>,
     /// Also work this built-in mapping, print the difference, and (for a formula) the share of
-    /// the lecture's points where the two agree within one texel of --res, with a hint for a
-    /// common mistake.
+    /// the lecture's points where the two agree within one texel of --res, u and v judged
+    /// alone, and the hint the window gives: which formula agrees and what is wrong, then the
+    /// fix.
     #[arg(long, value_parser = value_parser::<Mapping>())]
     pub compare: Option<Mapping>,
     /// Texture resolution for the column and row (hres vres).
@@ -166,7 +165,7 @@ pub fn run(a: &MapArgs) -> Result<()> {
     let checked = match (formula, a.compare) {
         (Some(f), Some(m)) => {
             let points = sample_points(m, 64);
-            Some((agreement(f, m, &points, tol), mistakes(f, m, &points, tol)))
+            Some(Verdict::judge(f, m, &points, tol))
         }
         _ => None,
     };
@@ -202,11 +201,20 @@ pub fn run(a: &MapArgs) -> Result<()> {
                 "du": d.x,
                 "dv": d.y,
             });
-            if let Some((agree, found)) = &checked {
+            if let Some(verdict) = &checked {
+                let agree = &verdict.agreement;
+                let hint = verdict.hint(*m);
                 out["compare"]["agreement"] = serde_json::json!(agree.share());
+                out["compare"]["u_agreement"] =
+                    serde_json::json!(share_of(verdict.u_agreeing, agree.points));
+                out["compare"]["v_agreement"] =
+                    serde_json::json!(share_of(verdict.v_agreeing, agree.points));
                 out["compare"]["points"] = serde_json::json!(agree.points);
                 out["compare"]["non_finite"] = serde_json::json!(agree.non_finite);
-                out["compare"]["hints"] = found.iter().map(|k| k.hint(*m)).collect();
+                out["compare"]["hints"] = verdict.mistakes().iter().map(|k| k.hint(*m)).collect();
+                out["compare"]["hint"] = serde_json::json!(hint.as_ref().map(|h| &h.what));
+                out["compare"]["fix"] =
+                    serde_json::json!(hint.as_ref().and_then(|h| h.fix.as_ref()));
             }
         }
         println!("{out}");
@@ -265,16 +273,18 @@ pub fn run(a: &MapArgs) -> Result<()> {
                 ""
             }
         );
-        if let Some((agree, found)) = checked {
-            print_check(m, &agree, &found);
+        if let Some(verdict) = checked {
+            print_check(m, &verdict);
         }
     }
     Ok(())
 }
 
-/// The agreement over the lecture's points and the hints.
-fn print_check(m: Mapping, agree: &crate::mapping::formula::compare::Agreement, found: &[Mistake]) {
+/// The agreement over the lecture's points, u and v alone, and the hint's two steps (the
+/// window's words).
+fn print_check(m: Mapping, verdict: &Verdict) {
     let n = crate::mapping::explain_number;
+    let agree = &verdict.agreement;
     println!(
         "  over {} points of the {m} map's surface: {:.1} % agree within one texel (largest |du| = {}, |dv| = {}){}",
         agree.points,
@@ -287,8 +297,19 @@ fn print_check(m: Mapping, agree: &crate::mapping::formula::compare::Agreement, 
             String::new()
         }
     );
-    for k in found {
-        println!("  hint: {}", k.hint(m));
+    if verdict.correct() {
+        return;
+    }
+    println!(
+        "  u alone agrees at {:.1} % of them, v at {:.1} %",
+        100.0 * share_of(verdict.u_agreeing, agree.points),
+        100.0 * share_of(verdict.v_agreeing, agree.points)
+    );
+    if let Some(h) = verdict.hint(m) {
+        println!("  hint: {}", h.what);
+        if let Some(fix) = h.fix {
+            println!("  fix: {fix}");
+        }
     }
 }
 

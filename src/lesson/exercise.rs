@@ -13,11 +13,16 @@
 //!
 //! *Check* ([`Exercise::check`]) compares the formulas with the target by the code of
 //! `texplore map --compare`: a mapping on [`sample_points`] of the target's surface, within
-//! one texel of a 2048 x 1024 image, with the common mistakes' hints; a checker texture on a
-//! grid of cell centres of the (u, v) square, a colour agreeing within [`COLOUR_TOLERANCE`].
+//! one texel of a 2048 x 1024 image, u and v judged separately, with the common mistakes'
+//! hints in two steps (what is wrong, then the fix); a checker texture on a grid of cell
+//! centres of the (u, v) square, a colour agreeing within [`COLOUR_TOLERANCE`], with the
+//! checker's common mistakes (colours exchanged, stripes, the wrong number of squares, the
+//! wrong greys).
 
 use crate::mapping::Mapping;
-use crate::mapping::formula::compare::{agreement, mistakes, one_texel, sample_points};
+use crate::mapping::formula::compare::{
+    CORRECT_SHARE, HINT_SHARE, Hint, Verdict, one_texel, sample_points, share_of,
+};
 use crate::mapping::formula::{FormulaError, FormulaMapping};
 use crate::math::Rgb;
 use crate::scene::{FieldPath, MappingDesc, SceneDesc, TextureDesc};
@@ -87,8 +92,10 @@ pub struct Checked {
     pub agreeing: usize,
     /// Points where a formula is NaN or infinite.
     pub non_finite: usize,
-    /// The common mistakes' hints, none for a correct answer.
-    pub hints: Vec<String>,
+    /// A mapping's u and v judged alone: the points where each agrees.
+    pub alone: Option<(usize, usize)>,
+    /// The hint in two steps (what is wrong, then the fix), none for a correct answer.
+    pub hint: Option<Hint>,
 }
 
 impl Checked {
@@ -115,10 +122,26 @@ impl Checked {
             ),
         };
         let mut s = format!("{:.1} % {what}", 100.0 * self.share());
+        if let Some((u, v)) = self.alone
+            && self.share() < CORRECT_SHARE
+        {
+            let _ = write!(
+                s,
+                " (u alone agrees at {:.1} %, v at {:.1} %)",
+                100.0 * share_of(u, self.points),
+                100.0 * share_of(v, self.points)
+            );
+        }
         if self.non_finite > 0 {
             let _ = write!(s, "; {} give NaN or infinity", self.non_finite);
         }
         s
+    }
+
+    /// Whether the answer is correct (agrees on [`CORRECT_SHARE`] of the points).
+    #[must_use]
+    pub fn correct(&self) -> bool {
+        self.share() >= CORRECT_SHARE
     }
 }
 
@@ -152,15 +175,35 @@ impl Exercise {
                 let f = FormulaMapping::new(field(0), field(1))?;
                 let points = sample_points(*m, CHECK_POINTS);
                 let tol = one_texel(CHECK_RESOLUTION.0, CHECK_RESOLUTION.1);
-                let a = agreement(&f, *m, &points, tol);
+                let verdict = Verdict::judge(&f, *m, &points, tol);
+                let mut hint = verdict.hint(*m);
+                // Nothing recognised: the fix is the lesson's own solution for what is wrong.
+                if let Some(h) = hint.as_mut()
+                    && verdict.findings.is_empty()
+                {
+                    let wrong = [
+                        (!verdict.u_agrees(), "u", &self.solution[0]),
+                        (!verdict.v_agrees(), "v", &self.solution[1]),
+                    ];
+                    let parts: Vec<String> = wrong
+                        .iter()
+                        .filter(|w| w.0)
+                        .map(|(_, name, f)| format!("{name} = {f}"))
+                        .collect();
+                    if !parts.is_empty() {
+                        h.fix = Some(format!(
+                            "the lesson's solution writes {}",
+                            parts.join(" and ")
+                        ));
+                    }
+                }
+                let a = verdict.agreement;
                 Ok(Checked {
                     points: a.points,
                     agreeing: a.agreeing,
                     non_finite: a.non_finite,
-                    hints: mistakes(&f, *m, &points, tol)
-                        .into_iter()
-                        .map(|k| k.hint(*m))
-                        .collect(),
+                    alone: Some((verdict.u_agreeing, verdict.v_agreeing)),
+                    hint,
                 })
             }
             Target::Checker { squares, colors } => {
@@ -228,64 +271,171 @@ impl Exercise {
 }
 
 /// The grey formula against the checker on the cell centres of a [`CHECKER_GRID`] grid over
-/// the (u, v) square; hints when it is the checker with its colours, or its squares along u
-/// and v, exchanged.
+/// the (u, v) square; for a wrong one, the first of the checker's common mistakes that it
+/// follows at [`HINT_SHARE`] of the points: the colours exchanged, the squares along u and v
+/// exchanged, stripes along one of them, another number of squares, or the right pattern in
+/// the wrong greys.
 fn check_checker(f: &FormulaColour, squares: (f32, f32), colors: (Rgb, Rgb)) -> Checked {
     let n = CHECKER_GRID;
-    // The built-in checker's own colour at (u, v).
-    let checker = |squares: (f32, f32), colors: (Rgb, Rgb), u: f32, v: f32| {
-        Checker {
-            mapping: Mapping::Rectangular.into(),
-            squares,
-            colors,
-            filter: Filter::Nearest,
-            transform: None,
-        }
-        .point(crate::math::Vec2::new(u, v))
+    let cell = |i: usize| (i as f32 + 0.5) / n as f32;
+    let values: Vec<((f32, f32), Option<Rgb>)> = (0..n * n)
+        .map(|k| {
+            let (u, v) = (cell(k / n), cell(k % n));
+            let got = f.eval(&[f64::from(u), f64::from(v), 0.0, 0.0, 0.0]);
+            ((u, v), got)
+        })
+        .collect();
+    let points = values.len();
+    let non_finite = values.iter().filter(|(_, got)| got.is_none()).count();
+    // The share of points where the formula gives `want(u, v)`.
+    let share = |want: Pattern<'_>| {
+        let k = values
+            .iter()
+            .filter(|&&((u, v), got)| got.is_some_and(|g| close(g, want(u, v))))
+            .count();
+        share_of(k, points)
     };
-    let close = |a: Rgb, b: Rgb| {
-        (a.0 - b.0).abs() <= COLOUR_TOLERANCE
-            && (a.1 - b.1).abs() <= COLOUR_TOLERANCE
-            && (a.2 - b.2).abs() <= COLOUR_TOLERANCE
+    let agreeing = values
+        .iter()
+        .filter(|&&((u, v), got)| got.is_some_and(|g| close(g, checker(squares, colors, u, v))))
+        .count();
+    let hint = if share_of(agreeing, points) >= CORRECT_SHARE {
+        None
+    } else {
+        Some(checker_hint(squares, colors, &share, &values))
     };
-    let (mut agreeing, mut non_finite, mut swapped, mut turned) = (0, 0, 0, 0);
-    for i in 0..n {
-        for j in 0..n {
-            let (u, v) = ((i as f32 + 0.5) / n as f32, (j as f32 + 0.5) / n as f32);
-            let Some(got) = f.eval(&[f64::from(u), f64::from(v), 0.0, 0.0, 0.0]) else {
-                non_finite += 1;
-                continue;
-            };
-            agreeing += usize::from(close(got, checker(squares, colors, u, v)));
-            swapped += usize::from(close(got, checker(squares, (colors.1, colors.0), u, v)));
-            turned += usize::from(close(got, checker((squares.1, squares.0), colors, u, v)));
-        }
-    }
-    let points = n * n;
-    let mut hints = Vec::new();
-    let share = |k: usize| k as f64 / points as f64;
-    if share(agreeing) < crate::mapping::formula::compare::CORRECT_SHARE {
-        let hint_share = crate::mapping::formula::compare::HINT_SHARE;
-        if share(swapped) >= hint_share {
-            hints.push(
-                "the two colours are the wrong way round: the square at u, v = 0 has the first \
-                 colour (there floor(u n) + floor(v m) is even)"
-                    .to_owned(),
-            );
-        }
-        if share(turned) >= hint_share && squares.0 != squares.1 {
-            hints.push(format!(
-                "the squares along u and v are exchanged: {} along u, {} along v",
-                squares.0, squares.1
-            ));
-        }
-    }
     Checked {
         points,
         agreeing,
         non_finite,
-        hints,
+        alone: None,
+        hint,
     }
+}
+
+/// The built-in checker's own colour at (u, v).
+fn checker(squares: (f32, f32), colors: (Rgb, Rgb), u: f32, v: f32) -> Rgb {
+    Checker {
+        mapping: Mapping::Rectangular.into(),
+        squares,
+        colors,
+        filter: Filter::Nearest,
+        transform: None,
+    }
+    .point(crate::math::Vec2::new(u, v))
+}
+
+/// Whether two colours agree within [`COLOUR_TOLERANCE`] per channel.
+fn close(a: Rgb, b: Rgb) -> bool {
+    (a.0 - b.0).abs() <= COLOUR_TOLERANCE
+        && (a.1 - b.1).abs() <= COLOUR_TOLERANCE
+        && (a.2 - b.2).abs() <= COLOUR_TOLERANCE
+}
+
+/// A grey (or a colour) as the lesson writes it: `0.9`, or `(0.9, 0.5, 0.1)`.
+fn grey(c: Rgb) -> String {
+    if c.0 == c.1 && c.1 == c.2 {
+        format!("{}", c.0)
+    } else {
+        format!("({}, {}, {})", c.0, c.1, c.2)
+    }
+}
+
+/// A colour at each (u, v): the checker, or one of its common mistakes.
+type Pattern<'a> = &'a dyn Fn(f32, f32) -> Rgb;
+
+/// The checker's two-step hint: the first common mistake the formula follows, else none.
+fn checker_hint(
+    squares: (f32, f32),
+    colors: (Rgb, Rgb),
+    share: &dyn Fn(Pattern<'_>) -> f64,
+    values: &[((f32, f32), Option<Rgb>)],
+) -> Hint {
+    let (a, b) = (grey(colors.0), grey(colors.1));
+    let (n, m) = squares;
+    let pattern = format!("floor({n} u) + floor({m} v)");
+    let rule = format!("{a} where {pattern} is even and {b} where it is odd");
+    let follows = |want: Pattern<'_>| share(want) >= HINT_SHARE;
+    // A stripe's colour: the first where floor(k t) is even.
+    let stripe = |k: f32, t: f32| {
+        if (k * t).floor().rem_euclid(2.0) == 0.0 {
+            colors.0
+        } else {
+            colors.1
+        }
+    };
+    let (what, fix) = if follows(&|u, v| checker(squares, (colors.1, colors.0), u, v)) {
+        (
+            "the squares are right but their colours are the wrong way round".to_owned(),
+            format!("the square at u, v = 0 has the first colour: {rule}"),
+        )
+    } else if n != m && follows(&|u, v| checker((m, n), colors, u, v)) {
+        (
+            "the squares along u and v are exchanged".to_owned(),
+            format!("{n} squares along u and {m} along v: {pattern}"),
+        )
+    } else if follows(&|u, _| stripe(n, u)) || follows(&|_, v| stripe(m, v)) {
+        let along = if follows(&|u, _| stripe(n, u)) {
+            "u"
+        } else {
+            "v"
+        };
+        let other = if along == "u" { "v" } else { "u" };
+        (
+            format!("the colour changes along {along} only: these are stripes, not squares"),
+            format!("add {other}'s term: {rule}"),
+        )
+    } else if let Some(k) = (1..=32)
+        .map(|k| k as f32)
+        .find(|&k| (k, k) != squares && follows(&|u, v| checker((k, k), colors, u, v)))
+    {
+        (
+            format!("the squares are the wrong size: {k} x {k} of them, not {n} x {m}"),
+            format!("multiply u by {n} and v by {m}: {rule}"),
+        )
+    } else if let Some((c0, c1)) = two_greys(squares, values)
+        && !(close(c0, colors.0) && close(c1, colors.1))
+    {
+        (
+            format!(
+                "the pattern is right but the greys are not: {} and {}",
+                grey(c0),
+                grey(c1)
+            ),
+            rule.clone(),
+        )
+    } else {
+        (
+            "the formula fits no common mistake".to_owned(),
+            format!("the checker is {rule}"),
+        )
+    };
+    Hint {
+        what,
+        fix: Some(fix),
+    }
+}
+
+/// The two colours the formula gives on the checker's even and odd squares, when it gives one
+/// colour on each (at [`HINT_SHARE`] of its points): the right pattern in other greys.
+fn two_greys(squares: (f32, f32), values: &[((f32, f32), Option<Rgb>)]) -> Option<(Rgb, Rgb)> {
+    let odd =
+        |u: f32, v: f32| ((squares.0 * u).floor() + (squares.1 * v).floor()).rem_euclid(2.0) != 0.0;
+    let mut found = [None::<Rgb>; 2];
+    for (parity, slot) in found.iter_mut().enumerate() {
+        let class: Vec<Rgb> = values
+            .iter()
+            .filter(|((u, v), _)| usize::from(odd(*u, *v)) == parity)
+            .filter_map(|(_, got)| *got)
+            .collect();
+        let first = *class.first()?;
+        let same = class.iter().filter(|&&c| close(c, first)).count();
+        if share_of(same, class.len()) < HINT_SHARE {
+            return None;
+        }
+        *slot = Some(first);
+    }
+    Some((found[0]?, found[1]?))
 }
 
 /// An exercise as the lesson file writes it.

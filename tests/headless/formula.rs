@@ -257,7 +257,7 @@ fn map_formula_prints_the_worked_values_and_compares() {
     );
     // At the equator the flip changes nothing; over the sphere it does.
     assert!(text.contains("% agree within one texel"), "{text}");
-    assert!(text.contains("hint: v is upside down"), "{text}");
+    assert!(text.contains("hint: u agrees; v is upside down"), "{text}");
     let right = success(&texplore(&[
         "map",
         "formula",

@@ -1,6 +1,7 @@
 //! What the lessons' *Look for* sentences claim, measured on renders of the experiments: a
-//! colour that appears, a dark side that comes into view, an image that is the mirror of
-//! another, blocks that shrink, a light that does (and a probe that does not) light the scene.
+//! colour that appears, a dark side that comes into view, an eye widened by the 3:2 photo, an
+//! image that is the mirror of another, blocks that shrink, a horizon that calms but stays
+//! grainier than EWA's, a light that does (and a probe that does not) light the scene.
 //! Claims that cannot be measured (wedges at a pole, a photo that looks magnified) are looked
 //! at by a person before a lesson ships.
 
@@ -190,4 +191,112 @@ fn lesson_10_the_light_lights_the_earth_and_the_probe_does_not() {
         sum(&dark),
         sum(&lit)
     );
+}
+
+/// Whether a pixel is the cat's iris: saturated, its hue between 36 and 90 degrees (yellow to
+/// olive green; the fur is orange, below 32 degrees, and the pupil is dark).
+fn iris(p: [u8; 3]) -> bool {
+    let [r, g, b] = p.map(f64::from);
+    let (max, min) = (r.max(g).max(b), r.min(g).min(b));
+    if max - min < 40.0 || b == max {
+        return false;
+    }
+    let hue = if r == max {
+        60.0 * (g - b) / (max - min)
+    } else {
+        60.0 * (2.0 + (b - r) / (max - min))
+    };
+    (36.0..90.0).contains(&hue)
+}
+
+/// The width over the height of the bounding box of the pixels `keep` selects within
+/// `window` (x0, y0, x1, y1) of an image `w` pixels wide, and their count.
+fn aspect(
+    img: &[[u8; 3]],
+    w: usize,
+    window: (usize, usize, usize, usize),
+    keep: fn([u8; 3]) -> bool,
+) -> (f64, usize) {
+    let (x0, y0, x1, y1) = window;
+    let (mut lo, mut hi, mut n) = ((usize::MAX, usize::MAX), (0, 0), 0);
+    for y in y0..y1 {
+        for x in x0..x1 {
+            if keep(img[y * w + x]) {
+                lo = (lo.0.min(x), lo.1.min(y));
+                hi = (hi.0.max(x), hi.1.max(y));
+                n += 1;
+            }
+        }
+    }
+    ((hi.0 + 1 - lo.0) as f64 / (hi.1 + 1 - lo.1) as f64, n)
+}
+
+#[test]
+fn lesson_6_the_cats_eye_comes_out_wider_and_the_pole_is_in_view() {
+    let (l, base) = lesson("spherical-mapping");
+    let cat = scene(&l, &base, "The 3:2 cat photo");
+    let photo = image::open(root().join("assets/chelsea_451x300.png"))
+        .unwrap()
+        .to_rgb8();
+    let px: Vec<[u8; 3]> = photo.pixels().map(|p| p.0).collect();
+    // The photo's left eye: its iris, in the left half around the middle rows.
+    let (in_photo, n) = aspect(&px, 451, (100, 60, 230, 180), iris);
+    // On the sphere the same eye faces the camera: its iris around the middle of the image.
+    let (w, h) = (320, 240);
+    let img = render(&cat, &l, w, h, 4);
+    let (on_sphere, m) = aspect(&img, w as usize, (60, 50, 260, 210), iris);
+    assert!(
+        n > 500 && m > 500,
+        "iris pixels: {n} in the photo, {m} on the sphere"
+    );
+    // Widened by 4/3 at the equator, times cos(latitude) of the eye (about 15 degrees north).
+    let widened = on_sphere / in_photo;
+    assert!(
+        (1.1..1.45).contains(&widened),
+        "the eye is {in_photo:.2} times as wide as tall in the photo, {on_sphere:.2} on the sphere: {widened:.2}"
+    );
+    // The north pole, (0, 1, 0) under a turn about y alone, faces the camera.
+    let [rx, _, rz] = cat.objects[0].transform.rotate.to_array();
+    assert!(rx == 0.0 && rz == 0.0, "turned about y only");
+    assert!(cat.camera.eye.y > 1.0, "the camera sees the north pole");
+}
+
+/// The mean difference between horizontally neighbouring pixels (summed over R, G, B) in the
+/// band of `rows` rows just below the horizon: the first row that is not the sky's colour.
+fn graininess(img: &[[u8; 3]], w: usize, rows: usize) -> f64 {
+    let sky = img[0];
+    let horizon = img
+        .chunks(w)
+        .position(|row| row.iter().any(|p| p != &sky))
+        .expect("the plane is in view");
+    let band = &img[horizon * w..(horizon + rows) * w];
+    let mut sum = 0u64;
+    for row in band.chunks(w) {
+        for p in row.windows(2) {
+            sum += (0..3)
+                .map(|c| u64::from(p[0][c].abs_diff(p[1][c])))
+                .sum::<u64>();
+        }
+    }
+    sum as f64 / (rows * (w - 1)) as f64
+}
+
+#[test]
+fn lesson_8_sixteen_samples_calm_the_horizon_but_leave_it_grainier_than_ewa() {
+    let (l, base) = lesson("aliasing");
+    let (w, h) = (320, 240);
+    let grain = |label: Option<&str>, spp: u32| {
+        let desc = label.map_or_else(|| base.clone(), |label| scene(&l, &base, label));
+        graininess(&render(&desc, &l, w, h, spp), w as usize, 12)
+    };
+    // The lesson's own scene is EWA at 1 sample.
+    let ewa = grain(None, 1);
+    let nearest = grain(Some("Nearest, 1 sample"), 1);
+    let sixteen = grain(Some("Nearest, 16 samples"), 16);
+    let told =
+        format!("along the horizon: EWA {ewa:.1}, nearest {nearest:.1}, 16 samples {sixteen:.1}");
+    // Calmer: 16 samples cut the single sample's grain by more than half...
+    assert!(sixteen * 2.0 < nearest, "{told}");
+    // ...but leave it far grainier than EWA's ("as with EWA" would fail here).
+    assert!(sixteen > 2.5 * ewa, "{told}");
 }

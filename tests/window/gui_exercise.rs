@@ -1,6 +1,6 @@
 //! A lesson's exercise in the window (issue 28 §2): the fields start from the lesson's
 //! formulas, *Check* puts them on the scene (one undo step) and shows the agreement and the
-//! hint, *Show solution* fills the fields, and the solution checks as correct and renders the
+//! hint's first step, *Show the fix* its second, *Show solution* fills the fields, and the solution checks as correct and renders the
 //! built-in image.
 
 use crate::gui_common::{desc, image_bytes, settle, small_earth, undo, wait_for_label};
@@ -63,8 +63,15 @@ fn check_gives_the_hint_and_the_solution_agrees() {
     assert_eq!(field(&h, "your v ="), "acos(y) / pi");
     press(&mut h, "Check");
     settle(&mut h);
+    // The hint's first step says which formula agrees and what is wrong, not the answer; the
+    // second, on *Show the fix*, how to write it.
     let hint = wait_for_label(&mut h, "hint: ");
-    assert!(hint.contains("v is upside down"), "{hint}");
+    assert!(hint.contains("u agrees; v is upside down"), "{hint}");
+    assert!(!hint.contains("1 - acos"), "{hint}");
+    assert!(h.query_by_label_contains("fix: ").is_none());
+    press(&mut h, "Show the fix");
+    let fix = wait_for_label(&mut h, "fix: ");
+    assert!(fix.contains("write v = 1 - acos(y) / pi"), "{fix}");
     let verdict = wait_for_label(&mut h, "points of the spherical map's surface");
     assert!(percent(&verdict) < 50.0, "{verdict}");
     assert!(
@@ -93,6 +100,7 @@ fn check_gives_the_hint_and_the_solution_agrees() {
     assert_eq!(field(&h, "your u ="), x.solution[0]);
     assert_eq!(field(&h, "your v ="), x.solution[1]);
     assert!(h.query_by_label_contains("hint: ").is_none());
+    assert!(h.query_by_label_contains("fix: ").is_none());
     press(&mut h, "Check");
     settle(&mut h);
     let verdict = wait_for_label(&mut h, "Correct: ");

@@ -1,14 +1,17 @@
 //! A lesson's exercises in the Lessons panel: the task, a field per formula (starting from the
 //! lesson's), *Check* (the formulas go on the scene, one undoable step like an experiment, and
-//! the panel says how much of the target's surface agrees and which hint applies:
-//! [`crate::lesson::exercise::Exercise::check`]) and *Show solution* (fills the fields).
+//! the panel says how much of the target's surface agrees, which formula agrees and what is
+//! wrong: [`crate::lesson::exercise::Exercise::check`]), then *Show the fix* (the hint's second
+//! step), and *Show solution* (fills the fields).
 
 use super::LessonsPanel;
 use crate::gui::command::Command;
 use crate::lesson::Lesson;
 use crate::lesson::exercise::{Checked, Exercise};
-use crate::mapping::formula::compare::CORRECT_SHARE;
 use crate::scene::SceneDesc;
+
+/// The label of the button that shows a hint's second step.
+const SHOW_FIX: &str = "Show the fix";
 
 /// One exercise's fields and its last verdict.
 #[derive(Clone, Debug, Default)]
@@ -17,6 +20,8 @@ pub(super) struct Attempt {
     formulas: Vec<String>,
     /// The formulas of the last *Check* and what it found, or their mistake.
     verdict: Option<(Vec<String>, Result<Checked, String>)>,
+    /// Whether the hint's second step, the fix, is shown (after *Show the fix*).
+    fix_shown: bool,
 }
 
 impl LessonsPanel {
@@ -41,6 +46,7 @@ impl LessonsPanel {
                     .map(|x| Attempt {
                         formulas: x.start.clone(),
                         verdict: None,
+                        fix_shown: false,
                     })
                     .collect(),
             );
@@ -103,6 +109,7 @@ fn exercise_ui(
                 }
             }
             attempt.verdict = Some((attempt.formulas.clone(), verdict));
+            attempt.fix_shown = false;
         }
         if ui
             .button("Show solution")
@@ -113,6 +120,7 @@ fn exercise_ui(
         {
             attempt.formulas.clone_from(&x.solution);
             attempt.verdict = None;
+            attempt.fix_shown = false;
         }
     });
     // A verdict holds while the scene has the formulas it checked (Ctrl+Z takes both away);
@@ -137,7 +145,7 @@ fn exercise_ui(
         }
         Some(Ok(c)) => {
             let text = c.summary(&x.target);
-            if c.share() >= CORRECT_SHARE {
+            if c.correct() {
                 ui.colored_label(
                     egui::Color32::from_rgb(90, 200, 110),
                     format!("Correct: {text}"),
@@ -145,8 +153,20 @@ fn exercise_ui(
             } else {
                 ui.label(text);
             }
-            for h in &c.hints {
-                ui.colored_label(ui.visuals().warn_fg_color, format!("hint: {h}"));
+            // Two steps: what is wrong at once, the fix only when asked for.
+            if let Some(h) = &c.hint {
+                ui.colored_label(ui.visuals().warn_fg_color, format!("hint: {}", h.what));
+                if let Some(fix) = &h.fix {
+                    if attempt.fix_shown {
+                        ui.colored_label(ui.visuals().warn_fg_color, format!("fix: {fix}"));
+                    } else if ui
+                        .button(SHOW_FIX)
+                        .on_hover_text("The hint's second step: how to repair the formula")
+                        .clicked()
+                    {
+                        attempt.fix_shown = true;
+                    }
+                }
             }
         }
     }

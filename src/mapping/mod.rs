@@ -6,13 +6,33 @@
 //! respect to that point, by the chain rule; the screen-space derivatives follow from the hit's
 //! dp/dx and dp/dy. No finite differences: those jump across the seam (u going 1 -> 0).
 
+//!
+//! Each mapping is one file (`rectangular.rs`, `cylindrical.rs`, `spherical.rs`,
+//! `light_probe.rs`, `panoramic.rs`, `mirror_ball.rs`, `uv.rs`; a student's formulas in
+//! `formula/`) implementing [`Map`]: its (u, v) with gradients, written once over pulp's `Simd`
+//! so the renderer runs it at every width (1 lane on the scalar path, 16 on AVX-512), its worked
+//! f64 formulas, the lecture's formula text, its diagram's angles, its family for the exercises'
+//! hints and its seam and pole properties. [`with_map!`] is the one match from [`Mapping`] to
+//! those files: a new mapping is a new file, a variant, and the arm the compiler asks for there.
+
+mod cylindrical;
 mod explain;
 pub mod formula;
+mod light_probe;
+mod mirror_ball;
+mod panoramic;
+mod rectangular;
+mod shared;
+mod spherical;
+mod uv;
 
 pub use explain::{explain_mapping, explain_mapping_f64, explain_number, map_uv_f64};
 pub use formula::{DerivativeKind, FormulaError, FormulaMapping};
 
-use crate::math::{PI, TAU, Vec2, Vec3A, atan2};
+use crate::math::lanes::{F, V3, finite, select};
+use crate::math::{Vec2, Vec3A};
+use glam::{DVec2, DVec3};
+use pulp::Simd;
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;
 
@@ -147,17 +167,146 @@ impl crate::names::Named for Mapping {
     const WHAT: &'static str = "mapping";
 }
 
+/// One mapping, in its own file: everything texplore knows of it.
+pub(crate) trait Map {
+    /// Whether u wraps around (the seam of a closed surface): filters then read across it.
+    const U_PERIODIC: bool;
+    /// Whether v must clamp regardless of the wrap mode (the spherical map's poles).
+    const V_CLAMPS: bool;
+    /// Which family the exercises' hints speak of it as.
+    const FAMILY: Family;
+    /// The lecture's formulas for u and v in texplore's formula language (`None` where the
+    /// lecture writes none out).
+    const LECTURE: Option<(&'static str, &'static str)>;
+    /// (u, v) per lane and, with `GRAD`, their gradients with respect to the object-space
+    /// point (zero without): the renderer's formulas, the same bits at every width. Lanes
+    /// whose (u, v) are not finite are made (0.5, 0.5) by [`Mapping::map_lanes`].
+    fn lanes<S: Simd, const GRAD: bool>(s: S, p: &V3<S>) -> Mapped<S>;
+    /// The formulas worked in f64 with `p`'s numbers, writing their lines to `out` when it is
+    /// `Some` (the renderer's (u, v) up to f32 rounding).
+    fn worked(p: DVec3, out: &mut Option<Vec<String>>) -> DVec2;
+    /// The angles its formula goes through at `p`, for the mapping diagram.
+    fn angles(p: DVec3) -> MappingAngles;
+}
+
+/// The families of built-in mappings, as the exercises' hints speak of them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Family {
+    /// The rectangular map: u from z, v from x.
+    Rectangle,
+    /// The cylindrical map: u around y, v up y.
+    Cylinder,
+    /// The spherical map (and `uv`, which is spherical on the sphere).
+    Sphere,
+    /// The light probe and its panoramic and mirror-ball variants.
+    Probe,
+}
+
+/// Runs `$body` with `$M` naming the [`Map`] of `$mapping`: the one match from a [`Mapping`]
+/// to its file.
+macro_rules! with_map {
+    ($mapping:expr, $M:ident => $body:expr) => {
+        match $mapping {
+            Mapping::Rectangular => {
+                type $M = $crate::mapping::rectangular::Rectangular;
+                $body
+            }
+            Mapping::Cylindrical => {
+                type $M = $crate::mapping::cylindrical::Cylindrical;
+                $body
+            }
+            Mapping::Spherical => {
+                type $M = $crate::mapping::spherical::Spherical;
+                $body
+            }
+            Mapping::LightProbe => {
+                type $M = $crate::mapping::light_probe::LightProbe;
+                $body
+            }
+            Mapping::Panoramic => {
+                type $M = $crate::mapping::panoramic::Panoramic;
+                $body
+            }
+            Mapping::MirrorBall => {
+                type $M = $crate::mapping::mirror_ball::MirrorBall;
+                $body
+            }
+            Mapping::Uv => {
+                type $M = $crate::mapping::uv::Uv;
+                $body
+            }
+        }
+    };
+}
+pub(crate) use with_map;
+
+/// (u, v) per lane with their gradients with respect to the object-space point.
+#[derive(Clone, Copy, Debug)]
+pub struct Mapped<S: Simd> {
+    /// u per lane.
+    pub u: F<S>,
+    /// v per lane.
+    pub v: F<S>,
+    /// The gradient of u (zero unless asked for).
+    pub grad_u: V3<S>,
+    /// The gradient of v (zero unless asked for).
+    pub grad_v: V3<S>,
+}
+
+/// The angles of the lecture's mapping formulas at one point, for the mapping diagram: what the
+/// generic object's drawing marks. Each is `None` where the mapping has no such angle.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MappingAngles {
+    /// Azimuth about y from +z toward +x, in [0, 2 pi) (cylindrical, spherical).
+    pub phi: Option<f64>,
+    /// Polar angle from +y, in [0, pi] (spherical).
+    pub theta: Option<f64>,
+    /// Angle from the probe's axis (+z, or -z for the panoramic variant), in [0, pi].
+    pub alpha: Option<f64>,
+    /// Direction in the image disc, from +u toward +v (light probes).
+    pub beta: Option<f64>,
+    /// Distance from the image disc's centre, 0 to 1 (light probes).
+    pub r: Option<f64>,
+}
+
 impl Mapping {
     /// Whether u wraps around (the seam of a closed surface): filters then read across it.
     #[must_use]
     pub const fn u_is_periodic(self) -> bool {
-        matches!(self, Self::Cylindrical | Self::Spherical)
+        with_map!(self, M => M::U_PERIODIC)
     }
 
     /// Whether v must clamp regardless of the wrap mode (the spherical map's poles).
     #[must_use]
     pub const fn v_clamps(self) -> bool {
-        matches!(self, Self::Spherical)
+        with_map!(self, M => M::V_CLAMPS)
+    }
+
+    /// The family the exercises' hints speak of.
+    #[must_use]
+    pub const fn family(self) -> Family {
+        with_map!(self, M => M::FAMILY)
+    }
+
+    /// The lecture's formulas written in texplore's formula language: the same (u, v) as the
+    /// built-in mapping to about 1e-15 on its surface. `None` for the mappings the lecture does
+    /// not write out (the panoramic and mirror-ball variants, `uv`).
+    ///
+    /// The spherical and light-probe formulas divide by |p| before `acos`, as the renderer
+    /// does: a hit point rounded to f32 can lie a hair outside the unit sphere, where
+    /// acos(1.0000001) is NaN.
+    #[must_use]
+    pub const fn lecture_formula(self) -> Option<(&'static str, &'static str)> {
+        with_map!(self, M => M::LECTURE)
+    }
+
+    /// The angles of the mapping's formula at `p` (the point the mapping reads): phi for the
+    /// cylindrical map, phi and theta for the spherical, alpha, beta and r for the light
+    /// probes; the rectangular map and a mesh's own (u, v) have none.
+    #[must_use]
+    pub fn angles(self, p: Vec3A) -> MappingAngles {
+        let p = p.as_dvec3();
+        with_map!(self, M => M::angles(p))
     }
 
     /// (u, v) and their gradients with respect to the object-space point `p`.
@@ -167,7 +316,7 @@ impl Mapping {
     #[must_use]
     #[inline]
     pub fn map_point(self, p: Vec3A) -> MappedPoint {
-        self.map_impl::<true>(p)
+        self.map_one::<true>(p)
     }
 
     /// (u, v) alone, without gradients: what [`Mapping::map_point`] returns as `uv`, bit for
@@ -175,30 +324,42 @@ impl Mapping {
     #[must_use]
     #[inline]
     pub fn map_uv(self, p: Vec3A) -> Vec2 {
-        self.map_impl::<false>(p).uv
+        self.map_one::<false>(p).uv
     }
 
-    /// Both of the above; with `GRAD` false the spherical and cylindrical maps leave the
-    /// gradients zero instead of computing them.
+    /// [`Mapping::map_lanes`] at width 1.
     #[inline]
-    fn map_impl<const GRAD: bool>(self, p: Vec3A) -> MappedPoint {
-        let m = match self {
-            Self::Rectangular => rectangular(p),
-            Self::Cylindrical => cylindrical::<GRAD>(p),
-            Self::Spherical | Self::Uv => spherical::<GRAD>(p),
-            Self::LightProbe => probe(p, false, ProbeCurve::Angular),
-            Self::Panoramic => probe(p, true, ProbeCurve::Angular),
-            Self::MirrorBall => probe(p, false, ProbeCurve::MirrorBall),
-        };
-        if m.uv.is_finite() {
-            m
-        } else {
-            // NaN input (a corrupt vertex, an overflowed transform): still a defined answer.
-            MappedPoint {
-                uv: Vec2::splat(0.5),
-                grad_u: Vec3A::ZERO,
-                grad_v: Vec3A::ZERO,
-            }
+    fn map_one<const GRAD: bool>(self, p: Vec3A) -> MappedPoint {
+        let m = self.map_lanes::<pulp::Scalar, GRAD>(pulp::Scalar, &V3::one(p));
+        MappedPoint {
+            uv: Vec2::new(m.u, m.v),
+            grad_u: m.grad_u.vec(),
+            grad_v: m.grad_v.vec(),
+        }
+    }
+
+    /// (u, v) per lane of `p` and, with `GRAD`, their gradients: the mapping's own file's
+    /// formulas, then (0.5, 0.5) with zero gradients wherever (u, v) is not finite (NaN input:
+    /// a corrupt vertex, an overflowed transform: still a defined answer).
+    #[must_use]
+    #[inline(always)]
+    pub fn map_lanes<S: Simd, const GRAD: bool>(self, s: S, p: &V3<S>) -> Mapped<S> {
+        let m = with_map!(self, M => M::lanes::<S, GRAD>(s, p));
+        let ok = s.and_m32s(finite(s, m.u), finite(s, m.v));
+        let (half, zero) = (s.splat_f32s(0.5), V3::splat(s, Vec3A::ZERO));
+        Mapped {
+            u: select(s, ok, m.u, half),
+            v: select(s, ok, m.v, half),
+            grad_u: if GRAD {
+                V3::select(s, ok, &m.grad_u, &zero)
+            } else {
+                zero
+            },
+            grad_v: if GRAD {
+                V3::select(s, ok, &m.grad_v, &zero)
+            } else {
+                zero
+            },
         }
     }
 
@@ -387,175 +548,6 @@ fn solve_uv_offset(dpdu: Vec3A, dpdv: Vec3A, dp: Vec3A) -> Vec2 {
     let (r0, r1) = (dpdu.dot(dp), dpdv.dot(dp));
     let out = Vec2::new(c * r0 - b * r1, a * r1 - b * r0) / det;
     if out.is_finite() { out } else { Vec2::ZERO }
-}
-
-fn rectangular(p: Vec3A) -> MappedPoint {
-    MappedPoint {
-        uv: Vec2::new((p.z + 1.0) * 0.5, (p.x + 1.0) * 0.5),
-        grad_u: Vec3A::new(0.0, 0.0, 0.5),
-        grad_v: Vec3A::new(0.5, 0.0, 0.0),
-    }
-}
-
-/// The azimuth u = atan2(x, z) / 2 pi in [0, 1], and its gradient; bounded on the axis.
-#[inline]
-fn azimuth<const GRAD: bool>(x: f32, z: f32) -> (f32, Vec3A) {
-    let mut phi = atan2(x, z);
-    if phi < 0.0 {
-        phi += TAU;
-    }
-    // u in [0, 1): u = 1 and u = 0 are one seam, read as u = 0 (the texture's first column,
-    // where the wrap used to send u = 1 before [0, 1] was closed). phi + 2 pi can round up to
-    // exactly 2 pi; `+ 0.0` turns the -0 of atan2(-0, z) into 0.
-    let u = phi / TAU;
-    let u = if u < 1.0 { u.max(0.0) + 0.0 } else { 0.0 };
-    let rho2 = x * x + z * z;
-    let grad = if !GRAD {
-        Vec3A::ZERO
-    } else if rho2 > 0.0 {
-        Vec3A::new(z, 0.0, -x) / (TAU * rho2)
-    } else {
-        Vec3A::ZERO // exactly on the axis u is undefined; any value is as good
-    };
-    (u, grad)
-}
-
-#[inline]
-fn cylindrical<const GRAD: bool>(p: Vec3A) -> MappedPoint {
-    let (u, grad_u) = match rescaled(Vec3A::new(p.x, 0.0, p.z)) {
-        Some((q, scale)) => {
-            let (u, g) = azimuth::<GRAD>(q.x, q.z);
-            (u, g / scale)
-        }
-        None => (0.0, Vec3A::ZERO),
-    };
-    let v = (p.y + 1.0) * 0.5;
-    MappedPoint {
-        uv: Vec2::new(u, if v.is_nan() { 0.5 } else { v.clamp(0.0, 1.0) }),
-        grad_u,
-        grad_v: Vec3A::new(0.0, 0.5, 0.0),
-    }
-}
-
-#[inline]
-fn spherical<const GRAD: bool>(p: Vec3A) -> MappedPoint {
-    let Some((q, scale)) = rescaled(p) else {
-        return MappedPoint {
-            uv: Vec2::new(0.0, 0.5),
-            grad_u: Vec3A::ZERO,
-            grad_v: Vec3A::ZERO,
-        };
-    };
-    let (u, grad_u) = azimuth::<GRAD>(q.x, q.z);
-    // theta = acos(y / |p|), written as atan2(rho, y): exact for points off the unit sphere
-    // and never the NaN of acos(1 + 1e-12).
-    let rho2 = q.x * q.x + q.z * q.z;
-    let rho = rho2.sqrt();
-    let r2 = rho2 + q.y * q.y;
-    let theta = atan2(rho, q.y);
-    let v = (1.0 - theta / PI).clamp(0.0, 1.0);
-    let grad_v = if !GRAD {
-        Vec3A::ZERO
-    } else if rho > 0.0 {
-        // d theta/dq = (y x / rho, -rho, y z / rho) / r^2 ; v = 1 - theta / pi
-        -Vec3A::new(q.y * q.x / rho, -rho, q.y * q.z / rho) / (PI * r2)
-    } else {
-        Vec3A::ZERO // exactly at a pole the direction of steepest change is undefined
-    };
-    MappedPoint {
-        uv: Vec2::new(u, v),
-        grad_u: grad_u / scale,
-        grad_v: grad_v / scale,
-    }
-}
-
-/// `p` divided by its largest component, so squares neither overflow (huge points) nor
-/// underflow (subnormal ones); `None` for the origin and for NaN or infinite input.
-#[inline]
-fn rescaled(p: Vec3A) -> Option<(Vec3A, f32)> {
-    let s = p.abs().max_element();
-    (s > 0.0 && s.is_finite()).then(|| (p / s, s))
-}
-
-#[derive(Clone, Copy)]
-enum ProbeCurve {
-    /// r = alpha / pi (the lecture).
-    Angular,
-    /// r = sin(alpha / 2).
-    MirrorBall,
-}
-
-/// The light-probe maps. With n = p / |p| and d = sqrt(nx^2 + ny^2), the lecture's
-/// u = (1 + r(alpha) nx / d) / 2 is written as u = (1 + g nx) / 2 with g = r(alpha) / d, which is
-/// smooth through the z axis (g -> 1 / pi): no division by zero where the lecture's cos beta
-/// is 0 / 0. Only the antipode (alpha = pi), where the whole rim meets, is singular; it maps to
-/// the rim point beta = 0, (u, v) = (1, 0.5).
-fn probe(p: Vec3A, flip_z: bool, curve: ProbeCurve) -> MappedPoint {
-    let Some((q, scale)) = rescaled(p) else {
-        return MappedPoint {
-            uv: Vec2::splat(0.5),
-            grad_u: Vec3A::ZERO,
-            grad_v: Vec3A::ZERO,
-        };
-    };
-    let q_len = q.length();
-    let n = q / q_len;
-    let len = q_len * scale;
-    let (x, y) = (n.x, n.y);
-    let z = if flip_z { -n.z } else { n.z };
-    let d = (x * x + y * y).sqrt();
-    let alpha = atan2(d, z);
-    // g = r / d and its derivatives with respect to (x, y, z) of the unit vector.
-    let (g, dg_dd_over_d, dg_dz) = match curve {
-        ProbeCurve::Angular => {
-            if d < 1e-2 && z > 0.0 {
-                // Series about the axis: alpha / d = 1 + d^2 / 6 ..., dg/dd / d = (2/3 + d^2/5)/pi
-                let g = (1.0 + d * d / 6.0) / PI;
-                (g, -(2.0 / 3.0 + d * d / 5.0) / PI, -1.0 / PI)
-            } else if d > 0.0 {
-                let g = alpha / (PI * d);
-                (g, (z - alpha / d) / (PI * d * d), -1.0 / PI)
-            } else {
-                return antipode(flip_z);
-            }
-        }
-        ProbeCurve::MirrorBall => {
-            // r = sin(alpha / 2) = sqrt((1 - z) / 2); g = r / d = 1 / (2 cos(alpha / 2))
-            // = 1 / sqrt(2 (1 + z)).
-            let s2 = 2.0 * (1.0 + z);
-            if s2 <= 1e-12 {
-                return antipode(flip_z);
-            }
-            let g = 1.0 / s2.sqrt();
-            (g, 0.0, -g * g * g)
-        }
-    };
-    let half = 0.5;
-    let u = (half + half * g * x).clamp(0.0, 1.0);
-    let v = (half + half * g * y).clamp(0.0, 1.0);
-    // Gradient with respect to n (x, y, z treated as free), then projected onto the sphere's
-    // tangent plane and divided by |p|.
-    let dz = if flip_z { -dg_dz } else { dg_dz };
-    let grad_g = Vec3A::new(x * dg_dd_over_d, y * dg_dd_over_d, dz);
-    let gu = half * (Vec3A::new(g, 0.0, 0.0) + x * grad_g);
-    let gv = half * (Vec3A::new(0.0, g, 0.0) + y * grad_g);
-    let tangent = |gr: Vec3A| {
-        let t = (gr - n * n.dot(gr)) / len;
-        if t.is_finite() { t } else { Vec3A::ZERO }
-    };
-    MappedPoint {
-        uv: Vec2::new(u, v),
-        grad_u: tangent(gu),
-        grad_v: tangent(gv),
-    }
-}
-
-fn antipode(_flip_z: bool) -> MappedPoint {
-    MappedPoint {
-        uv: Vec2::new(1.0, 0.5),
-        grad_u: Vec3A::ZERO,
-        grad_v: Vec3A::ZERO,
-    }
 }
 
 #[cfg(test)]

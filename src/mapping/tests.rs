@@ -2,6 +2,7 @@
 //! gradients against central finite differences.
 
 use super::*;
+use crate::math::TAU;
 use crate::names::Named as _;
 use strum::VariantArray;
 
@@ -445,4 +446,66 @@ fn numbers_in_worked_formulas() {
     assert_eq!(explain_number(0.999_999_999), "0.999999999");
     assert_eq!(explain_number(0.999_999), "0.999999");
     assert_eq!(explain_number(0.123_456), "0.1235");
+}
+
+/// Every mapping's lanes at every width give the width-1 (scalar path's) numbers, bit for bit:
+/// (u, v) and both gradients, on hard points (signed zeros, infinities, NaN, subnormals, the
+/// seams, the poles, the probes' axis and antipode).
+#[test]
+fn every_mapping_gives_the_same_bits_at_every_width() {
+    use crate::math::lanes::testing::{Walk, WidthCheck, at_every_width, bits, lane, load3};
+    use crate::math::lanes::{V3, to_array};
+    struct Agree;
+    impl WidthCheck for Agree {
+        fn check<S: pulp::Simd>(&mut self, s: S, name: &'static str) {
+            let mut walk = Walk(5);
+            let special = [
+                Vec3A::new(-0.0, 0.0, -1.0),
+                Vec3A::new(1e-8, 0.0, -1.0),
+                Vec3A::new(0.0, 1.0, 0.0),
+                Vec3A::new(0.0, 0.0, -1.0),
+                Vec3A::new(1e-3, -2e-3, 1.0),
+                Vec3A::ZERO,
+                Vec3A::new(3e38, -3e38, 1.0),
+                Vec3A::new(-f32::MIN_POSITIVE, 0.5, 0.0),
+            ];
+            for round in 0..1500 {
+                let mut p = walk.v3();
+                if round == 0 {
+                    for (i, q) in special.iter().cycle().take(16).enumerate() {
+                        (p[0][i], p[1][i], p[2][i]) = (q.x, q.y, q.z);
+                    }
+                }
+                let v = load3::<S>(&p);
+                for &m in Mapping::VARIANTS {
+                    let g = m.map_lanes::<S, true>(s, &v);
+                    let f = m.map_lanes::<S, false>(s, &v);
+                    let (gu, gv) = (to_array::<S>(g.u), to_array::<S>(g.v));
+                    let (fu, fv) = (to_array::<S>(f.u), to_array::<S>(f.v));
+                    let (du, dv) = (g.grad_u.to_arrays(), g.grad_v.to_arrays());
+                    for i in 0..S::F32_LANES {
+                        let q = lane(&p, i);
+                        let one = m.map_lanes::<pulp::Scalar, true>(pulp::Scalar, &V3::one(q));
+                        let want = [one.u, one.v].map(bits);
+                        assert_eq!([gu[i], gv[i]].map(bits), want, "{name}: {m:?} at {q:?}");
+                        assert_eq!([fu[i], fv[i]].map(bits), want, "{name}: {m:?} at {q:?}");
+                        assert_eq!(
+                            [du[0][i], du[1][i], du[2][i], dv[0][i], dv[1][i], dv[2][i]].map(bits),
+                            [
+                                one.grad_u.x,
+                                one.grad_u.y,
+                                one.grad_u.z,
+                                one.grad_v.x,
+                                one.grad_v.y,
+                                one.grad_v.z
+                            ]
+                            .map(bits),
+                            "{name}: {m:?} gradients at {q:?}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+    assert!(at_every_width(&mut Agree) >= 1);
 }

@@ -9,8 +9,6 @@
 //! ulp of pi; see the tests); signed zeros, infinities and NaN follow IEEE `atan2` (those cases go to
 //! libm).
 
-use std::f32::consts::{FRAC_PI_2, PI};
-
 /// atan(t) / t - 1 = t^2 (C1 + t^2 (C2 + ...)) on [0, 1].
 pub(crate) const C: [f32; 8] = [
     -0.333_329_86,
@@ -23,38 +21,19 @@ pub(crate) const C: [f32; 8] = [
     0.002_622_225_8,
 ];
 
-/// `y.atan2(x)` in [-pi, pi], within 3e-7 rad of the exact value.
+/// `y.atan2(x)` in [-pi, pi], within 3e-7 rad of the exact value: [`super::lanes::atan2`] at
+/// width 1 (pulp's `Scalar`), the one definition every width runs.
 #[must_use]
 #[inline]
 pub fn atan2(y: f32, x: f32) -> f32 {
-    let (ax, ay) = (x.abs(), y.abs());
-    let swap = ay > ax;
-    let (num, den) = if swap { (ax, ay) } else { (ay, ax) };
-    let t = num / den;
-    // 0 / 0 (both zero), inf / inf and NaN (t is NaN exactly then): the rare cases libm
-    // defines with care.
-    if t.is_nan() {
-        return y.atan2(x);
-    }
-    let s = t * t;
-    let mut p = C[7];
-    for &c in C[..7].iter().rev() {
-        p = p * s + c;
-    }
-    let mut r = t + t * s * p;
-    if swap {
-        r = FRAC_PI_2 - r;
-    }
-    if x.is_sign_negative() {
-        r = PI - r;
-    }
-    r.copysign(y)
+    super::lanes::atan2(pulp::Scalar, y, x)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::math::SampleRng;
+    use std::f32::consts::{FRAC_PI_2, PI};
 
     fn err(y: f32, x: f32) -> f64 {
         (f64::from(atan2(y, x)) - f64::from(y).atan2(f64::from(x))).abs()

@@ -3,9 +3,10 @@
 
 mod atan;
 mod color;
+pub mod lanes;
 mod rng;
 
-/// The coefficients of [`atan2`]'s polynomial, for the packet path's lane-wise twin.
+/// The coefficients of [`atan2`]'s polynomial (the old packet kernels' copy, until they go).
 pub(crate) use atan::C as ATAN_POLY;
 pub use atan::atan2;
 pub use color::{
@@ -152,7 +153,7 @@ pub fn floor_fast_f64(x: f64) -> f64 {
 #[must_use]
 #[inline]
 pub fn max_abs(p: Vec3A) -> f32 {
-    p.abs().max_element()
+    lanes::V3::one(p).max_abs(pulp::Scalar)
 }
 
 /// An orthonormal basis whose third axis is `n` (Duff et al. 2017, branchless).

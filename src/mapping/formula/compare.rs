@@ -211,26 +211,12 @@ pub struct Hint {
     pub fix: Option<String>,
 }
 
-/// The families of built-in mappings, as the hints speak of them.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Kind {
-    /// The rectangular map: u from z, v from x.
-    Rectangle,
-    /// The cylindrical map: u around y, v up y.
-    Cylinder,
-    /// The spherical map (and `uv`, which is spherical on the sphere).
-    Sphere,
-    /// The light probe and its panoramic and mirror-ball variants.
-    Probe,
-}
+/// The families of built-in mappings, as the hints speak of them (each mapping's file names
+/// its own).
+use crate::mapping::Family as Kind;
 
 const fn kind(mapping: Mapping) -> Kind {
-    match mapping {
-        Mapping::Rectangular => Kind::Rectangle,
-        Mapping::Cylindrical => Kind::Cylinder,
-        Mapping::Spherical | Mapping::Uv => Kind::Sphere,
-        Mapping::LightProbe | Mapping::Panoramic | Mapping::MirrorBall => Kind::Probe,
-    }
+    mapping.family()
 }
 
 /// The mistakes tried on both formulas together, in order.
@@ -277,14 +263,19 @@ impl Mistake {
 
     /// Whether this mistake is tried on `on` of `mapping` at all.
     const fn applies(self, mapping: Mapping, on: On) -> bool {
-        let k = kind(mapping);
-        let around = matches!(k, Kind::Cylinder | Kind::Sphere);
+        // What the family has, named once per family (exhaustive: a new family must say).
+        let (around, probe, sphere, rectangle) = match kind(mapping) {
+            Kind::Rectangle => (false, false, false, true),
+            Kind::Cylinder => (true, false, false, false),
+            Kind::Sphere => (true, false, true, false),
+            Kind::Probe => (false, true, false, false),
+        };
         match (self, on) {
             (Self::Swapped, On::Both)
             | (Self::MirroredU, On::U)
             | (Self::FlippedV, On::V)
             | (Self::WrongAxis, On::U | On::V) => true,
-            (Self::QuarterTurn | Self::HalfTurn, On::Both) => matches!(k, Kind::Probe),
+            (Self::QuarterTurn | Self::HalfTurn, On::Both) => probe,
             (
                 Self::QuarterTurn
                 | Self::HalfTurn
@@ -293,9 +284,9 @@ impl Mistake {
                 | Self::Degrees,
                 On::U,
             ) => around,
-            (Self::Degrees | Self::AsinForAcos, On::V) => matches!(k, Kind::Sphere),
-            (Self::MissingShift, On::U) => matches!(k, Kind::Rectangle | Kind::Probe),
-            (Self::MissingShift, On::V) => !matches!(k, Kind::Sphere),
+            (Self::Degrees | Self::AsinForAcos, On::V) => sphere,
+            (Self::MissingShift, On::U) => rectangle | probe,
+            (Self::MissingShift, On::V) => !sphere,
             _ => false,
         }
     }
@@ -530,25 +521,8 @@ pub fn mistakes(
 mod hints;
 
 /// The lecture's mappings written as formulas in texplore's conventions (what the README
-/// shows): the same (u, v) as the built-in mapping to about 1e-15 on its surface. `None` for
-/// the mappings the lecture does not write out (the panoramic and mirror-ball variants, `uv`).
-///
-/// The spherical and light-probe formulas divide by |p| before `acos`, as the renderer does:
-/// a hit point rounded to f32 can lie a hair outside the unit sphere, where acos(1.0000001)
-/// is NaN.
+/// shows): each mapping's file holds its own ([`Mapping::lecture_formula`]).
 #[must_use]
 pub const fn lecture_formula(mapping: Mapping) -> Option<(&'static str, &'static str)> {
-    match mapping {
-        Mapping::Rectangular => Some(("(z + 1) / 2", "(x + 1) / 2")),
-        Mapping::Cylindrical => Some(("fract(atan2(x, z) / tau)", "clamp((y + 1) / 2)")),
-        Mapping::Spherical => Some((
-            "fract(atan2(x, z) / tau)",
-            "1 - acos(y / sqrt(x*x + y*y + z*z)) / pi",
-        )),
-        Mapping::LightProbe => Some((
-            "(1 + acos(z / sqrt(x*x + y*y + z*z)) / pi * x / sqrt(x*x + y*y)) / 2",
-            "(1 + acos(z / sqrt(x*x + y*y + z*z)) / pi * y / sqrt(x*x + y*y)) / 2",
-        )),
-        Mapping::Panoramic | Mapping::MirrorBall | Mapping::Uv => None,
-    }
+    mapping.lecture_formula()
 }

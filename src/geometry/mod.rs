@@ -7,6 +7,7 @@
 
 pub mod bvh;
 pub mod displace;
+pub mod lanes;
 pub mod mesh;
 mod shapes;
 

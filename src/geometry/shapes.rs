@@ -1,8 +1,11 @@
-//! Ray intersection with the generic shapes, written to stay accurate far from the origin.
+//! Ray intersection with the generic shapes, written to stay accurate far from the origin: the
+//! width-1 instances of the lanes in [`super::lanes`], and meshes through their BVH.
 
 use super::LocalHit;
+use super::lanes::{self, Flat, ShapeHits};
 use super::mesh::{Mesh, Shading};
-use crate::math::{Ray, Vec3A};
+use crate::math::Ray;
+use crate::math::lanes::V3;
 use std::sync::Arc;
 
 /// A shape in its object space. Size, position and orientation come from the instance
@@ -55,9 +58,9 @@ pub fn intersect_shape(shape: &Shape, ray: &Ray, t_max: f32) -> Option<LocalHit>
     match shape {
         Shape::Sphere => sphere(ray, t_max),
         Shape::Cylinder { capped } => cylinder(ray, t_max, *capped),
-        Shape::Plane => plane(ray, t_max, |_, _| true),
-        Shape::Rectangle => plane(ray, t_max, |x, z| x.abs() <= 1.0 && z.abs() <= 1.0),
-        Shape::Disk => plane(ray, t_max, |x, z| x * x + z * z <= 1.0),
+        Shape::Plane => flat(ray, t_max, Flat::Plane),
+        Shape::Rectangle => flat(ray, t_max, Flat::Rectangle),
+        Shape::Disk => flat(ray, t_max, Flat::Disk),
         Shape::Mesh(m) => m.mesh.intersect_point(ray, t_max, m.shading),
     }
 }
@@ -73,129 +76,46 @@ pub fn occluded_shape(shape: &Shape, ray: &Ray, t_max: f32) -> bool {
     }
 }
 
-fn hit(t: f32, p: Vec3A, n: Vec3A, part: u32) -> LocalHit {
-    LocalHit {
-        t,
-        p,
-        n,
-        ns: n,
+/// The width-1 instance of a generic shape's lanes ([`super::lanes`]) as a [`LocalHit`].
+#[inline(always)]
+fn one(h: ShapeHits<pulp::Scalar>) -> Option<LocalHit> {
+    h.hit.then(|| LocalHit {
+        t: h.t,
+        p: h.p.vec(),
+        n: h.n.vec(),
+        ns: h.n.vec(),
         uv: None,
         dpduv: None,
-        part,
+        part: h.part,
         prim: 0,
-    }
+    })
 }
 
-/// Roots of a t^2 + 2 b' t + c = 0, the form sphere and cylinder share: `a = d.d`,
-/// `half_b = o.d`, `c = o.o - 1`, and `perp2a = |o x d|^2`, which is `a` times the squared
-/// distance from the centre (axis) to the ray's closest point. The discriminant is then
-/// `a - perp2a`, exact where `b'^2 - a c` cancels catastrophically far from the surface (Ray
-/// Tracing Gems ch. 7, with Lagrange's identity in place of a division). Returns the two roots
-/// in increasing order.
-#[inline]
-fn stable_roots(a: f32, half_b: f32, c: f32, perp2a: f32) -> Option<(f32, f32)> {
-    let disc = a - perp2a; // the discriminant / 4: half_b^2 - a c
-    if disc < 0.0 || a <= 0.0 {
-        return None;
-    }
-    let root = disc.sqrt();
-    // q has the sign of -half_b so the sum never cancels.
-    let q = if half_b > 0.0 {
-        -half_b - root
-    } else {
-        -half_b + root
-    };
-    if q == 0.0 {
-        // The ray starts on the surface and is tangent: a double root at 0.
-        return Some((0.0, 0.0));
-    }
-    let (t0, t1) = (c / q, q / a);
-    Some(if t0 < t1 { (t0, t1) } else { (t1, t0) })
+/// The ray's origin and direction at width 1.
+#[inline(always)]
+fn lanes_of(ray: &Ray) -> (V3<pulp::Scalar>, V3<pulp::Scalar>) {
+    (V3::one(ray.origin), V3::one(ray.dir))
 }
 
 fn sphere(ray: &Ray, t_max: f32) -> Option<LocalHit> {
-    let (o, d) = (ray.origin, ray.dir);
-    let c = o.length_squared() - 1.0;
-    let half_b = o.dot(d);
-    // Outside and heading away: both roots are behind the origin (shadow rays leaving the
-    // sphere, rays past it).
-    if c > 0.0 && half_b >= 0.0 {
-        return None;
-    }
-    let a = d.length_squared();
-    let (t0, t1) = stable_roots(a, half_b, c, o.cross(d).length_squared())?;
-    let t = if t0 > 0.0 { t0 } else { t1 };
-    if !(t > 0.0 && t < t_max) {
-        return None;
-    }
-    // Projecting back onto the unit sphere removes the error of o + t d far from the origin.
-    let p = ray.at(t).normalize_or(Vec3A::Y);
-    Some(hit(t, p, p, 0))
+    let (o, d) = lanes_of(ray);
+    one(lanes::sphere(pulp::Scalar, &o, &d, t_max))
 }
 
 fn cylinder(ray: &Ray, t_max: f32, capped: bool) -> Option<LocalHit> {
-    let (o, d) = (ray.origin, ray.dir);
-    let mut best: Option<LocalHit> = None;
-    let mut t_best = t_max;
-    let (oxz, dxz) = (Vec3A::new(o.x, 0.0, o.z), Vec3A::new(d.x, 0.0, d.z));
-    let a = dxz.length_squared();
-    if a > 0.0 {
-        let half_b = oxz.dot(dxz);
-        let c = oxz.length_squared() - 1.0;
-        let cross = o.z * d.x - o.x * d.z;
-        if let Some((t0, t1)) = stable_roots(a, half_b, c, cross * cross) {
-            for t in [t0, t1] {
-                if t > 0.0 && t < t_best {
-                    let p = ray.at(t);
-                    if (-1.0..=1.0).contains(&p.y) {
-                        let radial = Vec3A::new(p.x, 0.0, p.z).normalize_or(Vec3A::Z);
-                        let p = Vec3A::new(radial.x, p.y, radial.z);
-                        best = Some(hit(t, p, radial, CYLINDER_WALL));
-                        t_best = t;
-                        break;
-                    }
-                }
-            }
-        }
-    }
-    if capped && d.y != 0.0 {
-        for (y, part) in [(-1.0_f32, CYLINDER_BOTTOM), (1.0, CYLINDER_TOP)] {
-            let t = (y - o.y) / d.y;
-            if t > 0.0 && t < t_best {
-                let p = ray.at(t);
-                if p.x * p.x + p.z * p.z <= 1.0 {
-                    best = Some(hit(
-                        t,
-                        Vec3A::new(p.x, y, p.z),
-                        Vec3A::new(0.0, y, 0.0),
-                        part,
-                    ));
-                    t_best = t;
-                }
-            }
-        }
-    }
-    best
+    let (o, d) = lanes_of(ray);
+    one(lanes::cylinder(pulp::Scalar, &o, &d, t_max, capped))
 }
 
-fn plane(ray: &Ray, t_max: f32, inside: impl Fn(f32, f32) -> bool) -> Option<LocalHit> {
-    if ray.dir.y == 0.0 {
-        return None;
-    }
-    let t = -ray.origin.y / ray.dir.y;
-    if !(t > 0.0 && t < t_max) {
-        return None;
-    }
-    let p = ray.at(t);
-    if !inside(p.x, p.z) {
-        return None;
-    }
-    Some(hit(t, Vec3A::new(p.x, 0.0, p.z), Vec3A::Y, 0))
+fn flat(ray: &Ray, t_max: f32, flat: Flat) -> Option<LocalHit> {
+    let (o, d) = lanes_of(ray);
+    one(lanes::flat(pulp::Scalar, &o, &d, t_max, flat))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::math::Vec3A;
 
     fn ray(o: [f32; 3], d: [f32; 3]) -> Ray {
         Ray::new(Vec3A::from(o), Vec3A::from(d))
@@ -270,7 +190,7 @@ mod tests {
     #[test]
     fn planes_rectangles_disks() {
         let r = ray([0.5, 2.0, 0.5], [0.0, -1.0, 0.0]);
-        assert!((plane(&r, f32::INFINITY, |_, _| true).unwrap().t - 2.0).abs() < 1e-6);
+        assert!((flat(&r, f32::INFINITY, Flat::Plane).unwrap().t - 2.0).abs() < 1e-6);
         assert!(intersect_shape(&Shape::Rectangle, &r, f32::INFINITY).is_some());
         assert!(intersect_shape(&Shape::Disk, &r, f32::INFINITY).is_some());
         let r = ray([0.9, 2.0, 0.9], [0.0, -1.0, 0.0]);

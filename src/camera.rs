@@ -1,7 +1,9 @@
 //! Cameras: pinhole, fisheye, spherical panorama and orthographic (the book's chapter 9-11
 //! cameras), each turning a film position into a world-space ray.
 
+use crate::math::lanes::{F, M, MAX_LANES, V3, from_array, to_array};
 use crate::math::{Quat, Ray, RayDifferential, Vec2, Vec3, Vec3A};
+use pulp::Simd;
 
 /// A camera with its orthonormal frame already computed.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -89,56 +91,14 @@ impl Camera {
         }
     }
 
-    /// The film-plane size of one pixel of the pinhole and orthographic cameras (0 for the
-    /// others): the packet path's lane-wise twin of [`Camera::direction`] reads it.
-    #[must_use]
-    #[inline]
-    pub(crate) fn pixel_scale(&self) -> f32 {
-        self.pixel_scale
-    }
-
     /// The direction (unnormalised) through film position `pos` in pixels (x right, y down,
-    /// (0, 0) the top-left corner), or `None` where the projection sees nothing.
+    /// (0, 0) the top-left corner), or `None` where the projection sees nothing: the width-1
+    /// instance of [`Camera::rays_lanes`].
     #[must_use]
     #[inline]
     pub fn direction(&self, pos: Vec2) -> Option<Vec3A> {
-        let (w, h) = (self.width as f32, self.height as f32);
-        let [u, v, back] = self.frame;
-        match self.projection {
-            Projection::Pinhole { .. } => {
-                let scale = self.pixel_scale;
-                let x = (pos.x - 0.5 * w) * scale;
-                let y = (0.5 * h - pos.y) * scale;
-                Some(x * u + y * v - back)
-            }
-            Projection::Fisheye { psi_max } => {
-                let radius = 0.5 * w.min(h);
-                let x = (pos.x - 0.5 * w) / radius;
-                let y = (0.5 * h - pos.y) / radius;
-                let r2 = x * x + y * y;
-                if r2 > 1.0 {
-                    return None;
-                }
-                let r = r2.sqrt();
-                let psi = r * psi_max;
-                let (sin_psi, cos_psi) = psi.sin_cos();
-                let (sa, ca) = if r > 0.0 { (y / r, x / r) } else { (0.0, 1.0) };
-                Some(sin_psi * ca * u + sin_psi * sa * v - cos_psi * back)
-            }
-            Projection::Spherical {
-                lambda_max,
-                psi_max,
-            } => {
-                let x = (pos.x / w) * 2.0 - 1.0;
-                let y = 1.0 - (pos.y / h) * 2.0;
-                let lambda = x * lambda_max;
-                let psi = y * psi_max;
-                let (sl, cl) = lambda.sin_cos();
-                let (sp, cp) = psi.sin_cos();
-                Some(cp * sl * u + sp * v - cp * cl * back)
-            }
-            Projection::Orthographic { .. } => Some(-back),
-        }
+        let (_, d, seen) = self.rays_lanes(pulp::Scalar, pos.x, pos.y);
+        seen.then(|| d.vec())
     }
 
     /// Where the ray through film position `pos` starts: the eye, or for the orthographic
@@ -147,14 +107,71 @@ impl Camera {
     #[inline]
     pub fn origin(&self, pos: Vec2) -> Vec3A {
         match self.projection {
-            Projection::Orthographic { .. } => {
-                let (w, h) = (self.width as f32, self.height as f32);
-                let [u, v, _] = self.frame;
-                let x = (pos.x - 0.5 * w) * self.pixel_scale;
-                let y = (0.5 * h - pos.y) * self.pixel_scale;
-                self.eye + x * u + y * v
-            }
+            Projection::Orthographic { .. } => self.rays_lanes(pulp::Scalar, pos.x, pos.y).0.vec(),
             _ => self.eye,
+        }
+    }
+
+    /// The rays through film positions (`px`, `py`) per lane, written once for every width:
+    /// origins, unnormalised directions, and which lanes the projection sees (a fisheye sees
+    /// only its disc). The pinhole and orthographic projections are lane arithmetic; the
+    /// fisheye's and the panorama's sines and cosines are libm's, per lane.
+    #[must_use]
+    #[inline(always)]
+    pub fn rays_lanes<S: Simd>(&self, s: S, px: F<S>, py: F<S>) -> (V3<S>, V3<S>, M<S>) {
+        let (w, h) = (self.width as f32, self.height as f32);
+        let [u, v, back] = self.frame;
+        let c = |x: f32| s.splat_f32s(x);
+        let (vu, vv, vback) = (V3::splat(s, u), V3::splat(s, v), V3::splat(s, back));
+        let eye = V3::splat(s, self.eye);
+        let all = s.equal_f32s(c(0.0), c(0.0));
+        // x u + y v (each a vector times a number), as glam sums `x * u + y * v`.
+        let plane = |x: F<S>, y: F<S>| vu.scale(s, x).add(s, &vv.scale(s, y));
+        let centred = || {
+            let scale = c(self.pixel_scale);
+            (
+                s.mul_f32s(s.sub_f32s(px, c(0.5 * w)), scale),
+                s.mul_f32s(s.sub_f32s(c(0.5 * h), py), scale),
+            )
+        };
+        match self.projection {
+            Projection::Pinhole { .. } => {
+                let (x, y) = centred();
+                (eye, plane(x, y).sub(s, &vback), all)
+            }
+            Projection::Orthographic { .. } => {
+                let (x, y) = centred();
+                // eye + x u + y v, summed left to right.
+                let o = eye.add(s, &vu.scale(s, x)).add(s, &vv.scale(s, y));
+                (o, vback.neg(s), all)
+            }
+            Projection::Fisheye { psi_max } => {
+                let radius = c(0.5 * w.min(h));
+                let x = s.div_f32s(s.sub_f32s(px, c(0.5 * w)), radius);
+                let y = s.div_f32s(s.sub_f32s(c(0.5 * h), py), radius);
+                let r2 = s.add_f32s(s.mul_f32s(x, x), s.mul_f32s(y, y));
+                let seen = s.not_m32s(s.greater_than_f32s(r2, c(1.0)));
+                let r = s.sqrt_f32s(r2);
+                let psi = s.mul_f32s(r, c(psi_max));
+                let (sin_psi, cos_psi) = sin_cos(s, psi);
+                let off = s.greater_than_f32s(r, c(0.0));
+                let sa = s.select_f32s(off, s.div_f32s(y, r), c(0.0));
+                let ca = s.select_f32s(off, s.div_f32s(x, r), c(1.0));
+                let d = plane(s.mul_f32s(sin_psi, ca), s.mul_f32s(sin_psi, sa))
+                    .sub(s, &vback.scale(s, cos_psi));
+                (eye, d, seen)
+            }
+            Projection::Spherical {
+                lambda_max,
+                psi_max,
+            } => {
+                let x = s.sub_f32s(s.mul_f32s(s.div_f32s(px, c(w)), c(2.0)), c(1.0));
+                let y = s.sub_f32s(c(1.0), s.mul_f32s(s.div_f32s(py, c(h)), c(2.0)));
+                let (sl, cl) = sin_cos(s, s.mul_f32s(x, c(lambda_max)));
+                let (sp, cp) = sin_cos(s, s.mul_f32s(y, c(psi_max)));
+                let d = plane(s.mul_f32s(cp, sl), sp).sub(s, &vback.scale(s, s.mul_f32s(cp, cl)));
+                (eye, d, all)
+            }
         }
     }
 
@@ -285,6 +302,18 @@ pub fn pan_offset(eye: Vec3, look_at: Vec3, up: Vec3, dx: f32, dy: f32) -> Vec3 
     );
     let dist = (eye - look_at).length();
     Vec3::from(cam.frame[0] * dx + cam.frame[1] * dy) * dist
+}
+
+/// `x.sin_cos()` per lane (libm's, lane by lane).
+#[inline(always)]
+fn sin_cos<S: Simd>(s: S, x: F<S>) -> (F<S>, F<S>) {
+    let xs = to_array::<S>(x);
+    let (mut sn, mut cs) = ([0.0; MAX_LANES], [0.0; MAX_LANES]);
+    for i in 0..S::F32_LANES {
+        (sn[i], cs[i]) = xs[i].sin_cos();
+    }
+    let _ = s;
+    (from_array::<S>(&sn), from_array::<S>(&cs))
 }
 
 #[cfg(test)]

@@ -2,8 +2,7 @@
 
 use crate::geometry::Mesh;
 use crate::render::{
-    Film, LANES, PREVIEW_BLOCKS, SimdMode, packet_eligibility, render_pass_with,
-    render_preview_into, simd_level, thread_pool,
+    Film, PREVIEW_BLOCKS, SimdMode, render_pass_with, render_preview_into, simd_level, thread_pool,
 };
 use crate::scene::{
     AssetCache, Overrides, apply_overrides, build_scene, parse_preset, read_preset_or_png,
@@ -38,8 +37,8 @@ pub struct BenchArgs {
     /// Timed passes per thread count (after one warm-up); the median is reported.
     #[arg(long, default_value_t = 9, value_parser = super::parse_repeat)]
     pub repeat: usize,
-    /// Force the scalar path (one ray at a time) instead of the packet path, for comparison
-    /// (`TEXPLORE_SIMD=off` does the same for every command).
+    /// Run the kernel one ray a packet instead of at the CPU's SIMD width, for comparison
+    /// (`TEXPLORE_SIMD=scalar` does the same for every command).
     #[arg(long)]
     pub scalar: bool,
 }
@@ -130,13 +129,7 @@ pub fn run(a: &BenchArgs, simd: SimdMode) -> Result<()> {
         a.repeat.max(1)
     );
     let mode = if a.scalar { SimdMode::Scalar } else { simd };
-    match packet_eligibility(&scene, mode) {
-        Ok(()) => println!(
-            "path: packets of {LANES} rays, {} (runtime dispatch)",
-            simd_level()
-        ),
-        Err(why) => println!("path: scalar, one ray at a time ({why})"),
-    }
+    println!("kernel: {}", simd_level(mode));
     let mut base = None;
     for &threads in &a.threads {
         let pool = thread_pool(threads)?;

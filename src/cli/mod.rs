@@ -27,9 +27,10 @@ pub struct Cli {
     /// Preset or screenshot to open in the window (default: the Earth).
     #[arg(value_name = "FILE")]
     pub open: Option<PathBuf>,
-    /// Which path primary rays take: `auto` (packets of rays where the scene allows, else one
-    /// ray at a time) or `scalar` (one ray at a time everywhere, for comparison). Every command
-    /// that renders and the window take it.
+    /// How wide the render kernel runs: `auto` (packets of rays as wide as the CPU's SIMD
+    /// registers: 16 on AVX-512, 8 on AVX2, 4 on NEON and SSE2) or `scalar` (the same kernel one
+    /// ray at a time, for comparison: the same pixels). Every command that renders and the
+    /// window take it.
     #[arg(long, global = true, env = "TEXPLORE_SIMD", default_value = "auto", value_parser = parse_simd)]
     pub simd: SimdMode,
 }

@@ -570,7 +570,7 @@ impl Mesh {
 
     /// [`Mesh::surface`] without dp/du and dp/dv.
     #[must_use]
-    fn surface_point(&self, hit: TriangleHit, shading: Shading) -> LocalHit {
+    pub fn surface_point(&self, hit: TriangleHit, shading: Shading) -> LocalHit {
         let i = hit.triangle as usize;
         let [a, b, c] = self.triangles[i].map(|k| k as usize);
         let (w0, w1, w2) = (hit.bary.x, hit.bary.y, hit.bary.z);

@@ -7,14 +7,17 @@ mod bump;
 mod normal;
 mod param;
 mod table;
+mod terms;
 
 pub use bump::{Bump, MIN_BUMP_STEP, dual_basis, uv_gradients};
 pub use normal::{NormalMap, decode_normal, encode_normal};
 pub use param::{Colour, ParamValue, Scalar, ScalarTexture};
 pub(crate) use table::material_table;
 pub use table::{ParamDefault, ParamSpec};
+pub use terms::{C3, Terms, splat_rgb};
 
-use crate::math::{INV_PI, Rgb, Vec3A};
+use crate::math::lanes::V3;
+use crate::math::{Rgb, Vec3A};
 use crate::texture::{Texture, TextureContext};
 
 /// How a surface responds to light. Colours that vary over the surface are [`Texture`]s.
@@ -86,6 +89,38 @@ impl Material {
         match self {
             Self::Matte { cd, .. } | Self::Phong { cd, .. } | Self::Reflective { cd, .. } => cd,
             Self::Emissive { ce, .. } => ce,
+        }
+    }
+
+    /// Whether any coefficient or colour besides the colour texture is a texture (what
+    /// [`Material::params`] lists, without building the list: the render kernel asks per
+    /// packet).
+    #[must_use]
+    pub fn has_textured_params(&self) -> bool {
+        let s = |p: &Scalar| matches!(p, Scalar::Texture(_));
+        let c = |p: &Colour| matches!(p, Colour::Texture(_));
+        match self {
+            Self::Matte { ka, kd, .. } => s(ka) || s(kd),
+            Self::Phong {
+                ka,
+                kd,
+                ks,
+                cs,
+                exp,
+                ce,
+                ..
+            } => s(ka) || s(kd) || s(ks) || c(cs) || s(exp) || c(ce),
+            Self::Reflective {
+                ka,
+                kd,
+                ks,
+                cs,
+                exp,
+                kr,
+                cr,
+                ..
+            } => s(ka) || s(kd) || s(ks) || c(cs) || s(exp) || s(kr) || c(cr),
+            Self::Emissive { ls, .. } => s(ls),
         }
     }
 
@@ -234,78 +269,38 @@ impl ShadePoint {
 }
 
 impl Material {
-    /// Evaluates the texture once and prepares the terms for [`ShadePoint::direct`].
+    /// Evaluates the texture once and prepares the terms for [`ShadePoint::direct`]: the
+    /// width-1 instance of [`Material::terms`].
     #[must_use]
     #[inline]
     pub fn shade_point(&self, ctx: &TextureContext, ambient: Rgb) -> ShadePoint {
-        match self {
-            Self::Matte { ka, kd, cd } => {
-                let c = cd.eval(ctx);
-                ShadePoint {
-                    base: c * ambient * ka.eval(ctx),
-                    diffuse: c * (kd.eval(ctx) * INV_PI),
-                    specular: None,
-                    mirror: None,
-                    glow: None,
-                }
-            }
-            Self::Phong {
-                ka,
-                kd,
-                cd,
-                ks,
-                cs,
-                exp,
-                ce,
-            } => {
-                let c = cd.eval(ctx);
-                ShadePoint {
-                    base: c * ambient * ka.eval(ctx),
-                    diffuse: c * (kd.eval(ctx) * INV_PI),
-                    specular: Some((cs.eval(ctx) * ks.eval(ctx), exp.eval(ctx))),
-                    mirror: None,
-                    glow: non_black(ce.eval(ctx)),
-                }
-            }
-            Self::Reflective {
-                ka,
-                kd,
-                cd,
-                ks,
-                cs,
-                exp,
-                kr,
-                cr,
-            } => {
-                let c = cd.eval(ctx);
-                ShadePoint {
-                    base: c * ambient * ka.eval(ctx),
-                    diffuse: c * (kd.eval(ctx) * INV_PI),
-                    specular: Some((cs.eval(ctx) * ks.eval(ctx), exp.eval(ctx))),
-                    mirror: non_black(cr.eval(ctx) * kr.eval(ctx)),
-                    glow: None,
-                }
-            }
-            Self::Emissive { ls, ce } => ShadePoint {
-                base: ce.eval(ctx) * ls.eval(ctx),
-                diffuse: Rgb::BLACK,
-                specular: None,
-                mirror: None,
-                glow: None,
+        let s = pulp::Scalar;
+        let c = self.texture().eval(ctx);
+        let t = self.terms(
+            s,
+            &[c.0, c.1, c.2],
+            ambient,
+            |p| p.eval(ctx),
+            |p| {
+                let c = p.eval(ctx);
+                [c.0, c.1, c.2]
             },
+        );
+        let rgb = |c: [f32; 3]| Rgb(c[0], c[1], c[2]);
+        ShadePoint {
+            base: rgb(t.base),
+            diffuse: rgb(t.diffuse),
+            specular: t.specular.map(|(ks, e)| (rgb(ks), e)),
+            mirror: t.mirror.and_then(|(m, on)| on.then(|| rgb(m))),
+            glow: t.glow.and_then(|(g, on)| on.then(|| rgb(g))),
         }
     }
 }
 
-/// `Some(c)` unless `c` is black.
-#[inline]
-fn non_black(c: Rgb) -> Option<Rgb> {
-    (c != Rgb::BLACK).then_some(c)
-}
-
 impl ShadePoint {
     /// Radiance reflected toward `wo` from one light arriving along `wi` with radiance `li`,
-    /// at a surface with unit normal `n` facing `wo` (the lecture's `f * L * (n . wi)`).
+    /// at a surface with unit normal `n` facing `wo` (the lecture's `f * L * (n . wi)`): the
+    /// width-1 instance of [`Terms::add_light`].
     #[must_use]
     #[inline]
     pub fn direct(&self, n: Vec3A, wo: Vec3A, wi: Vec3A, li: Rgb) -> Rgb {
@@ -313,14 +308,30 @@ impl ShadePoint {
         if ndotwi <= 0.0 {
             return Rgb::BLACK;
         }
-        let mut f = self.diffuse;
-        if let Some((ks, exp)) = self.specular {
-            let r = -wi + 2.0 * ndotwi * n;
-            let rdotwo = r.dot(wo);
-            if rdotwo > 0.0 {
-                f += ks * rdotwo.powf(exp);
-            }
-        }
-        f * li * ndotwi
+        let c = |c: Rgb| [c.0, c.1, c.2];
+        let t = Terms::<pulp::Scalar> {
+            base: c(self.base),
+            diffuse: c(self.diffuse),
+            specular: self.specular.map(|(ks, e)| (c(ks), e)),
+            mirror: None,
+            glow: None,
+            lit: true,
+        };
+        let mut l = [0.0; 3];
+        let mut lit = 0.0;
+        let v = |v: Vec3A| V3::one(v);
+        t.add_light(
+            pulp::Scalar,
+            true,
+            &v(n),
+            &v(wo),
+            &v(wi),
+            li,
+            ndotwi,
+            None,
+            &mut l,
+            &mut lit,
+        );
+        Rgb(l[0], l[1], l[2])
     }
 }

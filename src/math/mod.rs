@@ -6,8 +6,6 @@ mod color;
 pub mod lanes;
 mod rng;
 
-/// The coefficients of [`atan2`]'s polynomial (the old packet kernels' copy, until they go).
-pub(crate) use atan::C as ATAN_POLY;
 pub use atan::atan2;
 pub use color::{
     DisplayImage, Rgb, encode_display, encode_srgb8, linear_to_srgb, linear_to_srgb8, quantize8,

@@ -4,9 +4,8 @@
 mod adaptive;
 mod film;
 mod job;
-mod lanes;
-mod packet;
 mod pool;
+mod rows;
 // The page's renderer; natively only its tests (they compare it with the threaded one).
 #[cfg(any(target_arch = "wasm32", test))]
 mod slices;
@@ -16,8 +15,10 @@ pub use crate::scene::SimdMode;
 pub use adaptive::{CONTRAST_FACTOR, adaptive_mask, display_luminance};
 pub use film::{DisplayImage, Film, encode_srgb8};
 pub use job::{Generation, Progress, RenderJob, RenderOptions};
-pub use lanes::LANES;
-pub use packet::{Ineligible, packet_eligibility, simd_level};
+pub use rows::{kernel_width, simd_level};
+
+/// Pixels whose sample positions are made together, lane-wise where the sampler allows.
+pub const LANES: usize = rows::CHUNK;
 pub use pool::{MAX_THREADS, PoolError, thread_pool};
 pub use task::Task;
 
@@ -153,8 +154,8 @@ const ADAPTIVE_STREAM: u32 = 0xada9_7e55;
 
 /// Like [`render_pass`], but only for pixels where `mask` is true (all when `None`). When the
 /// scene renders adaptively, each sample's display luminance also goes into the film's
-/// statistics. Primary rays take the packet path where the scene is eligible and its
-/// [`RenderSettings::simd`](crate::scene::RenderSettings::simd) allows it.
+/// statistics. Rays run through the render kernel at the width
+/// [`RenderSettings::simd`](crate::scene::RenderSettings::simd) picks.
 ///
 /// # Errors
 /// [`Cancelled`] if `cancelled` returned true.
@@ -169,9 +170,8 @@ pub fn render_pass_masked(
 }
 
 /// [`render_pass_masked`] with the path chosen by `mode`: [`SimdMode::Scalar`] forces the
-/// scalar path, [`SimdMode::Auto`] takes the packet path where [`packet_eligibility`] allows.
-/// Both give the same film within the snapshot tolerance (bit for bit where the lane-wise
-/// kernels follow the scalar ones exactly).
+/// kernel one ray a packet, [`SimdMode::Auto`] at the CPU's SIMD width ([`kernel_width`]): the
+/// same code, so the same film bit for bit.
 ///
 /// # Errors
 /// [`Cancelled`] if `cancelled` returned true.
@@ -213,8 +213,6 @@ pub fn render_tiles_with(
     let width = film.width() as usize;
     let stats_on = s.adaptive.is_some();
     let rows = width * TILE_ROWS;
-    let plan = packet::PacketPlan::new(scene, mode).ok();
-    let arch = packet::arch();
     let (sums, stats, keys) = film.buffers_mut();
     let end = (tiles.end * rows).min(sums.len());
     let start = (tiles.start * rows).min(end);
@@ -243,17 +241,7 @@ pub fn render_tiles_with(
                     stats_on,
                     exposure: s.exposure_scale,
                 };
-                match &plan {
-                    Some(plan) => arch.dispatch(PacketRow {
-                        scene,
-                        plan,
-                        row: &mut row,
-                        y: y as u32,
-                        sample,
-                        mask: row_mask,
-                    }),
-                    None => scalar_row(scene, &mut row, y as u32, sample, row_mask),
-                }
+                rows::render_row(scene, &mut row, y as u32, sample, row_mask, mode);
             }
             Ok(())
         });
@@ -270,12 +258,6 @@ struct Row<'a> {
 }
 
 impl Row<'_> {
-    /// Adds one sample's radiance `l` with edge key `edge_key` to pixel `x`.
-    #[inline(always)]
-    fn add(&mut self, x: usize, l: Rgb, edge_key: u32) {
-        self.add_parts(x, l.0, l.1, l.2, edge_key);
-    }
-
     /// [`Row::add`] of the radiance (r, g, b).
     #[inline(always)]
     fn add_parts(&mut self, x: usize, r: f32, g: f32, b: f32, edge_key: u32) {
@@ -293,121 +275,6 @@ impl Row<'_> {
         px[1] += g;
         px[2] += b;
         px[3] += 1.0;
-    }
-}
-
-/// The scalar path over one row: one ray at a time.
-fn scalar_row(scene: &Scene, row: &mut Row, y: u32, sample: u32, mask: Option<&[bool]>) {
-    let s = &scene.settings;
-    for x in 0..row.px.len() {
-        if mask.is_some_and(|m| !m[x]) {
-            continue;
-        }
-        // Each sample's footprint is its cell: a stratified set's footprints tile the pixel,
-        // whatever the count.
-        let (pos, cell) = sample_position_and_cell(s, x as u32, y, sample);
-        let (l, edge_key) = radiance_keyed_cell(scene, pos, cell);
-        debug_assert!(l.is_finite(), "non-finite radiance at pixel ({x}, {y})");
-        row.add(x, l, edge_key);
-    }
-}
-
-/// [`packet_row`] as pulp's operation: `with_simd` is inlined into the `#[target_feature]`
-/// function [`pulp::Arch::dispatch`] picks, and everything below it is `#[inline(always)]`, so
-/// the whole packet kernel is compiled for that instruction set; its token `S` sets the explicit
-/// kernels' width. (A closure would not do: its
-/// body stays a separate function compiled for the baseline.)
-struct PacketRow<'s, 'r, 'f> {
-    scene: &'s Scene,
-    plan: &'s packet::PacketPlan<'s>,
-    row: &'r mut Row<'f>,
-    y: u32,
-    sample: u32,
-    mask: Option<&'s [bool]>,
-}
-
-impl pulp::WithSimd for PacketRow<'_, '_, '_> {
-    type Output = ();
-
-    #[inline(always)]
-    fn with_simd<S: pulp::Simd>(self, simd: S) {
-        packet_row(
-            simd,
-            self.scene,
-            self.plan,
-            self.row,
-            self.y,
-            self.sample,
-            self.mask,
-        );
-    }
-}
-
-/// The packet path over one row: [`LANES`] consecutive pixels at a time, the lanes the packet
-/// path cannot shade traced again by the scalar path.
-#[inline(always)]
-fn packet_row<S: pulp::Simd>(
-    simd: S,
-    scene: &Scene,
-    plan: &packet::PacketPlan,
-    row: &mut Row,
-    y: u32,
-    sample: u32,
-    mask: Option<&[bool]>,
-) {
-    let s = &scene.settings;
-    let width = row.px.len();
-    for x0 in (0..width).step_by(LANES) {
-        let mut active = [false; LANES];
-        for (i, a) in active.iter_mut().enumerate() {
-            let x = x0 + i;
-            *a = x < width && mask.is_none_or(|m| m[x]);
-        }
-        if !active.contains(&true) {
-            continue;
-        }
-        // The positions alone: a sample's cell matters only to lanes the scalar path traces,
-        // which compute it again. Lane-wise where the sampler allows, else per lane.
-        let (px, py) = sample_positions_lanes(s, x0 as u32, y, sample).unwrap_or_else(|| {
-            let (mut px, mut py) = ([0.0_f32; LANES], [0.0_f32; LANES]);
-            for i in 0..LANES {
-                if active[i] {
-                    let pos = sample_position(s, (x0 + i) as u32, y, sample);
-                    (px[i], py[i]) = (pos.x, pos.y);
-                }
-            }
-            (px, py)
-        });
-        // Each lane's cell, where a texture is filtered over the sample's footprint.
-        // Usually one cell for the whole packet (see `uniform_cell`).
-        let mut cells = [Vec2::ZERO; LANES];
-        if plan.needs_cells() {
-            if let Some(c) = uniform_cell(s, sample) {
-                cells = [c; LANES];
-            } else {
-                for i in 0..LANES {
-                    if active[i] {
-                        cells[i] = sample_cell(s, (x0 + i) as u32, y, sample);
-                    }
-                }
-            }
-        }
-        let (rgb, keys, fallback) = plan.trace(simd, &px, &py, &cells, active);
-        for i in 0..LANES {
-            if !active[i] {
-                continue;
-            }
-            if fallback[i] {
-                let x = (x0 + i) as u32;
-                let (pos, cell) = sample_position_and_cell(s, x, y, sample);
-                let (l, key) = radiance_keyed_cell(scene, pos, cell);
-                debug_assert!(l.is_finite(), "non-finite radiance at pixel ({x}, {y})");
-                row.add(x0 + i, l, key);
-            } else {
-                // Straight from the lanes: no Rgb through memory (a store-forwarding stall).
-                row.add_parts(x0 + i, rgb[0][i], rgb[1][i], rgb[2][i], keys[i]);
-            }
-        }
     }
 }
 
@@ -557,7 +424,7 @@ pub fn radiance_keyed_cell(scene: &Scene, pos: Vec2, cell: Vec2) -> (Rgb, u32) {
 /// The camera ray through film position `pos` with its ray differentials for a sample standing
 /// for a `cell` of its pixel (pixels along x and y, each at least [`MIN_FOOTPRINT_SCALE`]):
 /// the neighbours' rays `cell.x` pixels right and `cell.y` pixels down. `None` where the
-/// camera has no ray. The scalar and the packet path both take a footprint from here.
+/// camera has no ray. Every width of the kernel takes its footprints from here.
 #[must_use]
 #[inline]
 pub fn footprint_ray(scene: &Scene, pos: Vec2, cell: Vec2) -> Option<(Ray, RayDifferential)> {

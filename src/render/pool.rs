@@ -6,6 +6,9 @@
 use rayon::ThreadPool;
 use std::sync::{Arc, Mutex, PoisonError};
 
+/// Each render worker's stack (address space reserved, touched only as deep as a render goes).
+const WORKER_STACK: usize = 16 << 20;
+
 /// The most worker threads a user may ask for. More threads than this only add start-up time and
 /// memory (a render uses at most one tile of 8 rows per thread); `--threads 100000` would take
 /// minutes to start.
@@ -47,8 +50,12 @@ pub fn thread_pool(threads: usize) -> Result<Arc<ThreadPool>, PoolError> {
         return Ok(pool.clone());
     }
     #[cfg(not(target_arch = "wasm32"))]
+    // The kernel traces mirrors and clip maps as nested packets, a call level each (up to the
+    // 64 bounces `reflection_depth` allows, times the clip layers): room for that, reserved
+    // (not committed) per worker.
     let builder = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
+        .stack_size(WORKER_STACK)
         .thread_name(|i| format!("texplore-worker-{i}"));
     // A page has one thread: the pool is that thread, so `install` and parallel iterators run
     // their work in place. One such pool serves every count (a thread joins one pool only).

@@ -313,7 +313,7 @@ pub struct ReportConfig {
     pub reference: ReferenceSettings,
     /// Keep FLIP error maps for heat maps at this spp (`None`: keep none).
     pub heatmap_spp: Option<u32>,
-    /// Which path primary rays take in every render (the reference's too).
+    /// How wide the render kernel runs in every render (the reference's too).
     pub simd: crate::scene::SimdMode,
 }
 

@@ -8,6 +8,7 @@
 
 mod assets;
 mod camera;
+mod kernel;
 mod light;
 mod mapping;
 mod material;
@@ -23,6 +24,7 @@ pub use assets::{
     AssetCache, DISPLACED_KEPT, MAX_SCENE_DISPLACED_TRIANGLES, MAX_SCENE_TEXEL_BYTES, UV_GRID_SIZE,
 };
 pub use camera::{CameraDesc, ProjectionDesc, ProjectionKind};
+pub use kernel::{Diffs, Rays, Traced};
 pub use light::{AmbientDesc, LightDesc, LightKind};
 pub use mapping::MappingDesc;
 pub use material::{

@@ -141,7 +141,7 @@ impl Default for SnapshotDesc {
     }
 }
 
-/// Which path primary rays take: not part of a preset, but chosen by whoever renders (the
+/// How wide the render kernel runs: not part of a preset, but chosen by whoever renders (the
 /// command line's `--simd`, or `TEXPLORE_SIMD`, and the window's start options), and carried in
 /// [`RenderSettings::simd`].
 #[derive(
@@ -156,7 +156,8 @@ impl Default for SnapshotDesc {
 )]
 #[strum(serialize_all = "kebab-case")]
 pub enum SimdMode {
-    /// The packet path where the scene is eligible, the scalar path elsewhere.
+    /// The render kernel at the widest instruction set the CPU has (16 rays a packet on
+    /// AVX-512, 8 on AVX2, 4 on NEON, SSE2 and simd128).
     #[default]
     #[strum(
         serialize = "auto",
@@ -165,7 +166,7 @@ pub enum SimdMode {
         serialize = "true"
     )]
     Auto,
-    /// The scalar path for every scene (for comparison and tests).
+    /// The same kernel one ray a packet (pulp's `Scalar`), for comparison: the same pixels.
     #[strum(
         serialize = "scalar",
         serialize = "off",
@@ -202,7 +203,7 @@ pub struct RenderSettings {
     pub compare: Compare,
     /// How many mirror bounces a ray may take.
     pub reflection_depth: u32,
-    /// Which path primary rays take: [`SimdMode::Auto`] when a scene is built; whoever renders
+    /// How wide the render kernel runs: [`SimdMode::Auto`] when a scene is built; whoever renders
     /// sets it.
     pub simd: SimdMode,
 }

@@ -6,9 +6,9 @@ use super::settings::RenderSettings;
 use crate::camera::Camera;
 use crate::geometry::{LocalHit, Object, Shape};
 use crate::mapping::Mapping;
-use crate::material::{Bump, Light, Material, NormalMap, Scalar, ShadePoint};
+use crate::material::{Bump, Light, Material, NormalMap, Scalar};
 use crate::math::{Ray, RayDifferential, Rgb, Vec3A, max_abs};
-use crate::texture::{TextureContext, View};
+use crate::texture::TextureContext;
 
 /// Shadow-ray origins are pushed off the surface along its geometric normal by this fraction of
 /// the magnitude of the coordinates involved (hit point and the object's translation): about a
@@ -122,19 +122,29 @@ pub struct SurfaceHit {
 }
 
 impl Scene {
-    /// The nearest object hit by `ray` within (0, `t_max`).
+    /// The nearest object hit by `ray` within (0, `t_max`): the kernel's nearest-hit stage at
+    /// width 1.
     #[must_use]
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<(usize, LocalHit)> {
-        let mut best = None;
-        let mut t_best = t_max;
-        for (i, obj) in self.objects.iter().enumerate() {
-            if let Some(h) = obj.intersect(ray, t_best) {
-                t_best = h.t;
-                best = Some((i, h));
-            }
-        }
-        best
+        use crate::math::lanes::{V3, to_array};
+        let s = pulp::Scalar;
+        let rays = super::kernel::Rays {
+            o: V3::one(ray.origin),
+            d: V3::one(ray.dir),
+            active: true,
+        };
+        let h = self.nearest_lanes_within(s, &rays, t_max);
+        h.hit.then(|| {
+            let local = h.local(
+                0,
+                &h.p.to_arrays(),
+                &h.n.to_arrays(),
+                &h.ns.to_arrays(),
+                &to_array::<pulp::Scalar>(h.t),
+            );
+            (h.object[0] as usize, local)
+        })
     }
 
     /// Whether anything that casts shadows lies on `ray` within (0, `t_max`).
@@ -263,105 +273,23 @@ impl Scene {
     /// whose keys differ straddle an object or shadow edge. The key holds the object hit
     /// (0 for the background) in the low 16 bits, one bit per light whose shadow ray was
     /// blocked above them, and in bit 31 whether the texture there was filtered over the pixel's
-    /// footprint (so its contrast is already antialiased).
+    /// footprint (so its contrast is already antialiased). The render kernel at width 1
+    /// ([`Scene::trace_lanes`]).
     #[must_use]
     #[inline]
     pub fn trace_keyed(&self, ray: &Ray, diff: Option<&RayDifferential>) -> (Rgb, u32) {
-        let Some(hit) = self.hit(ray) else {
-            return (self.settings.background, 0);
-        };
-        let (l, key) = self.shade_or_clip(ray, &hit, diff, 0, 0);
-        (if l.is_finite() { l } else { Rgb::BLACK }, key)
+        self.radiance_one(ray, diff, 0, true)
     }
 
-    /// Shades a resolved hit.
-    #[must_use]
-    #[inline]
-    pub fn shade(&self, hit: &SurfaceHit, diff: Option<&RayDifferential>) -> Rgb {
-        self.shade_keyed(hit, diff).0
-    }
-
-    /// Shades a resolved hit and returns its edge key (see [`Scene::trace_keyed`]).
-    #[must_use]
-    #[inline]
-    pub fn shade_keyed(&self, hit: &SurfaceHit, diff: Option<&RayDifferential>) -> (Rgb, u32) {
-        self.shade_at_depth(hit, diff, 0)
-    }
-
-    /// Radiance along a ray that has already been mirrored `depth` times (0 for a camera ray).
+    /// Radiance along a ray that has already been mirrored `depth` times (0 for a camera ray),
+    /// not made finite.
     pub(crate) fn trace_at_depth(
         &self,
         ray: &Ray,
         diff: Option<&RayDifferential>,
         depth: u32,
     ) -> Rgb {
-        self.radiance_keyed(ray, diff, depth, 0).0
-    }
-
-    /// Radiance and edge key along a ray mirrored `depth` times that has passed `layer`
-    /// clip-mapped surfaces. A clip-mapped hit with alpha `a` below 1 blends its shading with
-    /// what lies behind it: `a L_surface + (1 - a) L_behind` (with a filtered alpha, a soft
-    /// edge at one sample per pixel).
-    #[inline(never)]
-    fn radiance_keyed(
-        &self,
-        ray: &Ray,
-        diff: Option<&RayDifferential>,
-        depth: u32,
-        layer: u32,
-    ) -> (Rgb, u32) {
-        let Some(hit) = self.hit(ray) else {
-            return (self.settings.background, 0);
-        };
-        self.shade_or_clip(ray, &hit, diff, depth, layer)
-    }
-
-    /// Shades `hit`, blending in what lies behind it where it has a clip map below 1.
-    #[inline]
-    fn shade_or_clip(
-        &self,
-        ray: &Ray,
-        hit: &SurfaceHit,
-        diff: Option<&RayDifferential>,
-        depth: u32,
-        layer: u32,
-    ) -> (Rgb, u32) {
-        if self.has_clips
-            && let Some(clip) = &self.surfaces[hit.object].clip
-        {
-            return self.clipped(ray, hit, clip, diff, depth, layer);
-        }
-        self.shade_at_depth(hit, diff, depth)
-    }
-
-    /// [`Scene::shade_or_clip`] for a clip-mapped hit (kept out of line: the solid path, which
-    /// every scene without clip maps takes, stays small).
-    #[cold]
-    #[inline(never)]
-    fn clipped(
-        &self,
-        ray: &Ray,
-        hit: &SurfaceHit,
-        clip: &Scalar,
-        diff: Option<&RayDifferential>,
-        depth: u32,
-        layer: u32,
-    ) -> (Rgb, u32) {
-        let a = clip.eval(&self.texture_context(hit, diff)).clamp(0.0, 1.0);
-        if a >= 1.0 {
-            return self.shade_at_depth(hit, diff, depth);
-        }
-        let behind = if layer + 1 < MAX_CLIP_LAYERS {
-            let origin = hit.p + ray.dir.normalize_or_zero() * self.offset_at(hit);
-            self.radiance_keyed(&Ray::new(origin, ray.dir), diff, depth, layer + 1)
-        } else {
-            (Rgb::BLACK, 0)
-        };
-        if a <= 0.0 {
-            return behind;
-        }
-        let (l, key) = self.shade_at_depth(hit, diff, depth);
-        (l * a + behind.0 * (1.0 - a), key)
+        self.radiance_one(ray, diff, depth, false).0
     }
 
     /// The shading normal of `hit` after its object's bump or normal map, or `None` if it has
@@ -471,128 +399,9 @@ impl Scene {
         }
         tr
     }
-
-    /// Shades a hit reached after `depth` mirror bounces; a mirror adds the radiance along its
-    /// reflected ray while `depth` is below `settings.reflection_depth`.
-    #[inline]
-    fn shade_at_depth(
-        &self,
-        hit: &SurfaceHit,
-        diff: Option<&RayDifferential>,
-        depth: u32,
-    ) -> (Rgb, u32) {
-        let obj = &self.objects[hit.object];
-        let material = &self.materials[obj.material];
-        let ctx = self.texture_context(hit, diff);
-        let bumped;
-        let hit = match self.perturbed_normal_at(hit, &ctx) {
-            Some(ns) => {
-                bumped = SurfaceHit { ns, ..*hit };
-                &bumped
-            }
-            None => hit,
-        };
-        let view = self.settings.view;
-        let filtered = diff.is_some() && material.texture().needs_differentials();
-        let mut key = (hit.object as u32 + 1) & 0xffff | u32::from(filtered) << 31;
-        if matches!(view, View::Uv | View::MipLevel) {
-            return (material.texture().debug_color(&ctx, view, Rgb::BLACK), key);
-        }
-        if view == View::Difference {
-            let compare = self.settings.compare;
-            return (material.texture().difference_view_color(&ctx, compare), key);
-        }
-        let sp = material.shade_point(&ctx, self.ambient);
-        if !material.is_lit() {
-            return (material.texture().debug_color(&ctx, view, sp.base), key);
-        }
-        let mut l = sp.base;
-        let offset = SHADOW_OFFSET_RELATIVE
-            * (max_abs(hit.p) + max_abs(obj.world_from_object.translation)).max(f32::MIN_POSITIVE);
-        // A shadow ray leaves the surface on the side it was hit from (ng . wi > 0). A flat
-        // shape cannot be met again that way, nor a closed convex one hit from outside: skip
-        // the object itself (for the Earth, the whole shadow test). An open cylinder, or a
-        // sphere seen from inside, can still shadow itself.
-        let self_shadows = match obj.shape {
-            Shape::Plane | Shape::Rectangle | Shape::Disk => false,
-            // Hit from inside when the facing normal is the inward one.
-            Shape::Sphere | Shape::Cylinder { capped: true } => !hit.front_face,
-            // An open cylinder and a mesh (concave in general) can shadow themselves.
-            Shape::Cylinder { capped: false } | Shape::Mesh(_) => true,
-        };
-        let skip = if self_shadows { usize::MAX } else { hit.object };
-        // Summed n . wi of the lights that reach the point, for a glow (only then).
-        let glows = sp.glow.is_some();
-        let mut lit = 0.0;
-        for (i, light) in self.lights.iter().enumerate() {
-            let (wi, dist, li, shadows) = light.incident(hit.p);
-            if hit.ns.dot(wi) <= 0.0 || hit.ng.dot(wi) <= 0.0 {
-                continue;
-            }
-            if shadows {
-                let origin = hit.p + hit.ng * offset;
-                let t_max = if dist.is_finite() {
-                    dist - offset
-                } else {
-                    f32::INFINITY
-                };
-                if self.has_clips {
-                    let tr = self.transmittance(&Ray::new(origin, wi), t_max, skip);
-                    if tr <= 0.0 {
-                        key |= (1 << (16 + i.min(14))) as u32;
-                        continue;
-                    }
-                    l += sp.direct(hit.ns, hit.wo, wi, li) * tr;
-                    if glows {
-                        lit += hit.ns.dot(wi) * tr;
-                    }
-                    continue;
-                }
-                if self.occluded_except(&Ray::new(origin, wi), t_max, skip) {
-                    key |= (1 << (16 + i.min(14))) as u32;
-                    continue;
-                }
-            }
-            l += sp.direct(hit.ns, hit.wo, wi, li);
-            if glows {
-                lit += hit.ns.dot(wi);
-            }
-        }
-        if let Some(glow) = sp.glow {
-            l += glow * ShadePoint::glow_weight(lit);
-        }
-        if let Some(mirror) = sp.mirror
-            && depth < self.settings.reflection_depth
-        {
-            l += mirror * self.reflected(hit, diff, offset, depth);
-        }
-        let l = match view {
-            View::Shaded => l,
-            _ => material.texture().debug_color(&ctx, view, l),
-        };
-        (l, key)
-    }
 }
 
 impl Scene {
-    /// Radiance along the mirror direction at `hit` (the book's `Reflective`, a perfect
-    /// specular BRDF `kr cr / (n . wi)`, so the cosine cancels). When the hit carries ray
-    /// differentials they are mirrored too (pbrt's specular reflection differentials: the
-    /// offset rays leave from the neighbouring pixels' hits, mirrored about the normal there),
-    /// so a texture seen in a mirror is filtered over its true footprint.
-    #[cold]
-    #[inline(never)]
-    fn reflected(
-        &self,
-        hit: &SurfaceHit,
-        diff: Option<&RayDifferential>,
-        offset: f32,
-        depth: u32,
-    ) -> Rgb {
-        let (ray, mirrored) = self.mirror_ray(hit, diff, offset);
-        self.trace_at_depth(&ray, mirrored.as_ref(), depth + 1)
-    }
-
     /// The ray a mirror at `hit` reflects the viewer's ray into, `wi = 2 (n . wo) n - wo` about
     /// the shading normal, leaving `offset` off the surface on the side it goes to; and, when
     /// the hit carries ray differentials, the mirrored differentials (pbrt's specular

@@ -119,7 +119,7 @@ fn probe_writes_an_hdr_probe() {
     assert!(img.texel_top(32, 32).max_channel() > 0.0);
 }
 
-/// The path line `bench` prints for the Earth with `args` after `bench`, and `TEXPLORE_SIMD` set
+/// The kernel line `bench` prints for the Earth with `args` after `bench`, and `TEXPLORE_SIMD` set
 /// to `env` (unset with `None`).
 fn bench_path(args: &[&str], env: Option<&str>) -> String {
     let mut cmd = std::process::Command::new(env!("CARGO_BIN_EXE_texplore"));
@@ -140,26 +140,28 @@ fn bench_path(args: &[&str], env: Option<&str>) -> String {
     }
     let out = success(&cmd.output().expect("run texplore"));
     out.lines()
-        .find(|l| l.starts_with("path: "))
-        .unwrap_or_else(|| panic!("no path line in {out}"))
+        .find(|l| l.starts_with("kernel: "))
+        .unwrap_or_else(|| panic!("no kernel line in {out}"))
         .to_owned()
 }
 
 #[test]
 fn the_simd_path_is_chosen_by_the_option_or_the_environment() {
-    assert!(bench_path(&[], None).starts_with("path: packets of"));
+    let auto = bench_path(&[], None);
+    let width = texplore::render::kernel_width(texplore::render::SimdMode::Auto);
+    assert!(auto.ends_with(&format!("{width} rays a packet")), "{auto}");
     for (args, env) in [
         (&["--simd", "scalar"][..], None),
         (&[][..], Some("off")),
         (&[][..], Some("scalar")),
     ] {
         assert!(
-            bench_path(args, env).starts_with("path: scalar"),
+            bench_path(args, env).ends_with("1 ray a packet (asked for)"),
             "{args:?} {env:?}"
         );
     }
     // The option wins over the environment.
-    assert!(bench_path(&["--simd", "auto"], Some("off")).starts_with("path: packets of"));
+    assert_eq!(bench_path(&["--simd", "auto"], Some("off")), auto);
     let e = failure(&texplore(&["bench", "--simd", "fast", "presets/earth.ron"]));
     assert!(
         e.contains("`fast` is not a path: use auto or scalar"),

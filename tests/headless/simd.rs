@@ -1,29 +1,16 @@
-//! The packet path against the scalar path: every preset renders the same within the snapshot
-//! tolerance (bit for bit where the lane-wise kernels follow the scalar ones), presets the
-//! packet path does not support say so and take the scalar path, and packet renders stay
-//! deterministic for any thread count.
+//! The render kernel at its dispatched width (`--simd auto`: 16 rays a packet on AVX-512)
+//! against its width-1 instance (`--simd scalar`): the same code, so every preset's film is the
+//! same bit for bit, edge keys included, and renders stay deterministic for any thread count.
 
 use std::path::{Path, PathBuf};
 use texplore::render::{
-    Film, SimdMode, packet_eligibility, render_blocking_with, render_pass_with, thread_pool,
+    Film, SimdMode, kernel_width, render_blocking_with, render_pass_with, simd_level, thread_pool,
 };
 use texplore::sampler::PixelSampler;
 use texplore::scene::{
     AdaptiveDesc, AssetCache, Scene, build_scene, list_presets, load_preset, parse_preset,
 };
 use texplore::snapshot::{MAX_BAD_FRACTION, MAX_MEAN_DIFF, compare};
-
-/// The presets the packet path does not take, with the reason it gives. Adding packet support
-/// for one of them makes this test fail until it moves to the compared list.
-const SCALAR_PRESETS: &[(&str, &str)] = &[
-    ("cutout", "a clip map"),
-    ("cylinder", "a cylinder"),
-    ("displaced", "a mesh"),
-    ("mesh", "a mesh"),
-    ("panorama", "a fisheye or spherical camera"),
-    ("two-triangles", "a mesh"),
-    ("uv-grid", "a cylinder"),
-];
 
 fn presets() -> Vec<PathBuf> {
     list_presets(&Path::new(env!("CARGO_MANIFEST_DIR")).join("presets")).expect("presets/")
@@ -79,37 +66,15 @@ fn assert_paths_agree(name: &str, scene: &Scene) -> u8 {
 }
 
 #[test]
-fn every_preset_renders_the_same_on_both_paths() {
+fn every_preset_renders_the_same_at_every_width() {
     let mut cache = AssetCache::new();
-    let mut compared = Vec::new();
-    let mut scalar_only = Vec::new();
     for path in presets() {
         let name = path.file_stem().unwrap().to_string_lossy().into_owned();
-        // Small; 4 spp and adaptive passes exercise the sampler's two sets.
-        let scene = scene_of(&path, 48, 36, 4, &mut cache);
-        match packet_eligibility(&scene, SimdMode::Auto) {
-            Ok(()) => {
-                let max = assert_paths_agree(&name, &scene);
-                compared.push((name, max));
-            }
-            Err(why) => scalar_only.push((name, why.to_string())),
-        }
-    }
-    let expected: Vec<(String, String)> = SCALAR_PRESETS
-        .iter()
-        .map(|(n, w)| ((*n).to_owned(), (*w).to_owned()))
-        .collect();
-    assert_eq!(
-        scalar_only, expected,
-        "presets on the scalar path (compared: {compared:?})"
-    );
-    // The packet path covers the common case: the lecture's Earth and the peer scene, and
-    // textures filtered over the footprint (EWA on the checker plane, trilinear on the Earth).
-    for must in ["earth", "peer-sphere", "checker-plane", "earth-day-night"] {
-        assert!(
-            compared.iter().any(|(n, _)| n == must),
-            "{must} should take the packet path"
-        );
+        // Small; 4 spp and adaptive passes exercise the sampler's two sets, and a width that
+        // is not a multiple of the packet's.
+        let scene = scene_of(&path, 51, 36, 4, &mut cache);
+        assert_films_identical(&name, &scene, 6);
+        assert_paths_agree(&name, &scene);
     }
 }
 
@@ -117,18 +82,17 @@ fn every_preset_renders_the_same_on_both_paths() {
 fn the_peer_scene_at_16_spp_renders_the_same_on_both_paths() {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("presets/peer-sphere.ron");
     let scene = scene_of(&path, 64, 48, 16, &mut AssetCache::new());
-    packet_eligibility(&scene, SimdMode::Auto).expect("the peer scene takes the packet path");
     let max = assert_paths_agree("peer-sphere", &scene);
     assert!(max <= 2, "largest channel difference {max}");
 }
 
 #[test]
-fn forcing_the_scalar_path_is_reported() {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("presets/earth.ron");
-    let scene = scene_of(&path, 16, 12, 1, &mut AssetCache::new());
-    assert!(packet_eligibility(&scene, SimdMode::Auto).is_ok());
-    let why = packet_eligibility(&scene, SimdMode::Scalar).unwrap_err();
-    assert_eq!(why.to_string(), "the scalar path was asked for");
+fn the_kernel_width_is_reported() {
+    assert_eq!(kernel_width(SimdMode::Scalar), 1);
+    let w = kernel_width(SimdMode::Auto);
+    assert!([1, 4, 8, 16].contains(&w), "{w} rays a packet");
+    assert!(simd_level(SimdMode::Auto).ends_with(&format!("{w} rays a packet")));
+    assert!(simd_level(SimdMode::Scalar).contains("1 ray a packet"));
 }
 
 #[test]
@@ -154,7 +118,6 @@ fn packet_renders_are_the_same_for_1_and_2_threads() {
     let scene = build_scene(&desc, &path, &mut AssetCache::new()).expect("builds");
     scenes.push(("peer-sphere footprint".to_owned(), scene));
     for (name, scene) in &scenes {
-        packet_eligibility(scene, SimdMode::Auto).expect("the packet path");
         let one = render(scene, SimdMode::Auto, 1);
         let two = render(scene, SimdMode::Auto, 2);
         assert!(one == two, "{name}: the film depends on the thread count");
@@ -198,7 +161,6 @@ fn packets_with_hits_misses_and_scalar_lanes_match_the_scalar_path() {
     desc.render.adaptive = Some(ADAPTIVE);
     let scene = build_scene(&desc, Path::new("mixed.ron"), &mut AssetCache::new())
         .expect("the test scene builds");
-    packet_eligibility(&scene, SimdMode::Auto).expect("the mixed scene takes the packet path");
     let packet = render(&scene, SimdMode::Auto, 2);
     let scalar = render(&scene, SimdMode::Scalar, 2);
     // The lanes follow the scalar formulas operation for operation: the films are identical.
@@ -300,8 +262,6 @@ fn nearest_image_lookups_and_lane_samplers_are_bit_identical_to_the_scalar_path(
             desc.render.sampler = sampler;
             desc.render.spp = 1;
             let scene = build_scene(&desc, path, &mut cache).unwrap_or_else(|e| panic!("{e}"));
-            packet_eligibility(&scene, SimdMode::Auto)
-                .unwrap_or_else(|why| panic!("{name} should take the packet path: {why}"));
             // Pass 0 from the first set, passes 1 and 2 from the second.
             assert_films_identical(&format!("{name} {sampler} 1 spp"), &scene, 3);
         }
@@ -362,8 +322,6 @@ fn footprint_filters_on_the_packet_path_are_bit_identical_to_the_scalar_path() {
             desc.render.sampler = sampler;
             desc.render.spp = spp;
             let scene = build_scene(&desc, &path, &mut cache).unwrap_or_else(|e| panic!("{e}"));
-            packet_eligibility(&scene, SimdMode::Auto)
-                .unwrap_or_else(|why| panic!("{name} should take the packet path: {why}"));
             assert_films_identical(&format!("{name} {sampler} {spp} spp"), &scene, spp + 2);
         }
         // Adaptive sampling reads the edge keys, whose bit 31 says "filtered over the footprint".

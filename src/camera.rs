@@ -112,6 +112,18 @@ impl Camera {
         }
     }
 
+    /// Film positions as offsets from the film's centre in the image plane (pinhole and
+    /// orthographic): ((px - w / 2) scale, (h / 2 - py) scale).
+    #[inline(always)]
+    fn centred<S: Simd>(&self, s: S, px: F<S>, py: F<S>) -> (F<S>, F<S>) {
+        let (w, h) = (self.width as f32, self.height as f32);
+        let scale = s.splat_f32s(self.pixel_scale);
+        (
+            s.mul_f32s(s.sub_f32s(px, s.splat_f32s(0.5 * w)), scale),
+            s.mul_f32s(s.sub_f32s(s.splat_f32s(0.5 * h), py), scale),
+        )
+    }
+
     /// The rays through film positions (`px`, `py`) per lane, written once for every width:
     /// origins, unnormalised directions, and which lanes the projection sees (a fisheye sees
     /// only its disc). The pinhole and orthographic projections are lane arithmetic; the
@@ -121,55 +133,58 @@ impl Camera {
     pub fn rays_lanes<S: Simd>(&self, s: S, px: F<S>, py: F<S>) -> (V3<S>, V3<S>, M<S>) {
         let (w, h) = (self.width as f32, self.height as f32);
         let [u, v, back] = self.frame;
-        let c = |x: f32| s.splat_f32s(x);
         let (vu, vv, vback) = (V3::splat(s, u), V3::splat(s, v), V3::splat(s, back));
         let eye = V3::splat(s, self.eye);
-        let all = s.equal_f32s(c(0.0), c(0.0));
-        // x u + y v (each a vector times a number), as glam sums `x * u + y * v`.
-        let plane = |x: F<S>, y: F<S>| vu.scale(s, x).add(s, &vv.scale(s, y));
-        let centred = || {
-            let scale = c(self.pixel_scale);
-            (
-                s.mul_f32s(s.sub_f32s(px, c(0.5 * w)), scale),
-                s.mul_f32s(s.sub_f32s(c(0.5 * h), py), scale),
-            )
-        };
+        let all = crate::math::lanes::mask_splat(s, true);
         match self.projection {
             Projection::Pinhole { .. } => {
-                let (x, y) = centred();
-                (eye, plane(x, y).sub(s, &vback), all)
+                let (x, y) = self.centred(s, px, py);
+                (eye, plane(s, &vu, &vv, x, y).sub(s, &vback), all)
             }
             Projection::Orthographic { .. } => {
-                let (x, y) = centred();
+                let (x, y) = self.centred(s, px, py);
                 // eye + x u + y v, summed left to right.
                 let o = eye.add(s, &vu.scale(s, x)).add(s, &vv.scale(s, y));
                 (o, vback.neg(s), all)
             }
             Projection::Fisheye { psi_max } => {
-                let radius = c(0.5 * w.min(h));
-                let x = s.div_f32s(s.sub_f32s(px, c(0.5 * w)), radius);
-                let y = s.div_f32s(s.sub_f32s(c(0.5 * h), py), radius);
+                let radius = s.splat_f32s(0.5 * w.min(h));
+                let x = s.div_f32s(s.sub_f32s(px, s.splat_f32s(0.5 * w)), radius);
+                let y = s.div_f32s(s.sub_f32s(s.splat_f32s(0.5 * h), py), radius);
                 let r2 = s.add_f32s(s.mul_f32s(x, x), s.mul_f32s(y, y));
-                let seen = s.not_m32s(s.greater_than_f32s(r2, c(1.0)));
+                let seen = s.not_m32s(s.greater_than_f32s(r2, s.splat_f32s(1.0)));
                 let r = s.sqrt_f32s(r2);
-                let psi = s.mul_f32s(r, c(psi_max));
+                let psi = s.mul_f32s(r, s.splat_f32s(psi_max));
                 let (sin_psi, cos_psi) = sin_cos(s, psi);
-                let off = s.greater_than_f32s(r, c(0.0));
-                let sa = s.select_f32s(off, s.div_f32s(y, r), c(0.0));
-                let ca = s.select_f32s(off, s.div_f32s(x, r), c(1.0));
-                let d = plane(s.mul_f32s(sin_psi, ca), s.mul_f32s(sin_psi, sa))
-                    .sub(s, &vback.scale(s, cos_psi));
+                let off = s.greater_than_f32s(r, s.splat_f32s(0.0));
+                let sa = s.select_f32s(off, s.div_f32s(y, r), s.splat_f32s(0.0));
+                let ca = s.select_f32s(off, s.div_f32s(x, r), s.splat_f32s(1.0));
+                let d = plane(
+                    s,
+                    &vu,
+                    &vv,
+                    s.mul_f32s(sin_psi, ca),
+                    s.mul_f32s(sin_psi, sa),
+                )
+                .sub(s, &vback.scale(s, cos_psi));
                 (eye, d, seen)
             }
             Projection::Spherical {
                 lambda_max,
                 psi_max,
             } => {
-                let x = s.sub_f32s(s.mul_f32s(s.div_f32s(px, c(w)), c(2.0)), c(1.0));
-                let y = s.sub_f32s(c(1.0), s.mul_f32s(s.div_f32s(py, c(h)), c(2.0)));
-                let (sl, cl) = sin_cos(s, s.mul_f32s(x, c(lambda_max)));
-                let (sp, cp) = sin_cos(s, s.mul_f32s(y, c(psi_max)));
-                let d = plane(s.mul_f32s(cp, sl), sp).sub(s, &vback.scale(s, s.mul_f32s(cp, cl)));
+                let x = s.sub_f32s(
+                    s.mul_f32s(s.div_f32s(px, s.splat_f32s(w)), s.splat_f32s(2.0)),
+                    s.splat_f32s(1.0),
+                );
+                let y = s.sub_f32s(
+                    s.splat_f32s(1.0),
+                    s.mul_f32s(s.div_f32s(py, s.splat_f32s(h)), s.splat_f32s(2.0)),
+                );
+                let (sl, cl) = sin_cos(s, s.mul_f32s(x, s.splat_f32s(lambda_max)));
+                let (sp, cp) = sin_cos(s, s.mul_f32s(y, s.splat_f32s(psi_max)));
+                let d = plane(s, &vu, &vv, s.mul_f32s(cp, sl), sp)
+                    .sub(s, &vback.scale(s, s.mul_f32s(cp, cl)));
                 (eye, d, all)
             }
         }
@@ -302,6 +317,12 @@ pub fn pan_offset(eye: Vec3, look_at: Vec3, up: Vec3, dx: f32, dy: f32) -> Vec3 
     );
     let dist = (eye - look_at).length();
     Vec3::from(cam.frame[0] * dx + cam.frame[1] * dy) * dist
+}
+
+/// x u + y v per lane (each a vector times a number), as glam sums `x * u + y * v`.
+#[inline(always)]
+fn plane<S: Simd>(s: S, u: &V3<S>, v: &V3<S>, x: F<S>, y: F<S>) -> V3<S> {
+    u.scale(s, x).add(s, &v.scale(s, y))
 }
 
 /// `x.sin_cos()` per lane (libm's, lane by lane).

@@ -72,6 +72,17 @@ fn within<S: Simd>(s: S, t: F<S>, t_max: F<S>) -> M<S> {
     )
 }
 
+/// Whether `o + t d` lies within the generic cylinder's height, y in [-1, 1].
+#[inline(always)]
+fn height<S: Simd>(s: S, o: &V3<S>, d: &V3<S>, t: F<S>) -> M<S> {
+    let one = s.splat_f32s(1.0);
+    let y = s.add_f32s(o.y, s.mul_f32s(t, d.y));
+    s.and_m32s(
+        s.greater_than_or_equal_f32s(y, neg(s, one)),
+        s.less_than_or_equal_f32s(y, one),
+    )
+}
+
 /// The unit sphere's nearest hit per lane for t in (0, `t_max`).
 #[must_use]
 #[inline(always)]
@@ -158,15 +169,14 @@ pub fn cylinder<S: Simd>(s: S, o: &V3<S>, d: &V3<S>, t_max: F<S>, capped: bool) 
     let cross = s.sub_f32s(s.mul_f32s(o.z, d.x), s.mul_f32s(o.x, d.z));
     let (t0, t1, real) = stable_roots(s, a, half_b, c, s.mul_f32s(cross, cross));
     let wall_ok = s.and_m32s(real, s.greater_than_f32s(a, zero));
-    let height = |t: F<S>| {
-        let y = s.add_f32s(o.y, s.mul_f32s(t, d.y));
-        s.and_m32s(
-            s.greater_than_or_equal_f32s(y, neg(s, one)),
-            s.less_than_or_equal_f32s(y, one),
-        )
-    };
-    let near = s.and_m32s(wall_ok, s.and_m32s(within(s, t0, t_max), height(t0)));
-    let far = s.and_m32s(wall_ok, s.and_m32s(within(s, t1, t_max), height(t1)));
+    let near = s.and_m32s(
+        wall_ok,
+        s.and_m32s(within(s, t0, t_max), height(s, o, d, t0)),
+    );
+    let far = s.and_m32s(
+        wall_ok,
+        s.and_m32s(within(s, t1, t_max), height(s, o, d, t1)),
+    );
     let mut t = s.select_f32s(near, t0, t1);
     let mut hit = s.or_m32s(near, far);
     let q = o.at(s, t, d);

@@ -59,8 +59,7 @@ pub(super) fn probe<S: Simd, const GRAD: bool>(
     flip_z: bool,
     curve: Curve,
 ) -> Mapped<S> {
-    let c = |x: f32| s.splat_f32s(x);
-    let (zero, one, half) = (c(0.0), c(1.0), c(0.5));
+    let (zero, one, half) = (s.splat_f32s(0.0), s.splat_f32s(1.0), s.splat_f32s(0.5));
     let zero3 = V3::splat(s, Vec3A::ZERO);
     let (q, scale, ok) = rescaled(s, p);
     let q_len = s.sqrt_f32s(q.dot(s, &q));
@@ -76,33 +75,42 @@ pub(super) fn probe<S: Simd, const GRAD: bool>(
             let alpha = atan2(s, d, z);
             let dd = s.mul_f32s(d, d);
             // Series about the axis: alpha / d = 1 + d^2 / 6 ..., dg/dd / d = (2/3 + d^2/5)/pi.
-            let series = s.and_m32s(s.less_than_f32s(d, c(1e-2)), s.greater_than_f32s(z, zero));
-            let g_series = s.div_f32s(s.add_f32s(one, s.div_f32s(dd, c(6.0))), c(PI));
-            let dgdd_series = s.div_f32s(
-                neg(s, s.add_f32s(c(2.0 / 3.0), s.div_f32s(dd, c(5.0)))),
-                c(PI),
+            let series = s.and_m32s(
+                s.less_than_f32s(d, s.splat_f32s(1e-2)),
+                s.greater_than_f32s(z, zero),
             );
-            let pid = s.mul_f32s(c(PI), d);
+            let g_series = s.div_f32s(
+                s.add_f32s(one, s.div_f32s(dd, s.splat_f32s(6.0))),
+                s.splat_f32s(PI),
+            );
+            let dgdd_series = s.div_f32s(
+                neg(
+                    s,
+                    s.add_f32s(s.splat_f32s(2.0 / 3.0), s.div_f32s(dd, s.splat_f32s(5.0))),
+                ),
+                s.splat_f32s(PI),
+            );
+            let pid = s.mul_f32s(s.splat_f32s(PI), d);
             let g_far = s.div_f32s(alpha, pid);
             let dgdd_far = s.div_f32s(s.sub_f32s(z, s.div_f32s(alpha, d)), s.mul_f32s(pid, d));
             let off_axis = s.greater_than_f32s(d, zero);
             (
                 select(s, series, g_series, g_far),
                 select(s, series, dgdd_series, dgdd_far),
-                c(-1.0 / PI),
+                s.splat_f32s(-1.0 / PI),
                 s.not_m32s(s.or_m32s(series, off_axis)),
             )
         }
         Curve::MirrorBall => {
             // r = sin(alpha / 2) = sqrt((1 - z) / 2); g = r / d = 1 / (2 cos(alpha / 2))
             // = 1 / sqrt(2 (1 + z)).
-            let s2 = s.mul_f32s(c(2.0), s.add_f32s(one, z));
+            let s2 = s.mul_f32s(s.splat_f32s(2.0), s.add_f32s(one, z));
             let g = s.div_f32s(one, s.sqrt_f32s(s2));
             (
                 g,
                 zero,
                 s.mul_f32s(s.mul_f32s(neg(s, g), g), g),
-                s.less_than_or_equal_f32s(s2, c(1e-12)),
+                s.less_than_or_equal_f32s(s2, s.splat_f32s(1e-12)),
             )
         }
     };
@@ -141,11 +149,7 @@ pub(super) fn probe<S: Simd, const GRAD: bool>(
             z: s.add_f32s(zero, yg.z),
         }
         .scale(s, half);
-        let tangent = |gr: V3<S>| {
-            let t = gr.sub(s, &nv.scale(s, nv.dot(s, &gr))).div(s, len);
-            V3::select(s, t.finite(s), &t, &zero3)
-        };
-        (tangent(gu), tangent(gv))
+        (tangent(s, &gu, &nv, len), tangent(s, &gv, &nv, len))
     } else {
         (zero3, zero3)
     };
@@ -157,6 +161,14 @@ pub(super) fn probe<S: Simd, const GRAD: bool>(
         grad_u: V3::select(s, keep, &grad_u, &zero3),
         grad_v: V3::select(s, keep, &grad_v, &zero3),
     }
+}
+
+/// A gradient `gr` with respect to the unit direction `n` projected onto the sphere's tangent
+/// plane and divided by |p|; zero where that is not finite.
+#[inline(always)]
+fn tangent<S: Simd>(s: S, gr: &V3<S>, n: &V3<S>, len: F<S>) -> V3<S> {
+    let t = gr.sub(s, &n.scale(s, n.dot(s, gr))).div(s, len);
+    V3::select(s, t.finite(s), &t, &V3::splat(s, Vec3A::ZERO))
 }
 
 /// The light-probe maps worked in f64: alpha = acos(z) (of -z for the panoramic), r = alpha /

@@ -14,7 +14,7 @@ pub use normal::{NormalMap, decode_normal, encode_normal};
 pub use param::{Colour, ParamValue, Scalar, ScalarTexture};
 pub(crate) use table::material_table;
 pub use table::{ParamDefault, ParamSpec};
-pub use terms::{C3, Terms, splat_rgb};
+pub use terms::{C3, ParamLanes, Terms, splat_rgb};
 
 use crate::math::lanes::V3;
 use crate::math::{Rgb, Vec3A};
@@ -276,16 +276,7 @@ impl Material {
     pub fn shade_point(&self, ctx: &TextureContext, ambient: Rgb) -> ShadePoint {
         let s = pulp::Scalar;
         let c = self.texture().eval(ctx);
-        let t = self.terms(
-            s,
-            &[c.0, c.1, c.2],
-            ambient,
-            |p| p.eval(ctx),
-            |p| {
-                let c = p.eval(ctx);
-                [c.0, c.1, c.2]
-            },
-        );
+        let t = self.terms(s, &[c.0, c.1, c.2], ambient, &AtHit(ctx));
         let rgb = |c: [f32; 3]| Rgb(c[0], c[1], c[2]);
         ShadePoint {
             base: rgb(t.base),
@@ -294,6 +285,22 @@ impl Material {
             mirror: t.mirror.and_then(|(m, on)| on.then(|| rgb(m))),
             glow: t.glow.and_then(|(g, on)| on.then(|| rgb(g))),
         }
+    }
+}
+
+/// A material's parameters evaluated at one hit (the width-1 [`ParamLanes`]).
+struct AtHit<'a>(&'a TextureContext);
+
+impl ParamLanes<pulp::Scalar> for AtHit<'_> {
+    #[inline(always)]
+    fn scalar(&self, p: &Scalar) -> f32 {
+        p.eval(self.0)
+    }
+
+    #[inline(always)]
+    fn colour(&self, p: &Colour) -> [f32; 3] {
+        let c = p.eval(self.0);
+        [c.0, c.1, c.2]
     }
 }
 

@@ -66,35 +66,64 @@ pub struct Terms<S: Simd> {
     pub lit: bool,
 }
 
+/// Where a material's coefficients and colours come from, per lane: a constant in every lane,
+/// a texture evaluated lane by lane. (A trait, not closures: closures are compiled outside the
+/// kernel's instruction set and would call each SIMD operation.)
+pub trait ParamLanes<S: Simd> {
+    /// A coefficient's value per lane.
+    fn scalar(&self, p: &Scalar) -> F<S>;
+    /// A colour's value per lane.
+    fn colour(&self, p: &Colour) -> C3<S>;
+}
+
+/// `c ambient ka` and `c (kd / pi)`: the lecture's matte terms.
+#[inline(always)]
+fn lambert<S: Simd, P: ParamLanes<S>>(
+    s: S,
+    cd: &C3<S>,
+    amb: &C3<S>,
+    ka: &Scalar,
+    kd: &Scalar,
+    params: &P,
+) -> (C3<S>, C3<S>) {
+    (
+        scale3(s, &mul3(s, cd, amb), params.scalar(ka)),
+        scale3(s, cd, s.mul_f32s(params.scalar(kd), s.splat_f32s(INV_PI))),
+    )
+}
+
+/// `ks cs` and the exponent: a highlight's terms.
+#[inline(always)]
+fn highlight<S: Simd, P: ParamLanes<S>>(
+    s: S,
+    ks: &Scalar,
+    cs: &Colour,
+    exp: &Scalar,
+    params: &P,
+) -> Option<(C3<S>, F<S>)> {
+    Some((
+        scale3(s, &params.colour(cs), params.scalar(ks)),
+        params.scalar(exp),
+    ))
+}
+
 impl Material {
     /// The terms per lane, from the colour texture's value `cd` (or the emissive `ce`'s) and
-    /// `scalar`, `colour`, which give each coefficient's and colour's value per lane.
+    /// `params`, which give each coefficient's and colour's value per lane.
     #[must_use]
     #[inline(always)]
-    pub fn terms<S: Simd>(
+    pub fn terms<S: Simd, P: ParamLanes<S>>(
         &self,
         s: S,
         cd: &C3<S>,
         ambient: Rgb,
-        scalar: impl Fn(&Scalar) -> F<S>,
-        colour: impl Fn(&Colour) -> C3<S>,
+        params: &P,
     ) -> Terms<S> {
         let amb = splat_rgb(s, ambient);
-        let inv_pi = s.splat_f32s(INV_PI);
-        // c ambient ka and c (kd / pi), as the lecture's matte.
-        let lambert = |ka: &Scalar, kd: &Scalar| {
-            (
-                scale3(s, &mul3(s, cd, &amb), scalar(ka)),
-                scale3(s, cd, s.mul_f32s(scalar(kd), inv_pi)),
-            )
-        };
-        let highlight = |ks: &Scalar, cs: &Colour, exp: &Scalar| {
-            Some((scale3(s, &colour(cs), scalar(ks)), scalar(exp)))
-        };
         let black = splat_rgb(s, Rgb::BLACK);
         match self {
             Self::Matte { ka, kd, .. } => {
-                let (base, diffuse) = lambert(ka, kd);
+                let (base, diffuse) = lambert(s, cd, &amb, ka, kd, params);
                 Terms {
                     base,
                     diffuse,
@@ -113,12 +142,12 @@ impl Material {
                 ce,
                 ..
             } => {
-                let (base, diffuse) = lambert(ka, kd);
-                let g = colour(ce);
+                let (base, diffuse) = lambert(s, cd, &amb, ka, kd, params);
+                let g = params.colour(ce);
                 Terms {
                     base,
                     diffuse,
-                    specular: highlight(ks, cs, exp),
+                    specular: highlight(s, ks, cs, exp, params),
                     mirror: None,
                     glow: Some((g, non_black(s, &g))),
                     lit: true,
@@ -134,19 +163,19 @@ impl Material {
                 cr,
                 ..
             } => {
-                let (base, diffuse) = lambert(ka, kd);
-                let m = scale3(s, &colour(cr), scalar(kr));
+                let (base, diffuse) = lambert(s, cd, &amb, ka, kd, params);
+                let m = scale3(s, &params.colour(cr), params.scalar(kr));
                 Terms {
                     base,
                     diffuse,
-                    specular: highlight(ks, cs, exp),
+                    specular: highlight(s, ks, cs, exp, params),
                     mirror: Some((m, non_black(s, &m))),
                     glow: None,
                     lit: true,
                 }
             }
             Self::Emissive { ls, .. } => Terms {
-                base: scale3(s, cd, scalar(ls)),
+                base: scale3(s, cd, params.scalar(ls)),
                 diffuse: black,
                 specular: None,
                 mirror: None,

@@ -172,6 +172,13 @@ pub fn min<S: Simd>(s: S, a: F<S>, b: F<S>) -> F<S> {
     s.select_f32s(s.or_m32s(s.less_than_f32s(b, a), nan(s, a)), b, a)
 }
 
+/// `a > b ? a : b` per lane: the SSE `maxps` rule (a NaN operand gives `b`).
+#[must_use]
+#[inline(always)]
+pub fn sse_max<S: Simd>(s: S, a: F<S>, b: F<S>) -> F<S> {
+    s.select_f32s(s.greater_than_f32s(a, b), a, b)
+}
+
 /// `x.clamp(lo, hi)` per lane, as `f32::clamp`: NaN stays NaN.
 #[must_use]
 #[inline(always)]
@@ -344,9 +351,8 @@ impl<S: Simd> V3<S> {
     #[must_use]
     #[inline(always)]
     pub fn max_abs(&self, s: S) -> F<S> {
-        let mx = |a: F<S>, b: F<S>| s.select_f32s(s.greater_than_f32s(a, b), a, b);
         let (x, y, z) = (s.abs_f32s(self.x), s.abs_f32s(self.y), s.abs_f32s(self.z));
-        mx(mx(x, z), mx(y, z))
+        sse_max(s, sse_max(s, x, z), sse_max(s, y, z))
     }
 
     /// Whether every coordinate is finite, per lane.
@@ -365,18 +371,21 @@ impl<S: Simd> V3<S> {
     #[inline(always)]
     pub fn linear(&self, s: S, m: &Mat3A) -> Self {
         let (c0, c1, c2) = (m.x_axis, m.y_axis, m.z_axis);
-        let row = |a: f32, b: f32, c: f32| {
-            let xy = s.add_f32s(
-                s.mul_f32s(s.splat_f32s(a), self.x),
-                s.mul_f32s(s.splat_f32s(b), self.y),
-            );
-            s.add_f32s(xy, s.mul_f32s(s.splat_f32s(c), self.z))
-        };
         Self {
-            x: row(c0.x, c1.x, c2.x),
-            y: row(c0.y, c1.y, c2.y),
-            z: row(c0.z, c1.z, c2.z),
+            x: self.row(s, c0.x, c1.x, c2.x),
+            y: self.row(s, c0.y, c1.y, c2.y),
+            z: self.row(s, c0.z, c1.z, c2.z),
         }
+    }
+
+    /// (a x + b y) + c z per lane: one row of a matrix product, as glam sums it.
+    #[inline(always)]
+    fn row(&self, s: S, a: f32, b: f32, c: f32) -> F<S> {
+        let xy = s.add_f32s(
+            s.mul_f32s(s.splat_f32s(a), self.x),
+            s.mul_f32s(s.splat_f32s(b), self.y),
+        );
+        s.add_f32s(xy, s.mul_f32s(s.splat_f32s(c), self.z))
     }
 
     /// `m` applied to points per lane (`Affine3A::transform_point3a`).

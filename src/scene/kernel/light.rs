@@ -71,7 +71,6 @@ impl Scene {
             Shape::Cylinder { capped: false } | Shape::Mesh(_) => [true; MAX_LANES],
         };
         let mut lit = zero;
-        let (pa, nga, offs) = (r.p.to_arrays(), r.ng.to_arrays(), to_array::<S>(offset));
         for (li, light) in self.lights.iter().enumerate() {
             let (wi, dist, radiance, shadows) = incident(s, light, &r.p);
             let ndotwi = r.ns.dot(s, &wi);
@@ -83,6 +82,7 @@ impl Scene {
             let mut share = None;
             if shadows && crate::math::lanes::any(s, reach) {
                 let mut flags = mask_to_array(s, reach);
+                let (pa, nga, offs) = (r.p.to_arrays(), r.ng.to_arrays(), to_array::<S>(offset));
                 let (wa, da) = (wi.to_arrays(), to_array::<S>(dist));
                 let mut tr = [1.0_f32; MAX_LANES];
                 for i in 0..S::F32_LANES {

@@ -5,7 +5,7 @@
 use super::nearest::Hits;
 use super::{Diffs, Rays, lanes};
 use crate::geometry::{LocalHit, Object};
-use crate::material::{C3, Colour, Scalar, splat_rgb};
+use crate::material::{C3, Colour, ParamLanes, Scalar, splat_rgb};
 use crate::math::lanes::{
     F, M, MAX_LANES, V3, from_array, mask_from_array, mask_to_array, max, to_array,
 };
@@ -31,6 +31,52 @@ pub(super) struct Resolved<S: Simd> {
 struct PerLane {
     hits: [SurfaceHit; MAX_LANES],
     ctx: [TextureContext; MAX_LANES],
+}
+
+/// The material's parameters of the lanes being shaded: constants in every lane, textures per
+/// lane from the lanes' texture contexts.
+struct LaneParams<'a, S: Simd> {
+    s: S,
+    per: Option<&'a PerLane>,
+    on: [bool; MAX_LANES],
+}
+
+impl<S: Simd> ParamLanes<S> for LaneParams<'_, S> {
+    #[inline(always)]
+    fn scalar(&self, p: &Scalar) -> F<S> {
+        match (p, self.per) {
+            (Scalar::Const(v), _) => self.s.splat_f32s(*v),
+            (Scalar::Texture(t), Some(pl)) => {
+                let mut a = [0.0; MAX_LANES];
+                for i in 0..S::F32_LANES {
+                    if self.on[i] {
+                        a[i] = t.eval(&pl.ctx[i]);
+                    }
+                }
+                from_array::<S>(&a)
+            }
+            // Unreachable: a textured parameter makes the lanes' records.
+            (Scalar::Texture(_), None) => self.s.splat_f32s(0.0),
+        }
+    }
+
+    #[inline(always)]
+    fn colour(&self, p: &Colour) -> C3<S> {
+        match (p, self.per) {
+            (Colour::Const(c), _) => splat_rgb(self.s, *c),
+            (Colour::Texture(_), Some(pl)) => {
+                let mut a = [[0.0; MAX_LANES]; 3];
+                for i in 0..S::F32_LANES {
+                    if self.on[i] {
+                        let c = p.eval(&pl.ctx[i]);
+                        (a[0][i], a[1][i], a[2][i]) = (c.0, c.1, c.2);
+                    }
+                }
+                a.map(|c| from_array::<S>(&c))
+            }
+            (Colour::Texture(_), None) => splat_rgb(self.s, Rgb::BLACK),
+        }
+    }
 }
 
 /// `n` of object space to world space per lane (`Object::normal_to_world`).
@@ -257,39 +303,12 @@ impl Scene {
                 let q = Self::mapping_point(s, obj, &hits.p);
                 Self::texels_lanes(s, obj, texture, hits, &q, shade_on)
             };
-            let per_ref = per.as_deref();
-            let scalar = |p: &Scalar| -> F<S> {
-                match (p, per_ref) {
-                    (Scalar::Const(v), _) => s.splat_f32s(*v),
-                    (Scalar::Texture(t), Some(pl)) => {
-                        let mut a = [0.0; MAX_LANES];
-                        for i in 0..S::F32_LANES {
-                            if on[i] {
-                                a[i] = t.eval(&pl.ctx[i]);
-                            }
-                        }
-                        from_array::<S>(&a)
-                    }
-                    (Scalar::Texture(_), None) => s.splat_f32s(0.0),
-                }
+            let params = LaneParams {
+                s,
+                per: per.as_deref(),
+                on,
             };
-            let colour = |p: &Colour| -> C3<S> {
-                match (p, per_ref) {
-                    (Colour::Const(c), _) => splat_rgb(s, *c),
-                    (Colour::Texture(_), Some(pl)) => {
-                        let mut a = [[0.0; MAX_LANES]; 3];
-                        for i in 0..S::F32_LANES {
-                            if on[i] {
-                                let c = p.eval(&pl.ctx[i]);
-                                (a[0][i], a[1][i], a[2][i]) = (c.0, c.1, c.2);
-                            }
-                        }
-                        a.map(|c| from_array::<S>(&c))
-                    }
-                    (Colour::Texture(_), None) => splat_rgb(s, Rgb::BLACK),
-                }
-            };
-            let terms = material.terms(s, &cd, self.ambient, scalar, colour);
+            let terms = material.terms(s, &cd, self.ambient, &params);
             // A bump or normal map tilts the shading normal, lane by lane.
             if let (Some(_), Some(pl)) = (perturbation, per.as_mut()) {
                 let mut ns = r.ns.to_arrays();

@@ -7,6 +7,7 @@ use rayon::ThreadPool;
 use std::sync::{Arc, Mutex, PoisonError};
 
 /// Each render worker's stack (address space reserved, touched only as deep as a render goes).
+#[cfg(not(target_arch = "wasm32"))]
 const WORKER_STACK: usize = 16 << 20;
 
 /// The most worker threads a user may ask for. More threads than this only add start-up time and

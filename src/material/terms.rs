@@ -100,11 +100,11 @@ fn highlight<S: Simd, P: ParamLanes<S>>(
     cs: &Colour,
     exp: &Scalar,
     params: &P,
-) -> Option<(C3<S>, F<S>)> {
-    Some((
+) -> (C3<S>, F<S>) {
+    (
         scale3(s, &params.colour(cs), params.scalar(ks)),
         params.scalar(exp),
-    ))
+    )
 }
 
 impl Material {
@@ -147,7 +147,7 @@ impl Material {
                 Terms {
                     base,
                     diffuse,
-                    specular: highlight(s, ks, cs, exp, params),
+                    specular: Some(highlight(s, ks, cs, exp, params)),
                     mirror: None,
                     glow: Some((g, non_black(s, &g))),
                     lit: true,
@@ -168,7 +168,7 @@ impl Material {
                 Terms {
                     base,
                     diffuse,
-                    specular: highlight(s, ks, cs, exp, params),
+                    specular: Some(highlight(s, ks, cs, exp, params)),
                     mirror: Some((m, non_black(s, &m))),
                     glow: None,
                     lit: true,

@@ -286,37 +286,15 @@ impl ImageData {
         }
     }
 
-    /// Bilinear interpolation between the four nearest texel centres, (i + 0.5) / w.
+    /// Bilinear interpolation between the four nearest texel centres, (i + 0.5) / w: the
+    /// width-1 instance of [`ImageData::bilinear_lanes`].
     #[must_use]
     #[inline]
     pub fn bilinear(&self, uv: Vec2, wu: Wrap, wv: Wrap) -> Rgb {
-        let uv = Wrap::reduce_uv(wu, wv, uv);
-        let x = uv.x * self.width as f32 - 0.5;
-        let y = uv.y * self.height as f32 - 0.5;
-        if !(x.is_finite() && y.is_finite()) {
-            return self.nearest(uv, Lookup::Centred, wu, wv);
-        }
-        let (x0, y0) = (floor_fast(x), floor_fast(y));
-        let (fx, fy) = (x - x0, y - y0);
-        let (x0, y0) = (x0 as i64, y0 as i64);
-        let (w, h) = (i64::from(self.width), i64::from(self.height));
-        if x0 >= 0 && y0 >= 0 && x0 + 1 < w && y0 + 1 < h {
-            // All four texels inside the image (nearly every lookup): no wrapping.
-            let (c, r) = (x0 as u32, y0 as u32);
-            let top = self.texel(c, r + 1) * (1.0 - fx) + self.texel(c + 1, r + 1) * fx;
-            let bottom = self.texel(c, r) * (1.0 - fx) + self.texel(c + 1, r) * fx;
-            return bottom * (1.0 - fy) + top * fy;
-        }
-        // At an edge: each axis's two indices wrapped once (no division, see `Wrap::index`).
-        let (c0, c1) = (wu.index(x0, self.width), wu.index(x0 + 1, self.width));
-        let (r0, r1) = (wv.index(y0, self.height), wv.index(y0 + 1, self.height));
-        let fetch = |c: Option<u32>, r: Option<u32>| match (c, r) {
-            (Some(c), Some(r)) => self.texel(c, r),
-            _ => Rgb::BLACK,
-        };
-        let top = fetch(c0, r1) * (1.0 - fx) + fetch(c1, r1) * fx;
-        let bottom = fetch(c0, r0) * (1.0 - fx) + fetch(c1, r0) * fx;
-        bottom * (1.0 - fy) + top * fy
+        let mut on = [false; crate::math::lanes::MAX_LANES];
+        on[0] = true;
+        let [r, g, b] = self.bilinear_lanes(pulp::Scalar, uv.x, uv.y, wu, wv, &on);
+        Rgb(r, g, b)
     }
 
     /// Bicubic (Catmull-Rom) interpolation over the 4 x 4 nearest texel centres: sharper than

@@ -9,6 +9,7 @@ mod explain;
 pub mod footprint;
 mod formula;
 mod image;
+mod lanes;
 mod mip;
 mod procedural;
 mod summed;

@@ -120,6 +120,30 @@ impl<'a> Nearest<'a> {
     }
 }
 
+/// `c` with the non-finite mark where (u, v) is not finite (a formula that is not finite
+/// there), as `Texture::eval_tex_coord` gives it.
+#[inline(always)]
+fn marked<S: Simd>(
+    s: S,
+    c: C3<S>,
+    u: &[f32; MAX_LANES],
+    v: &[f32; MAX_LANES],
+    flags: &[bool; MAX_LANES],
+) -> C3<S> {
+    let bad: [bool; MAX_LANES] =
+        std::array::from_fn(|i| flags[i] && !(u[i].is_finite() && v[i].is_finite()));
+    if !bad[..S::F32_LANES].contains(&true) {
+        return c;
+    }
+    let mark = crate::texture::mark();
+    let m = crate::math::lanes::mask_from_array(s, &bad);
+    [
+        s.select_f32s(m, s.splat_f32s(mark.0), c[0]),
+        s.select_f32s(m, s.splat_f32s(mark.1), c[1]),
+        s.select_f32s(m, s.splat_f32s(mark.2), c[2]),
+    ]
+}
+
 impl Scene {
     /// The point the object's mappings read (a mesh's fitted into the generic objects'
     /// [-1, 1]^3, as `Scene::texture_context_at` gives it).
@@ -212,20 +236,33 @@ impl Scene {
                 }
             }
         }
-        if let Some(near) = Nearest::new(texture) {
-            let mut c = near.sample(s, from_array::<S>(&u), from_array::<S>(&v), &flags);
-            let marked: [bool; MAX_LANES] =
-                std::array::from_fn(|i| flags[i] && !(u[i].is_finite() && v[i].is_finite()));
-            if marked[..n].contains(&true) {
-                let mark = crate::texture::mark();
-                let m = crate::math::lanes::mask_from_array(s, &marked);
-                c = [
-                    s.select_f32s(m, s.splat_f32s(mark.0), c[0]),
-                    s.select_f32s(m, s.splat_f32s(mark.1), c[1]),
-                    s.select_f32s(m, s.splat_f32s(mark.2), c[2]),
-                ];
+        let lanes = if let Some(near) = Nearest::new(texture) {
+            Some(near.sample(s, from_array::<S>(&u), from_array::<S>(&v), &flags))
+        } else {
+            match texture {
+                Texture::Image(t)
+                    if matches!(
+                        (t.filter, &t.mip),
+                        (Filter::Bilinear, _) | (Filter::Trilinear | Filter::Ewa, None)
+                    ) =>
+                {
+                    let (wu, wv) = t.wraps();
+                    let c = t.image.bilinear_lanes(
+                        s,
+                        from_array::<S>(&u),
+                        from_array::<S>(&v),
+                        wu,
+                        wv,
+                        &flags,
+                    );
+                    let k = s.splat_f32s(t.scale);
+                    Some(c.map(|c| s.mul_f32s(c, k)))
+                }
+                _ => None,
             }
-            return c;
+        };
+        if let Some(c) = lanes {
+            return marked(s, c, &u, &v, &flags);
         }
         let mut c = [[0.0; MAX_LANES]; 3];
         for i in 0..n {

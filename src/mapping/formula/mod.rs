@@ -17,6 +17,7 @@
 
 mod check;
 pub mod compare;
+mod derive;
 mod ops;
 mod program;
 
@@ -28,7 +29,7 @@ use crate::math::{Vec2, Vec3A};
 use check::{Name, Token};
 use exmex::prelude::*;
 use glam::{DVec2, DVec3};
-use ops::{Sym, SymOps};
+use ops::{Sym, SymOps, Tape};
 use program::Program;
 use std::sync::atomic::{AtomicU64, Ordering};
 
@@ -90,6 +91,8 @@ pub struct Expr {
     slots: Vec<usize>,
     /// What the renderer runs: exmex's evaluation, compiled.
     program: Program,
+    /// exmex's evaluation as recorded (the derivatives are built from it), and its value.
+    recorded: std::sync::Arc<(Tape, Sym)>,
     tokens: Vec<Token>,
 }
 
@@ -147,15 +150,15 @@ impl Expr {
             .map_err(|e| format!("exmex cannot parse it: {}", e.msg()))?;
         let sym_slots = slots_of(symbolic.var_names(), vars)?;
         let inputs: Vec<Sym> = (0..sym_slots.len()).map(Sym::Var).collect();
-        let tree = symbolic
-            .eval(&inputs)
-            .map_err(|e| format!("exmex cannot evaluate it: {}", e.msg()))?;
-        let program = Program::compile(&tree, &sym_slots);
+        let (root, tape) = ops::record(|| symbolic.eval(&inputs));
+        let root = root.map_err(|e| format!("exmex cannot evaluate it: {}", e.msg()))?;
+        let program = Program::compile(&tape, root, &sym_slots);
         Ok(Self {
             text: text.to_owned(),
             flat,
             slots,
             program,
+            recorded: std::sync::Arc::new((tape, root)),
             tokens,
         })
     }
@@ -227,19 +230,25 @@ impl Expr {
         out
     }
 
-    /// exmex's symbolic partial derivative with respect to input `slot`: `Ok(None)` when the
-    /// formula does not read it (the derivative is zero).
-    fn partial(&self, slot: usize, vars: &[&str]) -> Result<Option<Self>, String> {
+    /// The symbolic partial derivative with respect to input `slot`, compiled: `Ok(None)` when
+    /// the formula does not read it (the derivative is zero).
+    ///
+    /// # Errors
+    /// The function with no symbolic derivative that the input goes through.
+    fn partial(&self, slot: usize) -> Result<Option<Program>, &'static str> {
         let Some(index) = self.slots.iter().position(|&s| s == slot) else {
             return Ok(None);
         };
-        let d = self
-            .flat
-            .clone()
-            .partial(index)
-            .map_err(|e| e.msg().to_owned())?;
-        let text = d.unparse().to_owned();
-        Self::from_flat(&text, d, Vec::new(), vars).map(Some)
+        let (tape, root) = &*self.recorded;
+        let mut tape = tape.clone();
+        let d = derive::derivative(&mut tape, *root, index)?;
+        Ok(Some(Program::compile(&tape, d, &self.slots)))
+    }
+
+    /// How many instructions the compiled formula runs.
+    #[must_use]
+    pub fn instructions(&self) -> usize {
+        self.program.len()
     }
 }
 
@@ -255,7 +264,7 @@ pub enum DerivativeKind {
 #[derive(Clone, Debug)]
 enum Derivatives {
     /// d/d(input) of u and of v, `None` for an input the formula does not read.
-    Symbolic(Box<[[Option<Expr>; 5]; 2]>),
+    Symbolic(Box<[[Option<Program>; 5]; 2]>),
     /// Why not symbolic.
     FiniteDifferences(String),
 }
@@ -321,7 +330,7 @@ impl FormulaMapping {
     pub fn derivative_note(&self) -> String {
         match &self.derivatives {
             Derivatives::Symbolic(_) => {
-                "derivatives: symbolic (exmex differentiated both formulas)".into()
+                "derivatives: symbolic (both formulas differentiated exactly)".into()
             }
             Derivatives::FiniteDifferences(why) => {
                 format!("derivatives: central finite differences ({why})")
@@ -368,7 +377,7 @@ impl FormulaMapping {
     fn directional(&self, inputs: &[f64; 5], d: &[f64; 5]) -> (f64, f64) {
         match &self.derivatives {
             Derivatives::Symbolic(g) => {
-                let dot = |g: &[Option<Expr>; 5]| {
+                let dot = |g: &[Option<Program>; 5]| {
                     g.iter()
                         .zip(d)
                         .filter(|(_, dk)| **dk != 0.0)
@@ -505,30 +514,34 @@ impl FormulaMapping {
 /// The absolute step of the finite differences, in object-space units.
 const FD_STEP: f64 = 1e-5;
 
-/// The two formulas' symbolic gradients, or why exmex cannot give them.
-fn symbolic(u: &Expr, v: &Expr) -> Result<[[Option<Expr>; 5]; 2], String> {
-    let mut out: [[Option<Expr>; 5]; 2] = Default::default();
+/// The two formulas' symbolic gradients, or why they cannot be had: the functions with no
+/// symbolic derivative that an input goes through.
+fn symbolic(u: &Expr, v: &Expr) -> Result<[[Option<Program>; 5]; 2], String> {
+    let mut out: [[Option<Program>; 5]; 2] = Default::default();
+    let mut plain: Vec<&str> = Vec::new();
     for (row, e) in out.iter_mut().zip([u, v]) {
         for (k, slot) in row.iter_mut().enumerate() {
-            *slot = e.partial(k, &MAPPING_VARS).map_err(|m| {
-                let mut plain: Vec<&str> = e
-                    .functions()
-                    .filter(|f| NOT_DIFFERENTIABLE.contains(f))
-                    .collect();
-                plain.sort_unstable();
-                plain.dedup();
-                if plain.is_empty() {
-                    format!("exmex: {m}")
-                } else {
-                    format!("exmex has no symbolic derivative of {}", plain.join(", "))
-                }
-            })?;
+            match e.partial(k) {
+                Ok(p) => *slot = p,
+                Err(f) => plain.push(f),
+            }
         }
     }
-    Ok(out)
+    if plain.is_empty() {
+        return Ok(out);
+    }
+    // Every such function the formulas call, not only the first met.
+    plain.extend(
+        u.functions()
+            .chain(v.functions())
+            .filter_map(|f| NOT_DIFFERENTIABLE.iter().find(|n| **n == f).copied()),
+    );
+    plain.sort_unstable();
+    plain.dedup();
+    Err(format!("no symbolic derivative of {}", plain.join(", ")))
 }
 
-/// The functions exmex cannot differentiate.
+/// The functions with no symbolic derivative.
 const NOT_DIFFERENTIABLE: [&str; 10] = [
     "atan2", "min", "max", "abs", "floor", "fract", "sign", "clamp", "ceil", "round",
 ];

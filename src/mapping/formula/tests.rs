@@ -212,7 +212,8 @@ fn the_worked_formula_substitutes_the_point() {
 }
 
 /// The compiled program gives exmex's own value, bit for bit, on formulas of every operator,
-/// precedence and unary minus (exmex's rules: `-x^2` is (-x)^2), and on their derivatives.
+/// precedence and unary minus (exmex's rules: `-x^2` is (-x)^2); its derivatives give exmex's
+/// own symbolic derivatives (which texplore no longer runs: they recurse) to rounding.
 #[test]
 fn the_program_is_exmex_bit_for_bit() {
     let formulas = [
@@ -227,6 +228,7 @@ fn the_program_is_exmex_bit_for_bit() {
         "0.001 * x + 250.5 * mesh_u - mesh_v / 10",
         "pi * tau - 2 * pi * x",
         "1 / 0 + acos(2)",
+        "x ^ y + z ^ 3 - 2 ^ mesh_u + acos(x / 3) * x / y / z",
     ];
     let points = [
         [0.3, -0.4, 0.5, 0.2, 0.7],
@@ -236,21 +238,146 @@ fn the_program_is_exmex_bit_for_bit() {
     ];
     for text in formulas {
         let e = Expr::compile("u", text, &MAPPING_VARS).expect(text);
-        let mut exprs = vec![e.clone()];
-        for k in 0..5 {
-            if let Ok(Some(d)) = e.partial(k, &MAPPING_VARS) {
-                exprs.push(d);
-            }
+        for p in &points {
+            let (a, b) = (e.eval(p), e.eval_exmex(p));
+            assert!(
+                a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan()),
+                "{text} at {p:?}: program {a}, exmex {b}"
+            );
         }
-        for d in &exprs {
+        for k in 0..5 {
+            let Some(index) = e.slots.iter().position(|&s| s == k) else {
+                continue;
+            };
+            let Ok(theirs) = e.flat.clone().partial(index) else {
+                assert!(e.partial(k).is_err(), "{text}: d/d{}", MAPPING_VARS[k]);
+                continue;
+            };
+            let ours = e.partial(k).expect(text).expect("reads it");
             for p in &points {
-                let (a, b) = (d.eval(p), d.eval_exmex(p));
+                let mut values = vec![0.0; e.slots.len()];
+                for (v, &slot) in values.iter_mut().zip(&e.slots) {
+                    *v = p[slot];
+                }
+                let (a, b) = (ours.eval(p), theirs.eval(&values).unwrap_or(f64::NAN));
                 assert!(
-                    a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan()),
-                    "{} at {p:?}: program {a}, exmex {b}",
-                    d.text()
+                    (a - b).abs() <= 1e-12 * (1.0 + b.abs()) || (!a.is_finite() && !b.is_finite()),
+                    "{text} at {p:?}: d/d{} {a}, exmex {b}",
+                    MAPPING_VARS[k]
                 );
             }
         }
+    }
+}
+
+/// Formulas of every shape up to the length limit: each operator chained, brackets nested to
+/// the limit and repeated, unary signs piled up, and the worst mixes. Each compiles with its
+/// derivatives or is refused with a message, on a thread with a quarter of a worker thread's
+/// stack: nothing recurses on the formula's length (exmex's own derivative overflowed 2 MiB at
+/// 12 operands of `/`).
+pub(crate) fn hostile_formulas() -> Vec<(String, String)> {
+    let fill = |unit: &str, sep: &str, last: &str| {
+        let mut s = String::from(last);
+        while s.len() + unit.len() + sep.len() <= MAX_FORMULA_BYTES {
+            s = format!("{unit}{sep}{s}");
+        }
+        s
+    };
+    let nest = |open: &str, inner: &str, close: &str, depth: usize| {
+        format!("{}{inner}{}", open.repeat(depth), close.repeat(depth))
+    };
+    let n = MAX_NESTING;
+    let mut out: Vec<(String, String)> = Vec::new();
+    for op in ["+", "-", "*", "/", "^"] {
+        out.push((format!("x {op} x ... (chained)"), fill("x", op, "x")));
+        out.push((format!("mixed inputs {op}"), fill("mesh_u", op, "y")));
+    }
+    for f in super::UNARY {
+        let one = nest(&format!("{f}("), "x", ")", n);
+        out.push((format!("{f} nested {n} deep, repeated"), fill(&one, "+", "x")));
+    }
+    for f in super::BINARY {
+        let one = nest(&format!("{f}("), "x", ", y)", n);
+        out.push((format!("{f} nested {n} deep, repeated"), fill(&one, "*", "x")));
+        out.push((format!("{f} chained"), fill(&format!("{f}(x, y)"), "/", "x")));
+    }
+    out.extend([
+        ("brackets nested to the limit".into(), nest("(", "x", ")", n)),
+        (
+            "brackets nested to the limit, repeated".into(),
+            fill(&nest("(", "x", ")", n), "/", "x"),
+        ),
+        (
+            "quotients nested to the limit, repeated".into(),
+            fill(&nest("x/(", "x", ")", n), "^", "x"),
+        ),
+        (
+            "powers nested to the limit, repeated".into(),
+            fill(&nest("x^(", "y", ")", n), "-", "x"),
+        ),
+        ("unary minus piled up".into(), "-".repeat(MAX_FORMULA_BYTES - 1) + "x"),
+        ("unary signs alternating".into(), "+-".repeat(2047) + "x"),
+        ("negated operands".into(), fill("-x", "*", "x")),
+        ("negative powers".into(), fill("x", "^-", "x")),
+        ("sums of products".into(), fill("x*y", "+", "z")),
+        ("products of sums".into(), fill("(x+y)", "*", "z")),
+        (
+            "every function once, repeated".into(),
+            fill(
+                "sin(x)*cos(y)/tan(z)^asin(x)-acos(y)+atan(z)*sqrt(x)/exp(y)^ln(z)",
+                "/",
+                "x",
+            ),
+        ),
+        (
+            "the lecture's spherical v, repeated".into(),
+            fill("acos(y / sqrt(x*x + y*y + z*z)) / pi", "*", "1"),
+        ),
+        ("a long number".into(), "1".repeat(MAX_FORMULA_BYTES)),
+        ("a long decimal".into(), format!("0.{}", "1".repeat(MAX_FORMULA_BYTES - 2))),
+        ("numbers chained".into(), fill("2", "^", "2")),
+        ("spaces".into(), format!("{}x", " ".repeat(MAX_FORMULA_BYTES - 1))),
+    ]);
+    out
+}
+
+#[test]
+fn every_shape_up_to_the_length_limit_compiles_or_is_refused() {
+    let cases = hostile_formulas();
+    for (name, text) in &cases {
+        assert!(text.len() <= MAX_FORMULA_BYTES, "{name}: {}", text.len());
+    }
+    let worker = std::thread::Builder::new()
+        .stack_size(512 * 1024)
+        .spawn(move || {
+            let p = [0.3, -0.4, 0.5, 0.2, 0.7];
+            let mut report = Vec::new();
+            for (name, text) in &cases {
+                match FormulaMapping::new(text, "y") {
+                    Ok(f) => {
+                        let uv = f.eval(&p);
+                        let g = f.gradients(&p);
+                        let kind = f.derivative_kind();
+                        if let Derivatives::Symbolic(d) = &f.derivatives {
+                            let n = f.u().instructions();
+                            for p in d[0].iter().flatten() {
+                                assert!(p.len() <= (1 + derive::STEPS_PER_STEP) * n, "{name}");
+                            }
+                        }
+                        report.push(format!("{name}: {uv} {:?} {kind:?}", g[0]));
+                    }
+                    Err(e) => {
+                        assert!(!e.message.is_empty(), "{name}");
+                        report.push(format!("{name}: refused: {e}"));
+                    }
+                }
+            }
+            report
+        })
+        .expect("a thread");
+    let report = worker.join().expect("no overflow, no panic");
+    assert!(report.len() > 30, "{report:?}");
+    if std::env::var_os("TEXPLORE_SHOW_FORMULAS").is_some() {
+        eprintln!("{}", report.join("\n"));
     }
 }

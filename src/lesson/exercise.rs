@@ -172,7 +172,7 @@ impl Exercise {
         let field = |i: usize| formulas.get(i).map_or("", String::as_str);
         match &self.target {
             Target::Mapping(m) => {
-                let f = FormulaMapping::new(field(0), field(1))?;
+                let f = FormulaMapping::checked(field(0), field(1))?;
                 let points = sample_points(*m, CHECK_POINTS);
                 let tol = one_texel(CHECK_RESOLUTION.0, CHECK_RESOLUTION.1);
                 let verdict = Verdict::judge(&f, *m, &points, tol);

@@ -4,6 +4,8 @@
 
 #[path = "../common/mod.rs"]
 mod common;
+#[path = "../common/formulas.rs"]
+mod formulas;
 
 mod antialiasing;
 mod cli;
@@ -18,6 +20,7 @@ mod hard_cases;
 mod hostile;
 mod hostile_budget;
 mod hostile_cache;
+mod hostile_formula;
 mod hostile_read;
 #[cfg(feature = "gui")]
 mod hostile_storage;

@@ -20,13 +20,62 @@ use super::ops::{Bin, Step, Sym, Tape, Un};
 /// products, a quotient and a sum).
 pub const STEPS_PER_STEP: usize = 6;
 
+/// The functions with no symbolic derivative here that `tape` applies to something that is
+/// not a number (numbers are folded as they are recorded, so such a step reads an input): a
+/// formula calling one takes finite differences. Sorted, each once.
+#[must_use]
+pub fn blocked(tape: &Tape) -> Vec<&'static str> {
+    let mut out: Vec<&'static str> = tape
+        .steps
+        .iter()
+        .filter_map(|s| match *s {
+            Step::Un(op, _) => plain_unary(op),
+            Step::Bin(op, _, _) => plain_binary(op),
+        })
+        .collect();
+    out.sort_unstable();
+    out.dedup();
+    out
+}
+
+/// The name of a function of one argument with no derivative here.
+const fn plain_unary(op: Un) -> Option<&'static str> {
+    match op {
+        Un::Abs => Some("abs"),
+        Un::Floor => Some("floor"),
+        Un::Ceil => Some("ceil"),
+        Un::Round => Some("round"),
+        Un::Fract => Some("fract"),
+        Un::Sign => Some("sign"),
+        Un::Clamp => Some("clamp"),
+        Un::Neg
+        | Un::Acos
+        | Un::Asin
+        | Un::Atan
+        | Un::Sqrt
+        | Un::Sin
+        | Un::Cos
+        | Un::Tan
+        | Un::Exp
+        | Un::Ln => None,
+    }
+}
+
+/// The name of a function of two arguments with no derivative here.
+const fn plain_binary(op: Bin) -> Option<&'static str> {
+    match op {
+        Bin::Atan2 => Some("atan2"),
+        Bin::Min => Some("min"),
+        Bin::Max => Some("max"),
+        Bin::Add | Bin::Sub | Bin::Mul | Bin::Div | Bin::Pow => None,
+    }
+}
+
 /// The derivative of `root`, recorded on `tape`, with respect to exmex's variable `var`; the
-/// steps it needs are appended to `tape`.
-///
-/// # Errors
-/// The name of a function with no derivative here (`atan2`, `fract`...) whose argument
-/// changes with `var`: the caller falls back to finite differences.
-pub fn derivative(tape: &mut Tape, root: Sym, var: usize) -> Result<Sym, &'static str> {
+/// steps it needs are appended to `tape`. A step of a function [`blocked`] names has no
+/// derivative: it is NaN where its argument changes with `var` (a formula calling one takes
+/// finite differences instead, so this is never evaluated).
+pub fn derivative(tape: &mut Tape, root: Sym, var: usize) -> Sym {
     let n = match root {
         Sym::Step(i) => i as usize + 1,
         _ => 0,
@@ -47,7 +96,7 @@ pub fn derivative(tape: &mut Tape, root: Sym, var: usize) -> Result<Sym, &'stati
                 if is_zero(da) {
                     ZERO
                 } else {
-                    unary(tape, op, a, da, value)?
+                    unary(tape, op, a, da, value)
                 }
             }
             Step::Bin(op, a, b) => {
@@ -55,21 +104,24 @@ pub fn derivative(tape: &mut Tape, root: Sym, var: usize) -> Result<Sym, &'stati
                 if is_zero(da) && is_zero(db) {
                     ZERO
                 } else {
-                    binary(tape, op, (a, da), (b, db), value)?
+                    binary(tape, op, (a, da), (b, db), value)
                 }
             }
         };
         d.push(di);
         debug_assert!(tape.steps.len() <= before + STEPS_PER_STEP * (i + 1));
     }
-    Ok(match root {
+    match root {
         Sym::Num(_) => ZERO,
         Sym::Var(k) => Sym::Num(if k == var { 1.0 } else { 0.0 }),
         Sym::Step(i) => d[i as usize],
-    })
+    }
 }
 
 const ZERO: Sym = Sym::Num(0.0);
+
+/// The derivative of a function [`blocked`] names.
+const NO: Sym = Sym::Num(f64::NAN);
 
 fn is_zero(s: Sym) -> bool {
     matches!(s, Sym::Num(x) if x == 0.0)
@@ -122,9 +174,9 @@ fn div(t: &mut Tape, a: Sym, b: Sym) -> Sym {
 }
 
 /// d op(a) from a, da and the step's own value.
-fn unary(t: &mut Tape, op: Un, a: Sym, da: Sym, value: Sym) -> Result<Sym, &'static str> {
+fn unary(t: &mut Tape, op: Un, a: Sym, da: Sym, value: Sym) -> Sym {
     let one = Sym::Num(1.0);
-    Ok(match op {
+    match op {
         Un::Neg => t.un(Un::Neg, da),
         Un::Sqrt => {
             let twice = mul(t, Sym::Num(2.0), value);
@@ -158,25 +210,13 @@ fn unary(t: &mut Tape, op: Un, a: Sym, da: Sym, value: Sym) -> Result<Sym, &'sta
             let below = add(t, one, a2);
             div(t, da, below)
         }
-        Un::Abs => return Err("abs"),
-        Un::Floor => return Err("floor"),
-        Un::Ceil => return Err("ceil"),
-        Un::Round => return Err("round"),
-        Un::Fract => return Err("fract"),
-        Un::Sign => return Err("sign"),
-        Un::Clamp => return Err("clamp"),
-    })
+        Un::Abs | Un::Floor | Un::Ceil | Un::Round | Un::Fract | Un::Sign | Un::Clamp => NO,
+    }
 }
 
 /// d op(a, b) from a, da, b, db and the step's own value.
-fn binary(
-    t: &mut Tape,
-    op: Bin,
-    (a, da): (Sym, Sym),
-    (b, db): (Sym, Sym),
-    value: Sym,
-) -> Result<Sym, &'static str> {
-    Ok(match op {
+fn binary(t: &mut Tape, op: Bin, (a, da): (Sym, Sym), (b, db): (Sym, Sym), value: Sym) -> Sym {
+    match op {
         Bin::Add => add(t, da, db),
         Bin::Sub => sub(t, da, db),
         Bin::Mul => {
@@ -208,8 +248,6 @@ fn binary(
             let s = add(t, l, r);
             mul(t, value, s)
         }
-        Bin::Atan2 => return Err("atan2"),
-        Bin::Min => return Err("min"),
-        Bin::Max => return Err("max"),
-    })
+        Bin::Atan2 | Bin::Min | Bin::Max => NO,
+    }
 }

@@ -1,19 +1,21 @@
 //! Formulas a student writes: a mapping `u = ..., v = ...` over the local hit point, or a
-//! texture's colour over (u, v). Parsed, evaluated and differentiated by exmex (`ops.rs` lists
-//! the operators), compiled once when the scene is built into a flat program (`program.rs`),
-//! never per ray.
+//! texture's colour over (u, v). Parsed and evaluated by exmex (`ops.rs` lists the operators);
+//! exmex's evaluation over symbols is recorded on a tape once when the scene is built, and
+//! compiled into a flat program (`program.rs`), never per ray.
 //!
 //! A formula is at most [`MAX_FORMULA_BYTES`] long and nested at most [`MAX_NESTING`] deep;
 //! its mistakes come back as a [`FormulaError`] with the column (`check.rs` scans the tokens
 //! before exmex parses). A point where it gives NaN or an infinity is counted
 //! ([`FormulaMapping::non_finite_count`]) and the texture marks the pixel
-//! ([`NON_FINITE_MARK`]).
+//! ([`NON_FINITE_MARK`]). Nothing here recurses on the formula's shape (exmex's parser and
+//! evaluator are flat; the tape is walked in order), so every formula up to the limit compiles
+//! on a small stack.
 //!
 //! The mapping's derivatives, which the ray differentials need (mip maps, EWA, the footprint
-//! filter), are exmex's symbolic partial derivatives where it has them, and central finite
-//! differences otherwise ([`DerivativeKind`]); a difference that jumps by a whole number is the
-//! seam of `fract` or `floor`, which a repeating texture reads as continuous, so the jump is
-//! taken out.
+//! filter), are symbolic, built along the tape (`derive.rs`), where every function has one;
+//! central finite differences otherwise ([`DerivativeKind`]); a difference that jumps by a
+//! whole number is the seam of `fract` or `floor`, which a repeating texture reads as
+//! continuous, so the jump is taken out.
 
 mod check;
 pub mod compare;
@@ -189,16 +191,6 @@ impl Expr {
             .unwrap_or(f64::NAN)
     }
 
-    /// The functions the formula calls, in order.
-    fn functions(&self) -> impl Iterator<Item = &str> {
-        self.tokens.iter().filter_map(|t| match t.name {
-            Some(Name::Function(_)) => {
-                Some(self.text[t.span.0..t.span.1].trim_end_matches('(').trim())
-            }
-            _ => None,
-        })
-    }
-
     /// Whether the formula reads input `slot`.
     #[must_use]
     pub fn reads(&self, slot: usize) -> bool {
@@ -230,19 +222,21 @@ impl Expr {
         out
     }
 
-    /// The symbolic partial derivative with respect to input `slot`, compiled: `Ok(None)` when
-    /// the formula does not read it (the derivative is zero).
-    ///
-    /// # Errors
-    /// The function with no symbolic derivative that the input goes through.
-    fn partial(&self, slot: usize) -> Result<Option<Program>, &'static str> {
-        let Some(index) = self.slots.iter().position(|&s| s == slot) else {
-            return Ok(None);
-        };
+    /// The symbolic partial derivative with respect to input `slot`, compiled: `None` when the
+    /// formula does not read it (the derivative is zero). NaN through a function with no
+    /// symbolic derivative ([`Expr::plain_functions`]).
+    fn partial(&self, slot: usize) -> Option<Program> {
+        let index = self.slots.iter().position(|&s| s == slot)?;
         let (tape, root) = &*self.recorded;
         let mut tape = tape.clone();
-        let d = derive::derivative(&mut tape, *root, index)?;
-        Ok(Some(Program::compile(&tape, d, &self.slots)))
+        let d = derive::derivative(&mut tape, *root, index);
+        Some(Program::compile(&tape, d, &self.slots))
+    }
+
+    /// The functions the formula applies to an input with no symbolic derivative (`atan2`,
+    /// `fract`...), sorted.
+    fn plain_functions(&self) -> Vec<&'static str> {
+        derive::blocked(&self.recorded.0)
     }
 
     /// How many instructions the compiled formula runs.
@@ -261,10 +255,13 @@ pub enum DerivativeKind {
     FiniteDifferences,
 }
 
-#[derive(Clone, Debug)]
+/// d/d(input) of u and of v, `None` for an input the formula does not read.
+type Gradients = Box<[[Option<Program>; 5]; 2]>;
+
+#[derive(Debug)]
 enum Derivatives {
-    /// d/d(input) of u and of v, `None` for an input the formula does not read.
-    Symbolic(Box<[[Option<Program>; 5]; 2]>),
+    /// Built by [`FormulaMapping::new`], or the first time they are needed.
+    Symbolic(std::sync::OnceLock<Gradients>),
     /// Why not symbolic.
     FiniteDifferences(String),
 }
@@ -286,22 +283,57 @@ impl PartialEq for FormulaMapping {
 }
 
 impl FormulaMapping {
-    /// Compiles the two formulas and their derivatives.
+    /// Compiles the two formulas and their derivatives: what a scene's build does, off the
+    /// window's UI thread.
     ///
     /// # Errors
     /// The first formula's mistake, naming `u` or `v`.
     pub fn new(u: &str, v: &str) -> Result<Self, FormulaError> {
+        let f = Self::checked(u, v)?;
+        if let Derivatives::Symbolic(g) = &f.derivatives {
+            g.get_or_init(|| f.build_gradients());
+        }
+        Ok(f)
+    }
+
+    /// Compiles the two formulas and decides how their derivatives will be had, without
+    /// building them (the first use does): what a check of the formulas needs (the Scene
+    /// panel's note, an exercise's Check), cheap enough for the UI thread.
+    ///
+    /// # Errors
+    /// The first formula's mistake, naming `u` or `v`.
+    pub fn checked(u: &str, v: &str) -> Result<Self, FormulaError> {
         let u = Expr::compile("u", u, &MAPPING_VARS)?;
         let v = Expr::compile("v", v, &MAPPING_VARS)?;
-        let derivatives = symbolic(&u, &v).map_or_else(Derivatives::FiniteDifferences, |d| {
-            Derivatives::Symbolic(Box::new(d))
-        });
+        let mut plain = u.plain_functions();
+        plain.extend(v.plain_functions());
+        plain.sort_unstable();
+        plain.dedup();
+        let derivatives = if plain.is_empty() {
+            Derivatives::Symbolic(std::sync::OnceLock::new())
+        } else {
+            Derivatives::FiniteDifferences(format!(
+                "no symbolic derivative of {}",
+                plain.join(", ")
+            ))
+        };
         Ok(Self {
             u,
             v,
             derivatives,
             non_finite: AtomicU64::new(0),
         })
+    }
+
+    /// Both formulas' symbolic derivatives along each input.
+    fn build_gradients(&self) -> Gradients {
+        let mut out: Gradients = Box::default();
+        for (row, e) in out.iter_mut().zip([&self.u, &self.v]) {
+            for (k, slot) in row.iter_mut().enumerate() {
+                *slot = e.partial(k);
+            }
+        }
+        out
     }
 
     /// The u formula.
@@ -377,6 +409,7 @@ impl FormulaMapping {
     fn directional(&self, inputs: &[f64; 5], d: &[f64; 5]) -> (f64, f64) {
         match &self.derivatives {
             Derivatives::Symbolic(g) => {
+                let g = g.get_or_init(|| self.build_gradients());
                 let dot = |g: &[Option<Program>; 5]| {
                     g.iter()
                         .zip(d)
@@ -513,38 +546,6 @@ impl FormulaMapping {
 
 /// The absolute step of the finite differences, in object-space units.
 const FD_STEP: f64 = 1e-5;
-
-/// The two formulas' symbolic gradients, or why they cannot be had: the functions with no
-/// symbolic derivative that an input goes through.
-fn symbolic(u: &Expr, v: &Expr) -> Result<[[Option<Program>; 5]; 2], String> {
-    let mut out: [[Option<Program>; 5]; 2] = Default::default();
-    let mut plain: Vec<&str> = Vec::new();
-    for (row, e) in out.iter_mut().zip([u, v]) {
-        for (k, slot) in row.iter_mut().enumerate() {
-            match e.partial(k) {
-                Ok(p) => *slot = p,
-                Err(f) => plain.push(f),
-            }
-        }
-    }
-    if plain.is_empty() {
-        return Ok(out);
-    }
-    // Every such function the formulas call, not only the first met.
-    plain.extend(
-        u.functions()
-            .chain(v.functions())
-            .filter_map(|f| NOT_DIFFERENTIABLE.iter().find(|n| **n == f).copied()),
-    );
-    plain.sort_unstable();
-    plain.dedup();
-    Err(format!("no symbolic derivative of {}", plain.join(", ")))
-}
-
-/// The functions with no symbolic derivative.
-const NOT_DIFFERENTIABLE: [&str; 10] = [
-    "atan2", "min", "max", "abs", "floor", "fract", "sign", "clamp", "ceil", "round",
-];
 
 /// Where each of a formula's variables `names` sits among the inputs `vars`.
 fn slots_of(names: &[String], vars: &[&str]) -> Result<Vec<usize>, String> {

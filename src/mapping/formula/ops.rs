@@ -3,15 +3,16 @@
 //! exmex's `fract` keep the sign) and `sign`, and the lecture's constants `pi` and `tau`.
 //!
 //! Each operator is listed once ([`formula_ops!`]) and built twice: over `f64`
-//! ([`FormulaOps`]: exmex evaluates and differentiates with it) and over [`Sym`]
-//! ([`SymOps`]: exmex's evaluation of a formula over symbols records the tree it evaluates, in
-//! exmex's own order, which [`super::program`] turns into a flat program). Both apply the same
-//! functions ([`un`], [`bin`]), so a program gives exmex's value bit for bit.
+//! ([`FormulaOps`]: exmex evaluates with it) and over [`Sym`] ([`SymOps`]: exmex's evaluation
+//! of a formula over symbols records each step it takes on a [`Tape`], in exmex's own order,
+//! which [`super::program`] turns into a flat program and [`super::derive`] differentiates).
+//! Both apply the same functions ([`un`], [`bin`]), so a program gives exmex's value bit for
+//! bit.
 //!
-//! exmex differentiates by the operator names it knows (`^`, `*`, `/`, `+`, `-`, `sqrt`, `ln`,
-//! `exp`, the trigonometric functions and their inverses); the others here (`atan2`, `min`,
-//! `max`, `abs`, `floor`, `fract`, `sign`, `clamp`...) have no symbolic derivative there, and
-//! a formula using one falls back to finite differences.
+//! `^`, `*`, `/`, `+`, `-`, `sqrt`, `ln`, `exp`, the trigonometric functions and their inverses
+//! have symbolic derivatives; the others here (`atan2`, `min`, `max`, `abs`, `floor`, `fract`,
+//! `sign`, `clamp`...) do not, and a formula applying one to an input falls back to finite
+//! differences.
 
 use exmex::{BinOp, MakeOperators, Operator};
 use std::f64::consts::{PI, TAU};

@@ -189,7 +189,11 @@ impl ExplorerApp {
         if !app.ui_scale.is_finite() {
             app.ui_scale = 1.0;
         }
-        app.layout = Layout::restore(storage);
+        let (layout, refused) = Layout::restore(storage);
+        app.layout = layout;
+        if let Some(why) = refused {
+            app.notify(why);
+        }
         app
     }
 

@@ -12,6 +12,7 @@ mod help;
 mod history;
 mod inspector;
 mod layout;
+mod layout_check;
 mod lessons;
 mod live;
 mod overlay;
@@ -29,6 +30,8 @@ mod widgets;
 
 pub use app::{AppOptions, ExplorerApp, Prefs};
 pub use files::{BrowseFor, Browser, config_dir, screenshot_default};
+pub use layout::{Layout, Pane, default_tree};
+pub use layout_check::{MAX_DEPTH as MAX_LAYOUT_DEPTH, check_stored as check_stored_layout};
 #[cfg(not(target_arch = "wasm32"))]
 pub use storage::{Guarded, app_ron, guard as guard_storage};
 pub use viewport::HINT as VIEW_HINT;

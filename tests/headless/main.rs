@@ -6,6 +6,9 @@
 mod common;
 #[path = "../common/formulas.rs"]
 mod formulas;
+#[cfg(feature = "gui")]
+#[path = "../common/layouts.rs"]
+mod layouts;
 
 mod antialiasing;
 mod cli;
@@ -21,6 +24,8 @@ mod hostile;
 mod hostile_budget;
 mod hostile_cache;
 mod hostile_formula;
+#[cfg(feature = "gui")]
+mod hostile_layout;
 mod hostile_read;
 #[cfg(feature = "gui")]
 mod hostile_storage;

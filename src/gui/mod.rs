@@ -85,21 +85,28 @@ fn run_app(
     lesson: Option<crate::lesson::Lesson>,
     simd: crate::scene::SimdMode,
 ) -> anyhow::Result<()> {
-    // The window's memory is checked before eframe reads it (see `storage`).
+    // The window's memory is checked before eframe reads it (see `storage`); what was done is
+    // said on stderr and, once, in the window's status line.
     let memory = app_ron();
+    let mut startup_notes = Vec::new();
     if let Some(path) = &memory {
         match guard_storage(path)? {
             Guarded::Fine => {}
             Guarded::Repaired(notes) => {
                 for note in notes {
                     eprintln!("warning: {}: {note}", path.display());
+                    startup_notes.push(format!("{}: {note}", path.display()));
                 }
             }
-            Guarded::MovedAside(to, why) => eprintln!(
-                "warning: {}: {why}; moved aside to {} and starting afresh",
-                path.display(),
-                to.display()
-            ),
+            Guarded::MovedAside(to, why) => {
+                let note = format!(
+                    "{}: {why}; moved aside to {} and starting afresh",
+                    path.display(),
+                    to.display()
+                );
+                eprintln!("warning: {note}");
+                startup_notes.push(note);
+            }
         }
     }
     let options = eframe::NativeOptions {
@@ -118,6 +125,7 @@ fn run_app(
         browser: Browser::default(),
         follow_viewport: true,
         simd,
+        startup_notes,
     };
     eframe::run_native(
         "texplore",

@@ -523,7 +523,13 @@ fn parse_target(text: &str) -> Result<Target, String> {
     match ron::from_str::<TextureDesc>(text) {
         Ok(TextureDesc::Checker {
             squares, colors, ..
-        }) => Ok(Target::Checker { squares, colors }),
+        }) => match crate::scene::check_checker(squares, &colors) {
+            Ok(()) => Ok(Target::Checker { squares, colors }),
+            Err(r) => {
+                let r = r.under(&FieldPath::field("target"));
+                Err(format!("`{}`: {}", r.field, r.message))
+            }
+        },
         Ok(_) => Err(format!(
             "`target` = {text:?}: a texture target must be a Checker"
         )),

@@ -21,6 +21,7 @@ mod formula;
 mod fuzz;
 mod hard_cases;
 mod hostile;
+mod hostile_accept;
 mod hostile_budget;
 mod hostile_cache;
 mod hostile_formula;

@@ -73,14 +73,21 @@ impl std::fmt::Display for FormulaError {
 impl std::error::Error for FormulaError {}
 
 impl FormulaError {
-    /// The formula and a line with `^` under the mistake, for a terminal or a text field.
+    /// The formula and a line with `^` under the mistake, for a terminal or a text field
+    /// (control characters shown as U+FFFD).
     #[must_use]
     pub fn pointer(&self) -> Option<String> {
         let c = self.column?;
         if self.text.is_empty() {
             return None;
         }
-        Some(format!("{}\n{}^", self.text, " ".repeat(c - 1)))
+        // A control character shows as U+FFFD (one character, so the `^` stays under it).
+        let shown: String = self
+            .text
+            .chars()
+            .map(|c| if c.is_control() { '\u{fffd}' } else { c })
+            .collect();
+        Some(format!("{shown}\n{}^", " ".repeat(c - 1)))
     }
 }
 

@@ -70,6 +70,14 @@ fn io_reason(e: &io::Error) -> String {
 }
 
 /// What a non-regular file is, for the refusal.
+/// What a link leads to that has no name in the file system: a FIFO there is a pipe.
+fn unnamed_kind(m: &Metadata) -> &'static str {
+    match kind_name(m) {
+        "a FIFO" => "a pipe",
+        k => k,
+    }
+}
+
 fn kind_name(m: &Metadata) -> &'static str {
     if m.is_dir() {
         return "a directory";
@@ -159,13 +167,26 @@ fn resolve(path: &Path, inputs: &[&Path]) -> Result<Target> {
     };
     let target = match &link {
         Some(m) if m.file_type().is_symlink() => std::fs::canonicalize(path).map_err(|e| {
-            if e.kind() == io::ErrorKind::NotFound {
-                refuse(
+            if e.kind() != io::ErrorKind::NotFound {
+                return refuse(path, io_reason(&e));
+            }
+            match std::fs::metadata(path) {
+                // The link leads to something without a name in the file system: `-o
+                // /dev/stdout` into a pipe is /proc/self/fd/1, a link to `pipe:[N]`.
+                Ok(m) => refuse(
+                    path,
+                    format!(
+                        "it leads to {}{}, not a regular file",
+                        unnamed_kind(&m),
+                        std::fs::read_link(path)
+                            .map(|t| format!(" ({})", t.display()))
+                            .unwrap_or_default()
+                    ),
+                ),
+                Err(_) => refuse(
                     path,
                     "it is a symbolic link to a file that does not exist (not writing through it)",
-                )
-            } else {
-                refuse(path, io_reason(&e))
+                ),
             }
         })?,
         _ => path.to_path_buf(),

@@ -1,6 +1,5 @@
 //! `texplore render`.
 
-use crate::field::FieldPath;
 use crate::names::value_parser;
 use crate::output::check_output;
 use crate::render::render_blocking;
@@ -147,19 +146,9 @@ pub fn run(a: &RenderArgs, simd: crate::scene::SimdMode) -> Result<()> {
             pool.current_num_threads()
         );
     }
-    // A student's formula that is NaN or infinite somewhere: the pixels are magenta; say why.
-    for (i, (obj, o)) in scene.objects.iter().zip(&desc.objects).enumerate() {
-        let n = scene.materials[obj.material].texture().non_finite_count();
-        if n > 0 {
-            let field = FieldPath::field("objects")
-                .at(i)
-                .then("material")
-                .then(o.material.kind().colour_name());
-            eprintln!(
-                "warning: {}: its formula was NaN or infinite at {n} hits, drawn magenta",
-                desc.name_field(&field)
-            );
-        }
+    // A student's formula that is NaN or infinite somewhere, in any field: say where.
+    for n in crate::scene::non_finite_fields(&scene, &desc) {
+        eprintln!("warning: {}", n.warning(&desc));
     }
     Ok(())
 }

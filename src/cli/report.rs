@@ -54,7 +54,7 @@ pub struct ReportArgs {
     /// Judge against this image instead of rendering a reference: a linear OpenEXR or
     /// Radiance HDR made outside texplore (e.g. Mitsuba's), of the render's size; one preset
     /// only. The display metrics encode it like a render; `rmse_linear` compares it as it is.
-    #[arg(long, value_name = "FILE.exr")]
+    #[arg(long, value_name = "FILE.exr", conflicts_with_all = ["reference_spp", "reference_filter", "reference_sampler"])]
     pub reference: Option<PathBuf>,
     /// Where references are cached (default: the user's cache directory,
     /// ~/.cache/texplore/references, else OUTPUT/.refs).
@@ -137,6 +137,40 @@ fn check_numbers(a: &ReportArgs) -> Result<()> {
     Ok(())
 }
 
+/// The reference cache must be a folder, or one that can be made: refused before any render
+/// when it (or a folder above it) is a file, or a symbolic link to nothing, where it used to
+/// render the reference and then warn "Not a directory" or "File exists".
+fn check_cache_dir(dir: &Path) -> Result<()> {
+    let refuse = |why: String| {
+        anyhow::anyhow!(
+            "cannot use the reference cache {}: {why} (--cache names a folder; --no-cache \
+             renders the reference without storing it)",
+            dir.display()
+        )
+    };
+    for at in dir.ancestors().filter(|p| !p.as_os_str().is_empty()) {
+        let Ok(link) = std::fs::symlink_metadata(at) else {
+            continue; // not there yet: made when the reference is stored
+        };
+        let what = if at == dir {
+            "it".to_owned()
+        } else {
+            at.display().to_string()
+        };
+        return match std::fs::metadata(at) {
+            Ok(m) if m.is_dir() => Ok(()),
+            Ok(_) => Err(refuse(format!("{what} is not a folder"))),
+            Err(_) if link.file_type().is_symlink() => Err(refuse(format!(
+                "{what} is a symbolic link to {}, which does not exist",
+                std::fs::read_link(at)
+                    .map_or_else(|_| "nothing".to_owned(), |t| t.display().to_string())
+            ))),
+            Err(e) => Err(refuse(format!("{what}: {e}"))),
+        };
+    }
+    Ok(())
+}
+
 /// Runs the report.
 ///
 /// # Errors
@@ -177,15 +211,8 @@ pub fn run(a: &ReportArgs, simd: crate::scene::SimdMode) -> Result<()> {
                 .unwrap_or_else(|| default_cache_dir(&a.output.join(".refs"))),
         )
     };
-    if let Some(dir) = &cache_dir
-        && let Ok(m) = std::fs::metadata(dir)
-        && !m.is_dir()
-    {
-        bail!(
-            "cannot use the reference cache {}: it is not a folder (--cache names a folder; \
-             --no-cache renders the reference without storing it)",
-            dir.display()
-        );
+    if let Some(dir) = &cache_dir {
+        check_cache_dir(dir)?;
     }
     let config = ReportConfig {
         modes,

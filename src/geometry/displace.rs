@@ -76,10 +76,13 @@ fn split_once(d: &MeshData) -> (MeshData, Vec<u32>) {
             let (a, b) = (i as usize, j as usize);
             let k = out.positions.len() as u32;
             // Sums are commutative in IEEE arithmetic: the two copies of an edge on a seam
-            // get bit-identical midpoints.
-            out.positions.push((d.positions[a] + d.positions[b]) * 0.5);
+            // get bit-identical midpoints. Halved before the sum (exact, so the same bits as
+            // halving the sum), so values past half the largest float, which a file may hold,
+            // do not overflow: (u, v) of 3e38 gave midpoints of infinity.
+            out.positions
+                .push(d.positions[a] * 0.5 + d.positions[b] * 0.5);
             if !d.uvs.is_empty() {
-                out.uvs.push((d.uvs[a] + d.uvs[b]) * 0.5);
+                out.uvs.push(d.uvs[a] * 0.5 + d.uvs[b] * 0.5);
             }
             if !d.normals.is_empty() {
                 out.normals

@@ -39,6 +39,9 @@ pub struct AppOptions {
     pub follow_viewport: bool,
     /// Which path every render's primary rays take (the command line's `--simd`).
     pub simd: crate::scene::SimdMode,
+    /// What the check of the window's memory file repaired or refused, said once in the status
+    /// line as the window opens (and on stderr).
+    pub startup_notes: Vec<String>,
 }
 
 /// What the window remembers between runs besides its size (which eframe keeps) and the
@@ -183,13 +186,19 @@ impl ExplorerApp {
         let path = open
             .or(prefs.last_scene.filter(|p| p.is_file()))
             .unwrap_or_else(super::default_preset);
+        let notes = options.startup_notes.clone();
         let mut app = Self::with_options(path, options);
         app.camera_is_unsaved = prefs.camera_is_unsaved;
         app.ui_scale = prefs.ui_scale.clamp(*UI_SCALES.start(), *UI_SCALES.end());
         if !app.ui_scale.is_finite() {
             app.ui_scale = 1.0;
         }
-        app.layout = Layout::restore(storage);
+        let (layout, refused) = Layout::restore(storage);
+        app.layout = layout;
+        let notes: Vec<String> = notes.into_iter().chain(refused).collect();
+        if !notes.is_empty() {
+            app.notify(notes.join("; "));
+        }
         app
     }
 

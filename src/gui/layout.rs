@@ -7,6 +7,7 @@
 //! Presentation mode (F5) closes every panel but the image and remembers which were open;
 //! leaving it opens them again.
 
+use super::layout_check::check_stored;
 use egui_tiles::{Container, Tile, TileId, Tiles, Tree};
 
 /// One tile's content.
@@ -146,33 +147,34 @@ pub fn default_tree() -> Tree<Pane> {
     Tree::new(egui::Id::unique(TREE_ID), root, tiles)
 }
 
-/// Whether `tree` holds every pane exactly once (a stored arrangement from another version
-/// may not).
-fn is_complete(tree: &Tree<Pane>) -> bool {
-    Pane::ALL.iter().all(|p| {
-        tree.tiles
-            .tiles()
-            .filter(|t| matches!(t, Tile::Pane(q) if q == p))
-            .count()
-            == 1
-    }) && tree.root().is_some()
-}
-
 impl Layout {
     /// The key the arrangement is stored under in eframe's storage.
     pub const KEY: &str = "texplore-layout";
 
-    /// The arrangement kept in `storage`, or the default one (none kept, or not this version's).
+    /// The arrangement kept in `storage`, or the default one: when none is kept, or when the
+    /// one kept fails [`check_stored`] (then also why, for the window to say once; the next
+    /// save keeps the default).
     #[must_use]
-    pub fn restore(storage: Option<&dyn eframe::Storage>) -> Self {
-        let tree = storage
-            .and_then(|s| eframe::get_value::<Tree<Pane>>(s, Self::KEY))
-            .filter(is_complete)
-            .unwrap_or_else(default_tree);
-        Self {
-            tree,
-            ..Self::default()
-        }
+    pub fn restore(storage: Option<&dyn eframe::Storage>) -> (Self, Option<String>) {
+        let (tree, why) = match storage.and_then(|s| s.get_string(Self::KEY)) {
+            None => (default_tree(), None),
+            Some(text) => match check_stored(&text) {
+                Ok(tree) => (tree, None),
+                Err(why) => (
+                    default_tree(),
+                    Some(format!(
+                        "The stored window layout was not used ({why}): the default layout is shown"
+                    )),
+                ),
+            },
+        };
+        (
+            Self {
+                tree,
+                ..Self::default()
+            },
+            why,
+        )
     }
 
     /// Keeps the arrangement in `storage`.
@@ -259,7 +261,7 @@ mod tests {
     #[test]
     fn the_default_arrangement_holds_every_pane_once_and_gives_the_image_at_least_60_percent() {
         let tree = default_tree();
-        assert!(is_complete(&tree));
+        assert_eq!(super::super::layout_check::check(&tree), Ok(()));
         const { assert!(IMAGE_SHARE / (IMAGE_SHARE + PANELS_SHARE) >= 0.6) };
     }
 
@@ -334,7 +336,8 @@ mod tests {
         }
         let mut storage = Memory::default();
         layout.save(&mut storage);
-        let kept = Layout::restore(Some(&storage));
+        let (kept, why) = Layout::restore(Some(&storage));
+        assert_eq!(why, None);
         let tiles = &kept.tree.tiles;
         let moved = tiles.find_pane(&Pane::Inspector).expect("inspector");
         assert_eq!(
@@ -352,7 +355,8 @@ mod tests {
         ] {
             let mut broken = Memory::default();
             eframe::Storage::set_string(&mut broken, Layout::KEY, bad.clone());
-            let restored = Layout::restore(Some(&broken));
+            let (restored, why) = Layout::restore(Some(&broken));
+            assert!(why.is_some(), "{bad}");
             let tiles = &restored.tree.tiles;
             let inspector = tiles.find_pane(&Pane::Inspector).expect("inspector");
             let texture = tiles.find_pane(&Pane::Texture).expect("texture panel");

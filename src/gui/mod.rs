@@ -12,6 +12,7 @@ mod help;
 mod history;
 mod inspector;
 mod layout;
+mod layout_check;
 mod lessons;
 mod live;
 mod overlay;
@@ -29,6 +30,8 @@ mod widgets;
 
 pub use app::{AppOptions, ExplorerApp, Prefs};
 pub use files::{BrowseFor, Browser, config_dir, screenshot_default};
+pub use layout::{Layout, Pane, default_tree};
+pub use layout_check::{MAX_DEPTH as MAX_LAYOUT_DEPTH, check_stored as check_stored_layout};
 #[cfg(not(target_arch = "wasm32"))]
 pub use storage::{Guarded, app_ron, guard as guard_storage};
 pub use viewport::HINT as VIEW_HINT;
@@ -82,21 +85,28 @@ fn run_app(
     lesson: Option<crate::lesson::Lesson>,
     simd: crate::scene::SimdMode,
 ) -> anyhow::Result<()> {
-    // The window's memory is checked before eframe reads it (see `storage`).
+    // The window's memory is checked before eframe reads it (see `storage`); what was done is
+    // said on stderr and, once, in the window's status line.
     let memory = app_ron();
+    let mut startup_notes = Vec::new();
     if let Some(path) = &memory {
         match guard_storage(path)? {
             Guarded::Fine => {}
             Guarded::Repaired(notes) => {
                 for note in notes {
                     eprintln!("warning: {}: {note}", path.display());
+                    startup_notes.push(format!("{}: {note}", path.display()));
                 }
             }
-            Guarded::MovedAside(to, why) => eprintln!(
-                "warning: {}: {why}; moved aside to {} and starting afresh",
-                path.display(),
-                to.display()
-            ),
+            Guarded::MovedAside(to, why) => {
+                let note = format!(
+                    "{}: {why}; moved aside to {} and starting afresh",
+                    path.display(),
+                    to.display()
+                );
+                eprintln!("warning: {note}");
+                startup_notes.push(note);
+            }
         }
     }
     let options = eframe::NativeOptions {
@@ -115,6 +125,7 @@ fn run_app(
         browser: Browser::default(),
         follow_viewport: true,
         simd,
+        startup_notes,
     };
     eframe::run_native(
         "texplore",

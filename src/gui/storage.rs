@@ -13,8 +13,17 @@
 //!   repaired (the zoom back to 1) or dropped; the window's remembered geometry with a
 //!   non-finite or absurd number is dropped (the window opens at its default size).
 //!
-//! texplore's own entries are checked when read ([`Prefs::load`](super::Prefs::load) clamps the
-//! UI scale, [`Layout::restore`](super::layout::Layout::restore) wants every pane once).
+//! - the window's remembered size below its minimum (800 x 500 points) or above 16384, or a
+//!   position beyond what X11 can place (32767 pixels either way) is dropped: eframe opened
+//!   a 70 x 30 window for a size of -1, and a window at (-1e6, 1e6) off every screen;
+//! - texplore's stored arrangement of the panels is checked as the window checks it
+//!   ([`check_stored`](super::layout_check::check_stored): no cycle, every tile present, a
+//!   bounded depth, finite positive shares and sizes); a bad one is dropped, the file as it was
+//!   kept beside it (`app.ron.refused-SECONDS`), the other entries kept.
+//!
+//! texplore's own entries are checked again when read ([`Prefs::load`](super::Prefs::load)
+//! clamps the UI scale, [`Layout::restore`](super::layout::Layout::restore) checks the
+//! arrangement: the page has no memory file, only its local storage).
 
 use super::app::UI_SCALES;
 use std::collections::HashMap;
@@ -25,6 +34,16 @@ pub const MAX_BYTES: u64 = 4 << 20;
 
 /// The largest coordinate or size (points) a remembered window geometry may hold.
 const MAX_GEOMETRY: f64 = 1e6;
+
+/// The smallest remembered window size (points): the window's own minimum.
+pub const MIN_WINDOW: [f64; 2] = [800.0, 500.0];
+
+/// The largest remembered window size (points).
+const MAX_WINDOW: f64 = 16384.0;
+
+/// The farthest a remembered window position (pixels) may be from the origin: X11 places
+/// windows at 16-bit coordinates.
+const MAX_POSITION: f64 = 32767.0;
 
 /// eframe's key for egui's memory.
 const EGUI_KEY: &str = "egui";
@@ -79,7 +98,18 @@ pub fn guard(path: &Path) -> crate::Result<Guarded> {
         Ok(kv) => kv,
         Err(e) => return move_aside(path, format!("not eframe's format: {e}")),
     };
-    let notes = repair(&mut kv);
+    let mut notes = repair(&mut kv);
+    if let Some(layout) = kv.get(super::Layout::KEY)
+        && let Err(why) = super::layout_check::check_stored(layout)
+    {
+        kv.remove(super::Layout::KEY);
+        let aside = keep_aside(path, &text)?;
+        notes.push(format!(
+            "the stored window layout was not used ({why}): the default layout is shown; \
+             the file as it was is kept as {}",
+            aside.display()
+        ));
+    }
     if notes.is_empty() {
         return Ok(Guarded::Fine);
     }
@@ -111,15 +141,93 @@ fn repair(kv: &mut HashMap<String, String>) -> Vec<String> {
         }
     }
     if let Some(window) = kv.get(WINDOW_KEY) {
-        let sane = ron::from_str::<ron::Value>(window).is_ok_and(|v| numbers_within(&v));
-        if !sane {
+        let why = match ron::from_str::<ron::Value>(window) {
+            Ok(v) if !numbers_within(&v) => Some("not sane".to_owned()),
+            Ok(v) => geometry_fault(&v),
+            Err(_) => Some("unreadable".to_owned()),
+        };
+        if let Some(why) = why {
             kv.remove(WINDOW_KEY);
-            notes.push(
-                "the window's remembered size or position was not sane: forgotten".to_owned(),
-            );
+            notes.push(format!(
+                "the window's remembered size or position was {why}: forgotten"
+            ));
         }
     }
     notes
+}
+
+/// The field `name` of a RON struct or map.
+fn field<'a>(v: &'a ron::Value, name: &str) -> Option<&'a ron::Value> {
+    let ron::Value::Map(map) = v else {
+        return None;
+    };
+    map.iter()
+        .find(|(k, _)| matches!(k, ron::Value::String(s) if s == name))
+        .map(|(_, v)| v)
+}
+
+/// The point `(x: X, y: Y)`, through an `Option` if there is one.
+fn point(v: &ron::Value) -> Option<[f64; 2]> {
+    let v = match v {
+        ron::Value::Option(Some(inner)) => inner,
+        v => v,
+    };
+    let n = |name| match field(v, name)? {
+        ron::Value::Number(n) => Some((*n).into_f64()),
+        _ => None,
+    };
+    Some([n("x")?, n("y")?])
+}
+
+/// What is wrong with eframe's remembered geometry (`normal_geometry`: `inner_size_points`
+/// and `outer_position_pixels`), if anything: a size below the window's minimum or above
+/// 16384, a position X11 cannot place.
+fn geometry_fault(window: &ron::Value) -> Option<String> {
+    let geometry = field(window, "normal_geometry")?;
+    if let Some(size) = field(geometry, "inner_size_points").and_then(point)
+        && (size[0] < MIN_WINDOW[0]
+            || size[1] < MIN_WINDOW[1]
+            || size.iter().any(|&s| s > MAX_WINDOW))
+    {
+        return Some(format!(
+            "{} x {} points (the window is {} x {} to {MAX_WINDOW} x {MAX_WINDOW})",
+            size[0], size[1], MIN_WINDOW[0], MIN_WINDOW[1]
+        ));
+    }
+    if let Some(at) = field(geometry, "outer_position_pixels").and_then(point)
+        && at.iter().any(|c| c.abs() > MAX_POSITION)
+    {
+        return Some(format!(
+            "at ({}, {}), off any screen X11 can show",
+            at[0], at[1]
+        ));
+    }
+    None
+}
+
+/// Writes `text` (the memory file as it was) beside `path`, under a name not yet taken
+/// (`app.ron.refused-SECONDS`, then `-2`, `-3`...); returns that name.
+fn keep_aside(path: &Path, text: &str) -> crate::Result<PathBuf> {
+    let secs = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| d.as_secs());
+    let name = path.file_name().unwrap_or_default().to_string_lossy();
+    let taken = |p: &Path| p.exists() || p.is_symlink();
+    let aside = (1..=1000)
+        .map(|k| {
+            let suffix = if k == 1 {
+                String::new()
+            } else {
+                format!("-{k}")
+            };
+            path.with_file_name(format!("{name}.refused-{secs}{suffix}"))
+        })
+        .find(|p| !taken(p))
+        .ok_or_else(|| {
+            crate::Error::invalid(path, "cannot keep it aside: 1000 refused copies are there")
+        })?;
+    crate::output::write_own_file(&aside, text.as_bytes())?;
+    Ok(aside)
 }
 
 /// Whether every number in `v` is finite and at most [`MAX_GEOMETRY`] in size.

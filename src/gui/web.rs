@@ -249,6 +249,7 @@ pub async fn start(canvas_id: &str) -> Result<(), String> {
                     // The preset's resolution: the page renders on one thread.
                     follow_viewport: false,
                     simd: crate::scene::SimdMode::Auto,
+                    startup_notes: Vec::new(),
                 };
                 // The scene open last time, if it is a shipped one (uploads do not outlive the
                 // page), else the Earth.

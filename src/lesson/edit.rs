@@ -41,9 +41,10 @@ fn variant_of(map: &serde_json::Map<String, Value>) -> Option<&str> {
 
 /// Follows `steps` through the serialised description, stepping into enum variants the path
 /// does not name (`material.cd` means `material.Matte.cd` on a matte material). Returns the
-/// explicit steps. The last field may be absent from the tree (a field left at its default is
-/// not written); whether it exists is then up to the type's deserializer.
+/// explicit steps. A field may be absent from the tree (a field left at its default is not
+/// written, `render.compare`); whether it exists is then up to the type's deserializer.
 fn resolve(tree: &Value, steps: &[Step]) -> Result<Vec<Step>, String> {
+    let empty = Value::Object(serde_json::Map::new());
     let mut out: Vec<Step> = Vec::new();
     let mut node = tree;
     for (i, step) in steps.iter().enumerate() {
@@ -68,16 +69,15 @@ fn resolve(tree: &Value, steps: &[Step]) -> Result<Vec<Step>, String> {
                         node = &map[variant];
                         continue;
                     }
+                    // Absent: a field left at its default is not written (`render.compare`),
+                    // so the path goes on into its default, which the type's deserializer
+                    // fills in; a name the type does not have is refused there.
+                    out.push(step.clone());
                     if last {
-                        out.push(step.clone());
                         return Ok(out);
                     }
-                    let fields: Vec<&str> = map.keys().map(String::as_str).collect();
-                    return Err(format!(
-                        "{} has no field `{name}` (it has {})",
-                        here(),
-                        fields.join(", ")
-                    ));
+                    node = &empty;
+                    break;
                 }
                 (Step::Index(n), Value::Array(items)) => {
                     let Some(next) = items.get(*n) else {
@@ -133,6 +133,7 @@ pub fn set_path(desc: &SceneDesc, path: &str, ron_value: &str) -> Result<SceneDe
     let new = SceneDesc::deserialize(Splice {
         value: tree,
         path: Some(&explicit),
+        whole: &explicit,
         raw: ron_value,
     })
     .map_err(|e| format!("`{path}` = {ron_value}: {}", e.0))?;
@@ -195,6 +196,8 @@ fn json_err(e: &serde_json::Error) -> SpliceError {
 struct Splice<'a, 'de> {
     value: Value,
     path: Option<&'a [Step]>,
+    /// The whole path (the steps already followed name a field in messages).
+    whole: &'a [Step],
     raw: &'de str,
 }
 
@@ -218,9 +221,15 @@ impl<'de> Splice<'_, 'de> {
         Ok(v)
     }
 
-    /// On the path, not at its end: the next step's map, list or variant.
+    /// On the path, not at its end: the next step's map, list or variant. A field absent from
+    /// the tree (left at its default) is entered as an empty map, which the type fills with
+    /// its defaults.
     fn descend<V: Visitor<'de>>(self, rest: &[Step], visitor: V) -> Result<V::Value, SpliceError> {
-        match self.value {
+        let value = match (self.value, &rest[0]) {
+            (Value::Null, Step::Field(_)) => Value::Object(serde_json::Map::new()),
+            (v, _) => v,
+        };
+        match value {
             Value::Object(map) => {
                 let mut entries: Vec<(String, Value)> = map.into_iter().collect();
                 let absent =
@@ -232,15 +241,35 @@ impl<'de> Splice<'_, 'de> {
                     entries: entries.into_iter(),
                     pending: None,
                     path: rest,
+                    whole: self.whole,
                     raw: self.raw,
                 })
             }
             Value::Array(items) => visitor.visit_seq(SpliceSeq {
                 items: items.into_iter().enumerate(),
                 path: rest,
+                whole: self.whole,
                 raw: self.raw,
             }),
             other => Err(SpliceError(format!("cannot go into {other}"))),
+        }
+    }
+
+    /// The path followed so far, as a message names it (`render`), when `rest` is still to go.
+    fn here(&self, rest: &[Step]) -> String {
+        // The steps followed, without the enum variants `resolve` stepped into (the path a
+        // lesson writes: `objects[0].material.cd`, not `...material.Matte.cd.Image`).
+        let done: Vec<Step> = self.whole[..self.whole.len().saturating_sub(rest.len())]
+            .iter()
+            .filter(
+                |s| !matches!(s, Step::Field(f) if f.starts_with(|c: char| c.is_ascii_uppercase())),
+            )
+            .cloned()
+            .collect();
+        if done.is_empty() {
+            "the scene".to_owned()
+        } else {
+            format!("`{}`", path_text(&done))
         }
     }
 }
@@ -271,7 +300,35 @@ impl<'de> Deserializer<'de> for Splice<'_, 'de> {
         deserialize_unit_struct(name: &'static str);
         deserialize_tuple(len: usize);
         deserialize_tuple_struct(name: &'static str, len: usize);
-        deserialize_struct(name: &'static str, fields: &'static [&'static str]);
+    }
+
+    /// On the path, the next step must be one of the struct's fields: a field left at its
+    /// default is absent from the tree, so the tree cannot say which names exist.
+    fn deserialize_struct<V: Visitor<'de>>(
+        self,
+        name: &'static str,
+        fields: &'static [&'static str],
+        visitor: V,
+    ) -> Result<V::Value, SpliceError> {
+        match self.path {
+            None => self
+                .value
+                .deserialize_struct(name, fields, visitor)
+                .map_err(|e| json_err(&e)),
+            Some([]) => Self::ron(self.raw, |de| de.deserialize_struct(name, fields, visitor)),
+            Some(rest) => {
+                if let Step::Field(f) = &rest[0]
+                    && !fields.contains(&f.as_str())
+                {
+                    return Err(SpliceError(format!(
+                        "{} has no field `{f}` (it has {})",
+                        self.here(rest),
+                        fields.join(", ")
+                    )));
+                }
+                self.descend(rest, visitor)
+            }
+        }
     }
 
     fn deserialize_option<V: Visitor<'de>>(self, visitor: V) -> Result<V::Value, SpliceError> {
@@ -322,6 +379,7 @@ impl<'de> Deserializer<'de> for Splice<'_, 'de> {
                     inner: Splice {
                         value: inner,
                         path: Some(rest),
+                        whole: self.whole,
                         raw: self.raw,
                     },
                 })
@@ -335,6 +393,7 @@ struct SpliceMap<'a, 'de> {
     entries: std::vec::IntoIter<(String, Value)>,
     pending: Option<(bool, Value)>,
     path: &'a [Step],
+    whole: &'a [Step],
     raw: &'de str,
 }
 
@@ -364,6 +423,7 @@ impl<'de> de::MapAccess<'de> for SpliceMap<'_, 'de> {
         seed.deserialize(Splice {
             value,
             path: on_path.then(|| &self.path[1..]),
+            whole: self.whole,
             raw: self.raw,
         })
     }
@@ -372,6 +432,7 @@ impl<'de> de::MapAccess<'de> for SpliceMap<'_, 'de> {
 struct SpliceSeq<'a, 'de> {
     items: std::iter::Enumerate<std::vec::IntoIter<Value>>,
     path: &'a [Step],
+    whole: &'a [Step],
     raw: &'de str,
 }
 
@@ -389,6 +450,7 @@ impl<'de> de::SeqAccess<'de> for SpliceSeq<'_, 'de> {
         seed.deserialize(Splice {
             value,
             path: on_path.then(|| &self.path[1..]),
+            whole: self.whole,
             raw: self.raw,
         })
         .map(Some)
@@ -564,7 +626,21 @@ mod tests {
             "{e}"
         );
         let e = set_path(&earth(), "objects[0].material.cd.maping", "Cylindrical").unwrap_err();
-        assert!(e.contains("unknown field") && e.contains("maping"), "{e}");
+        assert!(
+            e.contains("`objects[0].material.cd` has no field `maping` (it has path, mapping,"),
+            "{e}"
+        );
+        // A field left at its default is reached all the same, and a name a type does not
+        // have is refused by that type, even below a default.
+        let d = set_path(&earth(), "render.compare.tolerance", "1000000").expect("a default");
+        assert_eq!(d.render.compare.tolerance, 1e6);
+        let e = set_path(&earth(), "render.compare.tolerence", "2").unwrap_err();
+        assert!(
+            e.contains("`render.compare` has no field `tolerence`"),
+            "{e}"
+        );
+        let e = set_path(&earth(), "render.compar.tolerance", "2").unwrap_err();
+        assert!(e.contains("`render` has no field `compar`"), "{e}");
         let e = set_path(&earth(), "camera.eyes.x", "1").unwrap_err();
         assert!(
             e.contains("the scene") || e.contains("`camera` has no field `eyes`"),

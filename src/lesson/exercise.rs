@@ -172,7 +172,7 @@ impl Exercise {
         let field = |i: usize| formulas.get(i).map_or("", String::as_str);
         match &self.target {
             Target::Mapping(m) => {
-                let f = FormulaMapping::new(field(0), field(1))?;
+                let f = FormulaMapping::checked(field(0), field(1))?;
                 let points = sample_points(*m, CHECK_POINTS);
                 let tol = one_texel(CHECK_RESOLUTION.0, CHECK_RESOLUTION.1);
                 let verdict = Verdict::judge(&f, *m, &points, tol);
@@ -523,7 +523,13 @@ fn parse_target(text: &str) -> Result<Target, String> {
     match ron::from_str::<TextureDesc>(text) {
         Ok(TextureDesc::Checker {
             squares, colors, ..
-        }) => Ok(Target::Checker { squares, colors }),
+        }) => match crate::scene::check_checker(squares, &colors) {
+            Ok(()) => Ok(Target::Checker { squares, colors }),
+            Err(r) => {
+                let r = r.under(&FieldPath::field("target"));
+                Err(format!("`{}`: {}", r.field, r.message))
+            }
+        },
         Ok(_) => Err(format!(
             "`target` = {text:?}: a texture target must be a Checker"
         )),

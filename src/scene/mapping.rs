@@ -46,6 +46,20 @@ impl MappingDesc {
         }
     }
 
+    /// What reads the shape's own (u, v) in this mapping, in words, if anything: the `Uv`
+    /// mapping, or formulas reading mesh_u or mesh_v. A mesh without texture coordinates
+    /// refuses it.
+    #[must_use]
+    pub fn reads_shape_uv(&self) -> Option<&'static str> {
+        match self {
+            Self::Builtin(Mapping::Uv) => Some("the Uv mapping"),
+            Self::Builtin(_) => None,
+            Self::Formula { u, v } => FormulaMapping::checked(u, v)
+                .is_ok_and(|f| f.reads_mesh())
+                .then_some("its formula's mesh_u and mesh_v"),
+        }
+    }
+
     /// The runtime mapping: formulas compiled.
     ///
     /// # Errors

@@ -12,6 +12,7 @@ mod kernel;
 mod light;
 mod mapping;
 mod material;
+mod non_finite;
 mod object;
 mod preset;
 mod settings;
@@ -30,6 +31,7 @@ pub use mapping::MappingDesc;
 pub use material::{
     ChannelDesc, ColorDesc, MaterialDesc, MaterialKind, ParamMut, ParamRef, ScalarDesc,
 };
+pub use non_finite::{Counted, NonFinite, non_finite_fields};
 pub use object::{
     BumpDesc, DEFAULT_SUBDIVIDE, DisplaceDesc, NormalMapDesc, ObjectDesc, ShapeDesc, ShapeKind,
     TransformDesc,
@@ -45,7 +47,7 @@ pub use settings::{
     MAX_RENDER_BYTES, MAX_RESOLUTION, MAX_SPP, Overrides, RENDER_BYTES_PER_PIXEL, RenderDesc,
     RenderSettings, SimdMode, SnapshotDesc, apply_overrides,
 };
-pub use texture::{TextureDesc, TextureKind};
+pub use texture::{TextureDesc, TextureKind, check_checker};
 pub use trace::{
     MAX_CLIP_LAYERS, Perturbation, SHADOW_OFFSET_RELATIVE, Scene, Surface, SurfaceHit,
     natural_mapping,

@@ -403,6 +403,26 @@ pub(super) fn alpha_texture(
     }))
 }
 
+/// A checker's squares (positive, at most 1e6 along each side) and colours (finite, not
+/// negative), as a preset's are checked when its scene is built; a lesson's exercise target
+/// is checked by the same rule. The refusal names `squares` or `colors`.
+///
+/// # Errors
+/// The first of them out of range.
+pub fn check_checker(squares: (f32, f32), colors: &(Rgb, Rgb)) -> std::result::Result<(), Refusal> {
+    let ok = |s: f32| s.is_finite() && s > 0.0 && s <= 1e6;
+    if !ok(squares.0) || !ok(squares.1) {
+        return Err(Refusal::new(
+            "squares".into(),
+            format!("{squares:?} must be positive and at most 1e6"),
+        ));
+    }
+    finite_non_negative(
+        "colors",
+        &[colors.0.to_array(), colors.1.to_array()].concat(),
+    )
+}
+
 /// The runtime texture; errors name their fields relative to the texture's (`scale`,
 /// `mapping.u`), or no field for the texture's own.
 pub(super) fn texture(t: &TextureDesc, base: &Path, cache: &mut AssetCache) -> Result<Texture> {
@@ -450,18 +470,7 @@ pub(super) fn texture(t: &TextureDesc, base: &Path, cache: &mut AssetCache) -> R
             uv,
         } => {
             let transform = uv_transform(uv).map_err(invalid)?;
-            let ok = |s: f32| s.is_finite() && s > 0.0 && s <= 1e6;
-            if !ok(squares.0) || !ok(squares.1) {
-                return Err(invalid(Refusal::new(
-                    "squares".into(),
-                    format!("{squares:?} must be positive and at most 1e6"),
-                )));
-            }
-            finite_non_negative(
-                "colors",
-                &[colors.0.to_array(), colors.1.to_array()].concat(),
-            )
-            .map_err(invalid)?;
+            check_checker(*squares, colors).map_err(invalid)?;
             Texture::Checker(Checker {
                 mapping: build_mapping(mapping).map_err(invalid)?,
                 squares: *squares,

@@ -4,6 +4,11 @@
 
 #[path = "../common/mod.rs"]
 mod common;
+#[path = "../common/formulas.rs"]
+mod formulas;
+#[cfg(feature = "gui")]
+#[path = "../common/layouts.rs"]
+mod layouts;
 
 mod antialiasing;
 mod cli;
@@ -16,8 +21,12 @@ mod formula;
 mod fuzz;
 mod hard_cases;
 mod hostile;
+mod hostile_accept;
 mod hostile_budget;
 mod hostile_cache;
+mod hostile_formula;
+#[cfg(feature = "gui")]
+mod hostile_layout;
 mod hostile_read;
 #[cfg(feature = "gui")]
 mod hostile_storage;

@@ -453,7 +453,7 @@ fn a_mesh_without_uv_takes_a_generated_mapping() {
     let preset = dir.path().join("p.ron");
     let e = scene(&torus_scene(&path), &preset).unwrap_err().to_string();
     assert!(
-        e.contains("plain.ply has no texture coordinates; choose a generated mapping (spherical, cylindrical, rectangular)"),
+        e.contains("plain.ply has no texture coordinates for the Uv mapping to read; choose a generated mapping (spherical, cylindrical, rectangular)"),
         "{e}"
     );
     // The maps read (u, v) too: a clip, bump or normal map under `Uv` is refused the same way,

@@ -3,8 +3,12 @@
 //! module. Needs the `gui` feature (on by default).
 #![cfg(feature = "gui")]
 
+#[path = "../common/formulas.rs"]
+mod formulas;
 #[path = "../common/gui.rs"]
 mod gui_common;
+#[path = "../common/layouts.rs"]
+mod layouts;
 
 mod gui;
 mod gui_browse;
@@ -14,6 +18,7 @@ mod gui_exercise;
 mod gui_files;
 mod gui_formula;
 mod gui_frame_time;
+mod gui_hostile;
 mod gui_labels;
 mod gui_layout;
 mod gui_lessons;

@@ -14,6 +14,9 @@ pub struct Displacement {
     pub file_triangles: usize,
     /// Triangles after subdivision.
     pub triangles: usize,
+    /// Vertices where the height texture's formula gave NaN or an infinity (read there as
+    /// magenta's value, as every texture reads it).
+    pub non_finite: usize,
 }
 
 impl Displacement {
@@ -34,6 +37,14 @@ impl Displacement {
                 self.triangles, self.file_triangles
             ),
         ]
+        .into_iter()
+        .chain((self.non_finite > 0).then(|| {
+            format!(
+                "at {} vertices the height's formula was NaN or infinite",
+                self.non_finite
+            )
+        }))
+        .collect()
     }
 }
 

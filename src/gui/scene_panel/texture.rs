@@ -377,7 +377,7 @@ pub(super) fn mapping_ui(ui: &mut egui::Ui, label: &str, desc: &mut MappingDesc)
     if let MappingDesc::Formula { u, v } = desc {
         changed |= formula_field(ui, "u =", u);
         changed |= formula_field(ui, "v =", v);
-        match FormulaMapping::new(u, v) {
+        match FormulaMapping::checked(u, v) {
             Ok(f) => {
                 ui.label(egui::RichText::new(f.derivative_note()).weak());
             }

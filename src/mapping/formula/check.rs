@@ -202,7 +202,14 @@ pub(super) fn scan(text: &str, vars: &[&str]) -> Result<Vec<Token>, Mistake> {
                 }
                 want_value = true;
             }
-            _ => return Err((column(start), format!("unexpected character `{c}`"))),
+            // Escaped (`\0`, `\u{1b}`): a control character echoed raw could clear or
+            // recolour the terminal the message is printed on.
+            _ => {
+                return Err((
+                    column(start),
+                    format!("unexpected character `{}`", c.escape_debug()),
+                ));
+            }
         }
         tokens.push(Token {
             name: None,

@@ -1,22 +1,25 @@
 //! Formulas a student writes: a mapping `u = ..., v = ...` over the local hit point, or a
-//! texture's colour over (u, v). Parsed, evaluated and differentiated by exmex (`ops.rs` lists
-//! the operators), compiled once when the scene is built into a flat program (`program.rs`),
-//! never per ray.
+//! texture's colour over (u, v). Parsed and evaluated by exmex (`ops.rs` lists the operators);
+//! exmex's evaluation over symbols is recorded on a tape once when the scene is built, and
+//! compiled into a flat program (`program.rs`), never per ray.
 //!
 //! A formula is at most [`MAX_FORMULA_BYTES`] long and nested at most [`MAX_NESTING`] deep;
 //! its mistakes come back as a [`FormulaError`] with the column (`check.rs` scans the tokens
 //! before exmex parses). A point where it gives NaN or an infinity is counted
 //! ([`FormulaMapping::non_finite_count`]) and the texture marks the pixel
-//! ([`NON_FINITE_MARK`]).
+//! ([`NON_FINITE_MARK`]). Nothing here recurses on the formula's shape (exmex's parser and
+//! evaluator are flat; the tape is walked in order), so every formula up to the limit compiles
+//! on a small stack.
 //!
 //! The mapping's derivatives, which the ray differentials need (mip maps, EWA, the footprint
-//! filter), are exmex's symbolic partial derivatives where it has them, and central finite
-//! differences otherwise ([`DerivativeKind`]); a difference that jumps by a whole number is the
-//! seam of `fract` or `floor`, which a repeating texture reads as continuous, so the jump is
-//! taken out.
+//! filter), are symbolic, built along the tape (`derive.rs`), where every function has one;
+//! central finite differences otherwise ([`DerivativeKind`]); a difference that jumps by a
+//! whole number is the seam of `fract` or `floor`, which a repeating texture reads as
+//! continuous, so the jump is taken out.
 
 mod check;
 pub mod compare;
+mod derive;
 mod ops;
 mod program;
 
@@ -28,7 +31,7 @@ use crate::math::{Vec2, Vec3A};
 use check::{Name, Token};
 use exmex::prelude::*;
 use glam::{DVec2, DVec3};
-use ops::{Sym, SymOps};
+use ops::{Sym, SymOps, Tape};
 use program::Program;
 use std::sync::atomic::{AtomicU64, Ordering};
 
@@ -70,14 +73,21 @@ impl std::fmt::Display for FormulaError {
 impl std::error::Error for FormulaError {}
 
 impl FormulaError {
-    /// The formula and a line with `^` under the mistake, for a terminal or a text field.
+    /// The formula and a line with `^` under the mistake, for a terminal or a text field
+    /// (control characters shown as U+FFFD).
     #[must_use]
     pub fn pointer(&self) -> Option<String> {
         let c = self.column?;
         if self.text.is_empty() {
             return None;
         }
-        Some(format!("{}\n{}^", self.text, " ".repeat(c - 1)))
+        // A control character shows as U+FFFD (one character, so the `^` stays under it).
+        let shown: String = self
+            .text
+            .chars()
+            .map(|c| if c.is_control() { '\u{fffd}' } else { c })
+            .collect();
+        Some(format!("{shown}\n{}^", " ".repeat(c - 1)))
     }
 }
 
@@ -90,6 +100,8 @@ pub struct Expr {
     slots: Vec<usize>,
     /// What the renderer runs: exmex's evaluation, compiled.
     program: Program,
+    /// exmex's evaluation as recorded (the derivatives are built from it), and its value.
+    recorded: std::sync::Arc<(Tape, Sym)>,
     tokens: Vec<Token>,
 }
 
@@ -147,15 +159,15 @@ impl Expr {
             .map_err(|e| format!("exmex cannot parse it: {}", e.msg()))?;
         let sym_slots = slots_of(symbolic.var_names(), vars)?;
         let inputs: Vec<Sym> = (0..sym_slots.len()).map(Sym::Var).collect();
-        let tree = symbolic
-            .eval(&inputs)
-            .map_err(|e| format!("exmex cannot evaluate it: {}", e.msg()))?;
-        let program = Program::compile(&tree, &sym_slots);
+        let (root, tape) = ops::record(|| symbolic.eval(&inputs));
+        let root = root.map_err(|e| format!("exmex cannot evaluate it: {}", e.msg()))?;
+        let program = Program::compile(&tape, root, &sym_slots);
         Ok(Self {
             text: text.to_owned(),
             flat,
             slots,
             program,
+            recorded: std::sync::Arc::new((tape, root)),
             tokens,
         })
     }
@@ -184,16 +196,6 @@ impl Expr {
         self.flat
             .eval(&values[..self.slots.len()])
             .unwrap_or(f64::NAN)
-    }
-
-    /// The functions the formula calls, in order.
-    fn functions(&self) -> impl Iterator<Item = &str> {
-        self.tokens.iter().filter_map(|t| match t.name {
-            Some(Name::Function(_)) => {
-                Some(self.text[t.span.0..t.span.1].trim_end_matches('(').trim())
-            }
-            _ => None,
-        })
     }
 
     /// Whether the formula reads input `slot`.
@@ -227,19 +229,27 @@ impl Expr {
         out
     }
 
-    /// exmex's symbolic partial derivative with respect to input `slot`: `Ok(None)` when the
-    /// formula does not read it (the derivative is zero).
-    fn partial(&self, slot: usize, vars: &[&str]) -> Result<Option<Self>, String> {
-        let Some(index) = self.slots.iter().position(|&s| s == slot) else {
-            return Ok(None);
-        };
-        let d = self
-            .flat
-            .clone()
-            .partial(index)
-            .map_err(|e| e.msg().to_owned())?;
-        let text = d.unparse().to_owned();
-        Self::from_flat(&text, d, Vec::new(), vars).map(Some)
+    /// The symbolic partial derivative with respect to input `slot`, compiled: `None` when the
+    /// formula does not read it (the derivative is zero). NaN through a function with no
+    /// symbolic derivative ([`Expr::plain_functions`]).
+    fn partial(&self, slot: usize) -> Option<Program> {
+        let index = self.slots.iter().position(|&s| s == slot)?;
+        let (tape, root) = &*self.recorded;
+        let mut tape = tape.clone();
+        let d = derive::derivative(&mut tape, *root, index);
+        Some(Program::compile(&tape, d, &self.slots))
+    }
+
+    /// The functions the formula applies to an input with no symbolic derivative (`atan2`,
+    /// `fract`...), sorted.
+    fn plain_functions(&self) -> Vec<&'static str> {
+        derive::blocked(&self.recorded.0)
+    }
+
+    /// How many instructions the compiled formula runs.
+    #[must_use]
+    pub fn instructions(&self) -> usize {
+        self.program.len()
     }
 }
 
@@ -252,10 +262,13 @@ pub enum DerivativeKind {
     FiniteDifferences,
 }
 
-#[derive(Clone, Debug)]
+/// d/d(input) of u and of v, `None` for an input the formula does not read.
+type Gradients = Box<[[Option<Program>; 5]; 2]>;
+
+#[derive(Debug)]
 enum Derivatives {
-    /// d/d(input) of u and of v, `None` for an input the formula does not read.
-    Symbolic(Box<[[Option<Expr>; 5]; 2]>),
+    /// Built by [`FormulaMapping::new`], or the first time they are needed.
+    Symbolic(std::sync::OnceLock<Gradients>),
     /// Why not symbolic.
     FiniteDifferences(String),
 }
@@ -277,22 +290,57 @@ impl PartialEq for FormulaMapping {
 }
 
 impl FormulaMapping {
-    /// Compiles the two formulas and their derivatives.
+    /// Compiles the two formulas and their derivatives: what a scene's build does, off the
+    /// window's UI thread.
     ///
     /// # Errors
     /// The first formula's mistake, naming `u` or `v`.
     pub fn new(u: &str, v: &str) -> Result<Self, FormulaError> {
+        let f = Self::checked(u, v)?;
+        if let Derivatives::Symbolic(g) = &f.derivatives {
+            g.get_or_init(|| f.build_gradients());
+        }
+        Ok(f)
+    }
+
+    /// Compiles the two formulas and decides how their derivatives will be had, without
+    /// building them (the first use does): what a check of the formulas needs (the Scene
+    /// panel's note, an exercise's Check), cheap enough for the UI thread.
+    ///
+    /// # Errors
+    /// The first formula's mistake, naming `u` or `v`.
+    pub fn checked(u: &str, v: &str) -> Result<Self, FormulaError> {
         let u = Expr::compile("u", u, &MAPPING_VARS)?;
         let v = Expr::compile("v", v, &MAPPING_VARS)?;
-        let derivatives = symbolic(&u, &v).map_or_else(Derivatives::FiniteDifferences, |d| {
-            Derivatives::Symbolic(Box::new(d))
-        });
+        let mut plain = u.plain_functions();
+        plain.extend(v.plain_functions());
+        plain.sort_unstable();
+        plain.dedup();
+        let derivatives = if plain.is_empty() {
+            Derivatives::Symbolic(std::sync::OnceLock::new())
+        } else {
+            Derivatives::FiniteDifferences(format!(
+                "no symbolic derivative of {}",
+                plain.join(", ")
+            ))
+        };
         Ok(Self {
             u,
             v,
             derivatives,
             non_finite: AtomicU64::new(0),
         })
+    }
+
+    /// Both formulas' symbolic derivatives along each input.
+    fn build_gradients(&self) -> Gradients {
+        let mut out: Gradients = Box::default();
+        for (row, e) in out.iter_mut().zip([&self.u, &self.v]) {
+            for (k, slot) in row.iter_mut().enumerate() {
+                *slot = e.partial(k);
+            }
+        }
+        out
     }
 
     /// The u formula.
@@ -321,7 +369,7 @@ impl FormulaMapping {
     pub fn derivative_note(&self) -> String {
         match &self.derivatives {
             Derivatives::Symbolic(_) => {
-                "derivatives: symbolic (exmex differentiated both formulas)".into()
+                "derivatives: symbolic (both formulas differentiated exactly)".into()
             }
             Derivatives::FiniteDifferences(why) => {
                 format!("derivatives: central finite differences ({why})")
@@ -368,7 +416,8 @@ impl FormulaMapping {
     fn directional(&self, inputs: &[f64; 5], d: &[f64; 5]) -> (f64, f64) {
         match &self.derivatives {
             Derivatives::Symbolic(g) => {
-                let dot = |g: &[Option<Expr>; 5]| {
+                let g = g.get_or_init(|| self.build_gradients());
+                let dot = |g: &[Option<Program>; 5]| {
                     g.iter()
                         .zip(d)
                         .filter(|(_, dk)| **dk != 0.0)
@@ -504,34 +553,6 @@ impl FormulaMapping {
 
 /// The absolute step of the finite differences, in object-space units.
 const FD_STEP: f64 = 1e-5;
-
-/// The two formulas' symbolic gradients, or why exmex cannot give them.
-fn symbolic(u: &Expr, v: &Expr) -> Result<[[Option<Expr>; 5]; 2], String> {
-    let mut out: [[Option<Expr>; 5]; 2] = Default::default();
-    for (row, e) in out.iter_mut().zip([u, v]) {
-        for (k, slot) in row.iter_mut().enumerate() {
-            *slot = e.partial(k, &MAPPING_VARS).map_err(|m| {
-                let mut plain: Vec<&str> = e
-                    .functions()
-                    .filter(|f| NOT_DIFFERENTIABLE.contains(f))
-                    .collect();
-                plain.sort_unstable();
-                plain.dedup();
-                if plain.is_empty() {
-                    format!("exmex: {m}")
-                } else {
-                    format!("exmex has no symbolic derivative of {}", plain.join(", "))
-                }
-            })?;
-        }
-    }
-    Ok(out)
-}
-
-/// The functions exmex cannot differentiate.
-const NOT_DIFFERENTIABLE: [&str; 10] = [
-    "atan2", "min", "max", "abs", "floor", "fract", "sign", "clamp", "ceil", "round",
-];
 
 /// Where each of a formula's variables `names` sits among the inputs `vars`.
 fn slots_of(names: &[String], vars: &[&str]) -> Result<Vec<usize>, String> {

@@ -3,19 +3,19 @@
 //! exmex's `fract` keep the sign) and `sign`, and the lecture's constants `pi` and `tau`.
 //!
 //! Each operator is listed once ([`formula_ops!`]) and built twice: over `f64`
-//! ([`FormulaOps`]: exmex evaluates and differentiates with it) and over [`Sym`]
-//! ([`SymOps`]: exmex's evaluation of a formula over symbols records the tree it evaluates, in
-//! exmex's own order, which [`super::program`] turns into a flat program). Both apply the same
-//! functions ([`un`], [`bin`]), so a program gives exmex's value bit for bit.
+//! ([`FormulaOps`]: exmex evaluates with it) and over [`Sym`] ([`SymOps`]: exmex's evaluation
+//! of a formula over symbols records each step it takes on a [`Tape`], in exmex's own order,
+//! which [`super::program`] turns into a flat program and [`super::derive`] differentiates).
+//! Both apply the same functions ([`un`], [`bin`]), so a program gives exmex's value bit for
+//! bit.
 //!
-//! exmex differentiates by the operator names it knows (`^`, `*`, `/`, `+`, `-`, `sqrt`, `ln`,
-//! `exp`, the trigonometric functions and their inverses); the others here (`atan2`, `min`,
-//! `max`, `abs`, `floor`, `fract`, `sign`, `clamp`...) have no symbolic derivative there, and
-//! a formula using one falls back to finite differences.
+//! `^`, `*`, `/`, `+`, `-`, `sqrt`, `ln`, `exp`, the trigonometric functions and their inverses
+//! have symbolic derivatives; the others here (`atan2`, `min`, `max`, `abs`, `floor`, `fract`,
+//! `sign`, `clamp`...) do not, and a formula applying one to an input falls back to finite
+//! differences.
 
 use exmex::{BinOp, MakeOperators, Operator};
 use std::f64::consts::{PI, TAU};
-use std::sync::Arc;
 
 /// Functions of one argument, as the formulas write them.
 pub const UNARY: [&str; 16] = [
@@ -123,18 +123,20 @@ fn sign(a: f64) -> f64 {
     }
 }
 
-/// A formula's value as a symbol: a number, an input, or a function of symbols. exmex
-/// evaluating a formula over symbols builds its tree.
-#[derive(Clone, Debug)]
+/// A formula's value as a symbol: a number, an input, or a step recorded on the [`Tape`].
+/// exmex evaluating a formula over symbols records, step by step, what it computes.
+///
+/// A symbol is a plain index, never a tree: no recursion walks it, builds it or drops it, so
+/// a formula of any shape up to the length limit costs no stack (a tree of `Arc`s, which this
+/// replaced, dropped and compiled recursively).
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Sym {
     /// A number (numbers combined as exmex combines them, with [`un`] and [`bin`]).
     Num(f64),
     /// exmex's variable of this index (alphabetical).
     Var(usize),
-    /// A function of one symbol.
-    Un(Un, Arc<Sym>),
-    /// A function of two symbols.
-    Bin(Bin, Arc<Sym>, Arc<Sym>),
+    /// The result of step `i` of the tape.
+    Step(u32),
 }
 
 impl Default for Sym {
@@ -150,19 +152,69 @@ impl std::str::FromStr for Sym {
     }
 }
 
-impl Sym {
-    fn un(op: Un, a: Self) -> Self {
+/// One step of a recorded formula: a function of earlier steps, inputs or numbers.
+#[derive(Clone, Copy, Debug)]
+pub enum Step {
+    /// A function of one symbol.
+    Un(Un, Sym),
+    /// A function of two symbols.
+    Bin(Bin, Sym, Sym),
+}
+
+/// The steps of one recorded formula, in the order exmex took them: each reads only earlier
+/// steps, so a walk in order (or in reverse) visits every step after (or before) what it reads.
+#[derive(Clone, Debug, Default)]
+pub struct Tape {
+    /// The steps.
+    pub steps: Vec<Step>,
+}
+
+impl Tape {
+    /// Appends `step`, returning its symbol.
+    pub fn push(&mut self, step: Step) -> Sym {
+        self.steps.push(step);
+        Sym::Step((self.steps.len() - 1) as u32)
+    }
+
+    /// `op(a)`, folded when `a` is a number.
+    pub fn un(&mut self, op: Un, a: Sym) -> Sym {
         match a {
-            Self::Num(x) => Self::Num(un(op, x)),
-            a => Self::Un(op, Arc::new(a)),
+            Sym::Num(x) => Sym::Num(un(op, x)),
+            a => self.push(Step::Un(op, a)),
         }
     }
 
-    fn bin(op: Bin, a: Self, b: Self) -> Self {
+    /// `op(a, b)`, folded when both are numbers.
+    pub fn bin(&mut self, op: Bin, a: Sym, b: Sym) -> Sym {
         match (a, b) {
-            (Self::Num(x), Self::Num(y)) => Self::Num(bin(op, x, y)),
-            (a, b) => Self::Bin(op, Arc::new(a), Arc::new(b)),
+            (Sym::Num(x), Sym::Num(y)) => Sym::Num(bin(op, x, y)),
+            (a, b) => self.push(Step::Bin(op, a, b)),
         }
+    }
+}
+
+thread_local! {
+    /// The tape exmex's evaluation over symbols records on. exmex's operators are plain `fn`s
+    /// with no state of their own, so the steps they take can only be kept beside them; one
+    /// recording runs at a time on a thread ([`record`] takes the tape whole before returning).
+    static RECORDING: std::cell::RefCell<Tape> = std::cell::RefCell::new(Tape::default());
+}
+
+/// Runs `f` (exmex's evaluation over symbols) on a fresh tape and returns the tape it recorded.
+pub fn record<T>(f: impl FnOnce() -> T) -> (T, Tape) {
+    RECORDING.with(|t| t.borrow_mut().steps.clear());
+    let out = f();
+    let tape = RECORDING.with(|t| std::mem::take(&mut *t.borrow_mut()));
+    (out, tape)
+}
+
+impl Sym {
+    fn un(op: Un, a: Self) -> Self {
+        RECORDING.with(|t| t.borrow_mut().un(op, a))
+    }
+
+    fn bin(op: Bin, a: Self, b: Self) -> Self {
+        RECORDING.with(|t| t.borrow_mut().bin(op, a, b))
     }
 }
 

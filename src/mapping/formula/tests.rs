@@ -212,7 +212,8 @@ fn the_worked_formula_substitutes_the_point() {
 }
 
 /// The compiled program gives exmex's own value, bit for bit, on formulas of every operator,
-/// precedence and unary minus (exmex's rules: `-x^2` is (-x)^2), and on their derivatives.
+/// precedence and unary minus (exmex's rules: `-x^2` is (-x)^2); its derivatives give exmex's
+/// own symbolic derivatives (which texplore no longer runs: they recurse) to rounding.
 #[test]
 fn the_program_is_exmex_bit_for_bit() {
     let formulas = [
@@ -227,6 +228,7 @@ fn the_program_is_exmex_bit_for_bit() {
         "0.001 * x + 250.5 * mesh_u - mesh_v / 10",
         "pi * tau - 2 * pi * x",
         "1 / 0 + acos(2)",
+        "x ^ y + z ^ 3 - 2 ^ mesh_u + acos(x / 3) * x / y / z",
     ];
     let points = [
         [0.3, -0.4, 0.5, 0.2, 0.7],
@@ -236,21 +238,65 @@ fn the_program_is_exmex_bit_for_bit() {
     ];
     for text in formulas {
         let e = Expr::compile("u", text, &MAPPING_VARS).expect(text);
-        let mut exprs = vec![e.clone()];
-        for k in 0..5 {
-            if let Ok(Some(d)) = e.partial(k, &MAPPING_VARS) {
-                exprs.push(d);
-            }
+        for p in &points {
+            let (a, b) = (e.eval(p), e.eval_exmex(p));
+            assert!(
+                a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan()),
+                "{text} at {p:?}: program {a}, exmex {b}"
+            );
         }
-        for d in &exprs {
+        for (k, name) in MAPPING_VARS.iter().enumerate() {
+            let Some(index) = e.slots.iter().position(|&s| s == k) else {
+                continue;
+            };
+            let Ok(theirs) = e.flat.clone().partial(index) else {
+                assert!(!e.plain_functions().is_empty(), "{text}: d/d{name}");
+                continue;
+            };
+            if !e.plain_functions().is_empty() {
+                continue;
+            }
+            let ours = e.partial(k).expect("reads it");
             for p in &points {
-                let (a, b) = (d.eval(p), d.eval_exmex(p));
+                let mut values = vec![0.0; e.slots.len()];
+                for (v, &slot) in values.iter_mut().zip(&e.slots) {
+                    *v = p[slot];
+                }
+                let (a, b) = (ours.eval(p), theirs.eval(&values).unwrap_or(f64::NAN));
                 assert!(
-                    a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan()),
-                    "{} at {p:?}: program {a}, exmex {b}",
-                    d.text()
+                    (a - b).abs() <= 1e-12 * (1.0 + b.abs()) || (!a.is_finite() && !b.is_finite()),
+                    "{text} at {p:?}: d/d{name} {a}, exmex {b}"
                 );
             }
         }
     }
+}
+
+/// A mapping compiled for a check (the window's UI thread) says what its derivatives will be
+/// without building them, and builds the same ones on first use.
+#[test]
+fn a_checked_mapping_builds_its_derivatives_on_first_use() {
+    for (u, v) in [
+        ("sin(3 * x) * exp(y) + z ^ 3", "x / y / z"),
+        ("fract(atan2(x, z) / tau)", "(y + 1) / 2"),
+        ("x + floor(2.5)", "y"),
+    ] {
+        let (now, later) = (
+            FormulaMapping::new(u, v).expect(u),
+            FormulaMapping::checked(u, v).expect(u),
+        );
+        assert_eq!(now.derivative_note(), later.derivative_note(), "{u}");
+        if let Derivatives::Symbolic(g) = &later.derivatives {
+            assert!(g.get().is_none(), "{u}: not built yet");
+        }
+        let p = [0.3, -0.4, 0.5, 0.2, 0.7];
+        assert_eq!(now.gradients(&p), later.gradients(&p), "{u}");
+    }
+    // A function of numbers alone is folded away: the derivative stays symbolic.
+    assert_eq!(
+        FormulaMapping::checked("x + floor(2.5)", "y")
+            .expect("compiles")
+            .derivative_kind(),
+        DerivativeKind::Symbolic
+    );
 }

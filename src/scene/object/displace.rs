@@ -11,7 +11,6 @@ use crate::geometry::displace::{
     Displacement, MAX_DISPLACED_TRIANGLES, displace, subdivide, subdivided_triangle_count,
 };
 use crate::geometry::{Mesh, MeshShape, Shape};
-use crate::mapping::Mapping;
 use crate::math::Vec3A;
 use crate::texture::{Texture, TextureContext};
 use std::path::Path;
@@ -70,18 +69,14 @@ pub(super) fn displaced_mesh(
         return Ok(m);
     }
     if !base.has_uv()
-        && let Some(Mapping::Uv) = d
+        && let Some(what) = d
             .height
             .mapping()
-            .and_then(crate::scene::MappingDesc::builtin)
+            .and_then(crate::scene::MappingDesc::reads_shape_uv)
     {
-        return Err(invalid(
-            "height",
-            format!(
-                "{} has no texture coordinates; choose a generated mapping (spherical, \
-             cylindrical, rectangular)",
-                file.display()
-            ),
+        return Err(Error::refused(
+            dir,
+            super::mesh::no_uv("height".into(), base, what),
         ));
     }
     let height = param_texture(&"height".into(), &d.height, dir, cache)?;
@@ -99,7 +94,7 @@ pub(super) fn displaced_mesh(
         mesh: base.clone(),
         shading: crate::geometry::Shading::Smooth,
     }));
-    let heights: Vec<f32> = {
+    let heights: Vec<Option<f32>> = {
         use rayon::prelude::*;
         let uvs = &data.uvs;
         data.positions
@@ -114,11 +109,15 @@ pub(super) fn displaced_mesh(
                     shape_uv: uvs.get(v).map(|uv| (*uv, None)),
                     natural,
                 };
-                let h = height.eval(&ctx).luminance();
-                if h.is_finite() { h } else { 0.0 }
+                Some(height.eval(&ctx).luminance()).filter(|h| h.is_finite())
             })
             .collect()
     };
+    // Where a formula was NaN or infinite the texture gives magenta (counted by the texture),
+    // as it does everywhere; a height still not finite moves nothing. Both are counted.
+    let non_finite = heights.iter().filter(|h| h.is_none()).count()
+        + usize::try_from(height.non_finite_count()).unwrap_or(usize::MAX);
+    let heights: Vec<f32> = heights.into_iter().map(|h| h.unwrap_or(0.0)).collect();
     displace(&mut data, &heights, d.scale);
     if data.positions.iter().any(|p| !p.is_finite()) {
         let highest = heights.iter().fold(0.0f32, |m, h| m.max(h.abs()));
@@ -137,6 +136,7 @@ pub(super) fn displaced_mesh(
         levels: d.subdivide,
         file_triangles: base.triangle_count(),
         triangles: data.triangles.len(),
+        non_finite,
     };
     let mesh = Arc::new(Mesh::new(data, file)?.displaced_from(base, what));
     cache.keep_displaced(key, mesh.clone());

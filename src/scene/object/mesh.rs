@@ -3,10 +3,8 @@
 
 use super::super::material::MaterialDesc;
 use super::super::texture::TextureDesc;
-use crate::field::Refusal;
+use crate::field::{FieldPath, Refusal};
 use crate::geometry::Mesh;
-use crate::mapping::Mapping;
-use crate::scene::MappingDesc;
 use std::borrow::Cow;
 
 /// The material with a [`TextureDesc::MeshMaterial`] replaced by what the mesh file names: its
@@ -74,7 +72,8 @@ pub(super) fn resolve_mesh_material<'a>(
     Ok(Cow::Owned(m))
 }
 
-/// Refuses the `Uv` mapping on a mesh without texture coordinates, saying what to do instead.
+/// Refuses the `Uv` mapping, or formulas reading mesh_u and mesh_v, on a mesh without texture
+/// coordinates, saying what to do instead.
 pub(super) fn check_uv_mapping(m: &MaterialDesc, mesh: &Mesh) -> Result<(), Refusal> {
     if mesh.has_uv() {
         return Ok(());
@@ -82,15 +81,22 @@ pub(super) fn check_uv_mapping(m: &MaterialDesc, mesh: &Mesh) -> Result<(), Refu
     match m
         .textures()
         .into_iter()
-        .find(|(_, t)| t.mapping().and_then(MappingDesc::builtin) == Some(Mapping::Uv))
+        .find_map(|(name, t)| Some((name, t.mapping()?.reads_shape_uv()?)))
     {
-        Some((name, _)) => Err(Refusal::new(
-            name.into(),
-            format!(
-                "{} has no texture coordinates; choose a generated mapping (spherical, cylindrical, rectangular)",
-                mesh.path().display()
-            ),
-        )),
+        Some((name, what)) => Err(no_uv(name.into(), mesh, what)),
         None => Ok(()),
     }
+}
+
+/// `field`'s mapping (`what`: the Uv mapping, or formulas) reads the (u, v) `mesh` does not
+/// have.
+pub(super) fn no_uv(field: FieldPath, mesh: &Mesh, what: &str) -> Refusal {
+    Refusal::new(
+        field,
+        format!(
+            "{} has no texture coordinates for {what} to read; choose a generated mapping \
+             (spherical, cylindrical, rectangular)",
+            mesh.path().display()
+        ),
+    )
 }

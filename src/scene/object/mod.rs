@@ -19,7 +19,7 @@ use crate::material::{Material, Scalar};
 use crate::math::{Affine3A, Quat, Vec3};
 use displace::displaced_mesh;
 use maps::{bare_alpha, bump, normal_map, some_alpha};
-use mesh::{check_uv_mapping, resolve_mesh_material};
+use mesh::{check_uv_mapping, no_uv, resolve_mesh_material};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
@@ -321,20 +321,12 @@ pub(super) fn build_object(
         // The maps read (u, v) the same way: a clip, bump or normal map under `Uv` on a mesh
         // without it is refused like the material's textures.
         if !mesh.has_uv()
-            && let Some((field, _)) = o.textures().into_iter().find(|(f, t)| {
-                !f.to_string().starts_with("material")
-                    && t.mapping().and_then(super::mapping::MappingDesc::builtin)
-                        == Some(crate::mapping::Mapping::Uv)
+            && let Some((field, what)) = o.textures().into_iter().find_map(|(f, t)| {
+                let what = t.mapping()?.reads_shape_uv()?;
+                (!f.to_string().starts_with("material")).then_some((f, what))
             })
         {
-            return Err(bad(Refusal::new(
-                field,
-                format!(
-                    "{} has no texture coordinates; choose a generated mapping (spherical, \
-                     cylindrical, rectangular)",
-                    mesh.path().display()
-                ),
-            )));
+            return Err(bad(no_uv(field, mesh, what)));
         }
     }
     let material = material(&material_desc, base, cache).map_err(within(Some("material")))?;

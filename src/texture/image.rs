@@ -231,6 +231,16 @@ impl ImageData {
         }
     }
 
+    /// Bytes the texel storage takes (padding to whole tiles included).
+    #[must_use]
+    pub fn texels_bytes(&self) -> u64 {
+        let n = match &self.texels {
+            Texels::Srgb8(v) => v.len(),
+            Texels::Linear(v) => v.len(),
+        };
+        n as u64 * self.bytes_per_texel() as u64
+    }
+
     /// Whether the image holds linear (HDR or 16-bit) values.
     #[must_use]
     pub const fn is_linear(&self) -> bool {

@@ -6,11 +6,12 @@ use crate::error::{Error, Result};
 use crate::math::{Rgb, Vec2, floor_fast, linear_to_srgb8, srgb8_table};
 use std::path::Path;
 
-mod float_tiff;
 mod hdr;
 mod jpeg;
+mod openexr;
 mod png_decode;
 mod storage;
+mod tiff;
 
 pub use storage::ImageRequest;
 use storage::Storage;
@@ -495,11 +496,10 @@ fn decode(
             return jpeg::decode_jpeg(reader.into_inner(), req).map_err(err);
         }
         Some(image::ImageFormat::Tiff) => {
-            let mut file = reader.into_inner();
-            if let Some(storage) = float_tiff::decode_gray_f32(&mut file, req).map_err(err)? {
-                return Ok(storage);
-            }
-            reader = image::ImageReader::with_format(file, image::ImageFormat::Tiff);
+            return tiff::decode_tiff(reader.into_inner(), req).map_err(err);
+        }
+        Some(image::ImageFormat::OpenExr) => {
+            return openexr::decode_exr(reader.into_inner(), req).map_err(err);
         }
         _ => {}
     }

@@ -8,6 +8,7 @@ use std::path::Path;
 
 mod hdr;
 mod jpeg;
+mod jpeg_other;
 mod openexr;
 mod png_decode;
 mod storage;

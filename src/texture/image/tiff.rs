@@ -136,9 +136,29 @@ fn f16_to_f32(h: u16) -> f32 {
     }
 }
 
-/// What the `tiff` crate reports.
+/// What the `tiff` crate reports; the variants it cannot decode named as not supported.
 fn tiff_err(e: &tiff::TiffError) -> String {
-    e.to_string()
+    use tiff::TiffUnsupportedError as U;
+    let tiff::TiffError::UnsupportedError(u) = e else {
+        return e.to_string();
+    };
+    match u {
+        U::InterpretationWithBits(p, _) if *p == PhotometricInterpretation::RGBPalette => {
+            "palette (colour-mapped) TIFF is not supported".into()
+        }
+        U::InterpretationWithBits(p, bits) => {
+            format!("TIFF of {p:?} at {bits:?} bits per sample is not supported")
+        }
+        U::UnsupportedColorType(c) => {
+            format!(
+                "{}-bit TIFF samples ({c:?}) are not supported",
+                c.bit_depth()
+            )
+        }
+        U::UnsupportedCompressionMethod(m) => format!("{m:?}-compressed TIFF is not supported"),
+        U::UnknownInterpretation => "white-is-zero TIFF at this bit depth is not supported".into(),
+        other => format!("TIFF: {other} (not supported)"),
+    }
 }
 
 /// Decodes a TIFF (its first image) into its texel storage, the budget checked from the header

@@ -179,7 +179,7 @@ def ref_png(path):
             raise ValueError(f"{a.size} samples for {w} x {h}")
     except Exception as e:  # noqa: BLE001 - any failure is the reference's refusal
         raise Refused(f"{type(e).__name__}: {e}") from None
-    if "palette" in info:
+    if "palette" in info and info["planes"] == 1:
         # Indices past the palette are black, as libpng (and image-png) read them.
         pal = np.zeros((256, 3))
         entries = np.array([p[:3] for p in info["palette"]], dtype=np.float64) / 255

@@ -71,7 +71,7 @@ impl Libraries {
         let len = crate::input::input_len(&file);
         let max = MAX_MTL_BYTES.min(self.bytes_left);
         if len.is_some_and(|n| n > max) || max == 0 {
-            self.note(self.too_large(path, max));
+            self.note(Self::too_large(path, max));
             self.bytes_left = 0;
             return Vec::new();
         }
@@ -81,7 +81,7 @@ impl Libraries {
                 list
             }
             Err(e) if e.to_string().contains("too large") => {
-                self.note(self.too_large(path, max));
+                self.note(Self::too_large(path, max));
                 self.bytes_left = 0;
                 Vec::new()
             }
@@ -93,7 +93,7 @@ impl Libraries {
     }
 
     /// Why the library at `path` is not read past `max` bytes.
-    fn too_large(&self, path: &Path, max: u64) -> String {
+    fn too_large(path: &Path, max: u64) -> String {
         if max == MAX_MTL_BYTES {
             format!(
                 "material library {}: too large (larger than {}, the most texplore reads \

@@ -101,11 +101,11 @@ fn decode_luminance<R: BufRead + Seek>(mut r: R, req: ImageRequest) -> Result<St
     // Where the layer's pixels are in the display window (the rest stays 0).
     let offset = layer.attributes.layer_position - display.position;
     let mut row = vec![0u8; w as usize * 12];
-    for dy in 0..h as i64 {
+    for dy in 0..i64::from(h) {
         row.fill(0);
         let ly = dy - i64::from(offset.y());
         if ly >= 0 && (ly as usize) < size.height() {
-            for dx in 0..w as i64 {
+            for dx in 0..i64::from(w) {
                 let lx = dx - i64::from(offset.x());
                 if lx < 0 || lx as usize >= size.width() {
                     continue;

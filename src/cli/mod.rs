@@ -2,6 +2,7 @@
 //! same scenes headless. One file per subcommand.
 
 mod bench;
+mod image_info;
 pub mod lesson;
 mod map;
 mod mesh_info;
@@ -59,6 +60,8 @@ pub enum Command {
     /// Print a mesh file's vertex and triangle counts, (u, v) and normals, bounding box and
     /// degenerate triangles.
     MeshInfo(mesh_info::MeshInfoArgs),
+    /// Print an image file's size and how texplore stores it (`-o` writes the texels it read).
+    ImageInfo(image_info::ImageInfoArgs),
     /// Speed against error: time each antialiasing mode and measure its error against a reference.
     Report(report::ReportArgs),
     /// Open the window on a guided lesson (`lessons/*.toml`), or list them with `--list`.
@@ -77,6 +80,7 @@ pub fn run(command: Command, simd: SimdMode) -> Result<()> {
         Command::Probe(a) => probe::run(&a),
         Command::Bench(a) => bench::run(&a, simd),
         Command::MeshInfo(a) => mesh_info::run(&a),
+        Command::ImageInfo(a) => image_info::run(&a),
         Command::Report(a) => report::run(&a, simd),
         // The binary opens the window on the lesson; here only the list can be shown.
         Command::Lesson(a) => match lesson::run(&a)? {

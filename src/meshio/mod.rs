@@ -5,10 +5,12 @@
 //! normals); [`crate::geometry::Mesh::new`] turns it into a traceable mesh with its BVH.
 
 mod generate;
+mod mtl;
 mod obj;
 mod ply;
 
 pub use generate::{bumpy_sphere, torus};
+pub use mtl::{MAX_MESH_LIBRARIES, MAX_MESH_MTL_BYTES, MAX_MTL_BYTES};
 pub use obj::{material_files, read_obj};
 pub use ply::{MAX_HEADER_BYTES, PlyFormat, UV_NAMES, read_ply, read_ply_from, write_ply};
 

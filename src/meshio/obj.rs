@@ -1,11 +1,13 @@
 //! Wavefront OBJ through `tobj` (polygons triangulated, one index per vertex), with the first
-//! material that names a diffuse image (`map_Kd`).
+//! material that names a diffuse image (`map_Kd`); the libraries through [`super::mtl`].
 
+use super::mtl::{Libraries, MtlMaterial};
 use super::{MAX_MESH_FILE_BYTES, MAX_TRIANGLES, MAX_VERTICES};
 use crate::error::{Error, Result};
 use crate::geometry::{MeshData, MeshMaterial};
 use crate::math::{Vec2, Vec3};
 use std::cell::RefCell;
+use std::collections::HashSet;
 use std::fmt::Write as _;
 use std::io::{BufRead, Read};
 use std::path::{Path, PathBuf};
@@ -38,18 +40,6 @@ impl<R: BufRead> BufRead for LineCounter<R> {
     }
 }
 
-/// Largest `.mtl` file read.
-pub const MAX_MTL_BYTES: u64 = 16 << 20;
-
-/// A material as texplore uses it: its name, `Kd` and the file `map_Kd` names (resolved against
-/// the library's folder).
-#[derive(Clone, Debug, PartialEq)]
-struct MtlMaterial {
-    name: String,
-    diffuse: Option<[f32; 3]>,
-    texture: Option<PathBuf>,
-}
-
 /// The OBJ text as `tobj` is given it, and the material libraries each `mtllib` line names.
 struct Prepared {
     /// One output line per input line (a continued line's followers left blank), so line
@@ -61,13 +51,13 @@ struct Prepared {
 }
 
 /// Reads the lines of `r` (at most `max_bytes`), joining backslash continuations; calls `f`
-/// with each logical line and the count of physical lines it took.
-fn logical_lines(
+/// with each logical line and the count of physical lines it took. The bytes read.
+pub(super) fn logical_lines(
     r: &mut impl BufRead,
     path: &Path,
     max_bytes: u64,
     mut f: impl FnMut(&str, usize) -> Result<()>,
-) -> Result<()> {
+) -> Result<u64> {
     let mut raw = Vec::new();
     let mut joined = String::new();
     let mut physical = 0usize;
@@ -111,11 +101,11 @@ fn logical_lines(
     if physical > 0 {
         f(&joined, physical)?;
     }
-    Ok(())
+    Ok(total)
 }
 
 /// The first word of `line` and the rest, trimmed.
-fn keyword(line: &str) -> (&str, &str) {
+pub(super) fn keyword(line: &str) -> (&str, &str) {
     let line = line.trim_start();
     match line.find(char::is_whitespace) {
         Some(i) => (&line[..i], line[i..].trim()),
@@ -123,8 +113,17 @@ fn keyword(line: &str) -> (&str, &str) {
     }
 }
 
+/// The material name an empty `usemtl` becomes: no library defines it (names are kept from the
+/// map [`read_obj`] hands `tobj`), so the faces after it have no material, as `usemtl` alone
+/// means in the files that write it.
+const NO_MATERIAL: &str = "\u{0}texplore: no material";
+
 /// Reads the OBJ (at most [`MAX_MESH_FILE_BYTES`]) into the form `tobj` parses: continuations
-/// joined, tabs after `usemtl` and `mtllib` accepted, every library of a `mtllib` line kept.
+/// joined, tabs after `usemtl` and `mtllib` accepted, every library of a `mtllib` line kept
+/// (each file once, however many lines name it), polylines (`l`) and points (`p`) dropped (they
+/// are not surfaces: `tobj` would read a 3-point line as a triangle), an empty `usemtl` read as
+/// no material, and vertex colours (`v x y z r g b`) dropped (texplore does not use them, and
+/// `tobj` refuses a file where only some vertices have one).
 fn prepare(path: &Path, dir: &Path) -> Result<Prepared> {
     let file = crate::input::open_input(path)?;
     if crate::input::input_len(&file).is_some_and(|len| len > MAX_MESH_FILE_BYTES) {
@@ -137,26 +136,53 @@ fn prepare(path: &Path, dir: &Path) -> Result<Prepared> {
         ));
     }
     let mut reader = std::io::BufReader::new(file.take(MAX_MESH_FILE_BYTES + 1));
+    // A UTF-16 file reads as text with a NUL between letters, so nothing would parse.
+    let head = reader.fill_buf().map_err(|e| Error::io(path, e))?;
+    if head.starts_with(&[0xFE, 0xFF]) || head.starts_with(&[0xFF, 0xFE]) {
+        return Err(Error::invalid(
+            path,
+            "the file is UTF-16 text (save it as UTF-8): UTF-16 OBJ is not supported",
+        ));
+    }
     let mut out = Prepared {
         text: String::new(),
         libraries: Vec::new(),
     };
+    // Every library name seen so far: a name repeated (on one line or many) is read once.
+    let mut named = HashSet::new();
     logical_lines(&mut reader, path, MAX_MESH_FILE_BYTES, |line, physical| {
         let (word, rest) = keyword(line);
         match word {
             "mtllib" => {
                 // A name with spaces if that file exists, else one library per word.
                 let whole = dir.join(rest);
-                let files = if rest.contains(char::is_whitespace) && whole.is_file() {
+                let files: Vec<PathBuf> = if rest.contains(char::is_whitespace) && whole.is_file() {
                     vec![whole]
                 } else {
                     rest.split_whitespace().map(|w| dir.join(w)).collect()
                 };
-                let _ = writeln!(out.text, "mtllib {}", out.libraries.len());
-                out.libraries.push(files);
+                let files: Vec<PathBuf> = files
+                    .into_iter()
+                    .filter(|f| named.insert(f.clone()))
+                    .collect();
+                if files.is_empty() {
+                    out.text.push('\n');
+                } else {
+                    let _ = writeln!(out.text, "mtllib {}", out.libraries.len());
+                    out.libraries.push(files);
+                }
+            }
+            "usemtl" if rest.is_empty() => {
+                let _ = writeln!(out.text, "usemtl {NO_MATERIAL}");
             }
             "usemtl" | "o" | "g" => {
                 let _ = writeln!(out.text, "{word} {rest}");
+            }
+            "l" | "p" => out.text.push('\n'),
+            // `v x y z w` keeps its weight; `v x y z r g b [a]` loses its colour.
+            "v" if rest.split_whitespace().count() >= 5 => {
+                let xyz: Vec<&str> = rest.split_whitespace().take(3).collect();
+                let _ = writeln!(out.text, "v {}", xyz.join(" "));
             }
             // `vt u` is valid OBJ (v defaults to 0); tobj wants two numbers.
             "vt" if rest.split_whitespace().count() == 1 => {
@@ -172,7 +198,49 @@ fn prepare(path: &Path, dir: &Path) -> Result<Prepared> {
         }
         Ok(())
     })?;
+    drop_missing_kinds(&mut out.text);
     Ok(out)
+}
+
+/// Face corners that name a texture coordinate or a normal in a file that defines none of them
+/// (`f 1//5` without any `vn`) lose that index: there is nothing it could mean, and lenient
+/// readers (trimesh, Blender) ignore it. A file that defines some but names one past them is
+/// still refused by [`check_face_indices`].
+fn drop_missing_kinds(text: &mut String) {
+    let defines = |kind: &str| {
+        text.lines()
+            .any(|l| l.split_whitespace().next() == Some(kind))
+    };
+    let (has_vt, has_vn) = (defines("vt"), defines("vn"));
+    if has_vt && has_vn {
+        return;
+    }
+    let mut out = String::with_capacity(text.len());
+    for line in text.lines() {
+        let mut words = line.split_whitespace();
+        if words.next() != Some("f") {
+            out.push_str(line);
+            out.push('\n');
+            continue;
+        }
+        out.push('f');
+        for corner in words {
+            let mut parts: Vec<&str> = corner.split('/').collect();
+            if !has_vt && parts.len() > 1 {
+                parts[1] = "";
+            }
+            if !has_vn && parts.len() > 2 {
+                parts.truncate(2);
+            }
+            while parts.len() > 1 && parts.last() == Some(&"") {
+                parts.pop();
+            }
+            out.push(' ');
+            out.push_str(&parts.join("/"));
+        }
+        out.push('\n');
+    }
+    *text = out;
 }
 
 /// Reads an OBJ file and its material libraries.
@@ -196,9 +264,9 @@ pub fn read_obj(path: &Path) -> Result<MeshData> {
         inner: prepared.text.as_bytes(),
         lines: 0,
     };
-    // Every material of every library, in the order tobj numbers them.
+    // Every material of every library, in the order tobj numbers them; each library read once.
     let parsed: RefCell<Vec<MtlMaterial>> = RefCell::new(Vec::new());
-    let problem: RefCell<Option<String>> = RefCell::new(None);
+    let libraries = RefCell::new(Libraries::new());
     let options = tobj::LoadOptions {
         triangulate: true,
         single_index: true,
@@ -214,22 +282,15 @@ pub fn read_obj(path: &Path) -> Result<MeshData> {
         let mut mats = Vec::new();
         let mut names = std::collections::HashMap::new();
         for file in files {
-            match read_mtl(file) {
-                Ok(list) => {
-                    for m in list {
-                        names.insert(m.name.clone(), mats.len());
-                        mats.push(tobj::Material {
-                            name: m.name.clone(),
-                            ..tobj::Material::default()
-                        });
-                        parsed.borrow_mut().push(m);
-                    }
+            for m in libraries.borrow_mut().read(file) {
+                if m.name != NO_MATERIAL {
+                    names.insert(m.name.clone(), mats.len());
                 }
-                Err(e) => {
-                    problem
-                        .borrow_mut()
-                        .get_or_insert_with(|| format!("material library {e}"));
-                }
+                mats.push(tobj::Material {
+                    name: m.name.clone(),
+                    ..tobj::Material::default()
+                });
+                parsed.borrow_mut().push(m);
             }
         }
         Ok((mats, names.into_iter().collect()))
@@ -304,145 +365,37 @@ pub fn read_obj(path: &Path) -> Result<MeshData> {
             diffuse_texture: m.texture.clone(),
         });
     }
-    data.material_problem = problem.into_inner();
+    data.material_problem = libraries.into_inner().problem;
     Ok(data)
 }
 
 /// The material libraries (`mtllib`) an OBJ file names and the images (`map_Kd`) those
 /// libraries name, resolved as [`read_obj`] resolves them: every file besides the OBJ itself
-/// that loading it reads. Unreadable files are listed but not followed (an OBJ that cannot be
-/// read lists nothing, a library that cannot be parsed lists no images).
+/// that loading it reads, each once. Unreadable files are listed but not followed (an OBJ that
+/// cannot be read lists nothing, a library that cannot be parsed lists no images); libraries
+/// past the mesh's limits ([`super::MAX_MESH_LIBRARIES`], [`super::MAX_MESH_MTL_BYTES`]) are listed, not read.
 #[must_use]
 pub fn material_files(path: &Path) -> Vec<PathBuf> {
     let dir = path.parent().unwrap_or(Path::new("."));
     let Ok(prepared) = prepare(path, dir) else {
         return Vec::new();
     };
+    let mut libraries = Libraries::new();
     let mut out = Vec::new();
+    let mut listed = HashSet::new();
     for library in prepared.libraries.into_iter().flatten() {
-        let images = read_mtl(&library).map(|m| m.into_iter().filter_map(|m| m.texture));
-        out.push(library);
-        out.extend(images.into_iter().flatten());
+        let images: Vec<PathBuf> = libraries
+            .read(&library)
+            .into_iter()
+            .filter_map(|m| m.texture)
+            .collect();
+        for file in std::iter::once(library).chain(images) {
+            if listed.insert(file.clone()) {
+                out.push(file);
+            }
+        }
     }
-    out.dedup();
     out
-}
-
-/// Reads and parses a material library.
-///
-/// # Errors
-/// The file cannot be read, or a statement texplore uses is malformed: the error names the
-/// library and the line.
-fn read_mtl(path: &Path) -> Result<Vec<MtlMaterial>> {
-    let file = crate::input::open_input(path)?;
-    let mut reader = std::io::BufReader::new(file.take(MAX_MTL_BYTES + 1));
-    let dir = path.parent().unwrap_or(Path::new("."));
-    let mut materials: Vec<MtlMaterial> = Vec::new();
-    let mut number = 0usize;
-    logical_lines(&mut reader, path, MAX_MTL_BYTES, |line, physical| {
-        number += physical;
-        let fail = |message: String| Error::Mesh {
-            path: path.to_path_buf(),
-            at: format!("line {}", number + 1 - physical),
-            message,
-        };
-        let (word, rest) = keyword(line);
-        match word {
-            "newmtl" if rest.is_empty() => Err(fail("'newmtl' names no material".into())),
-            "newmtl" => {
-                materials.push(MtlMaterial {
-                    name: rest.to_owned(),
-                    diffuse: None,
-                    texture: None,
-                });
-                Ok(())
-            }
-            "Kd" => {
-                let kd = parse_color(rest).map_err(|m| fail(format!("Kd: {m}")))?;
-                if let (Some(m), Some(kd)) = (materials.last_mut(), kd) {
-                    m.diffuse = Some(kd);
-                }
-                Ok(())
-            }
-            "map_Kd" => {
-                let file = texture_file(rest).map_err(|m| fail(format!("map_Kd: {m}")))?;
-                if let Some(m) = materials.last_mut() {
-                    m.texture = Some(dir.join(file));
-                }
-                Ok(())
-            }
-            // What texplore does not use is not checked.
-            _ => Ok(()),
-        }
-    })?;
-    Ok(materials)
-}
-
-/// An MTL colour: `r [g b]` (one number is grey), `xyz x [y z]` (taken as RGB), or `spectral
-/// file [factor]` (not supported: `None`).
-fn parse_color(rest: &str) -> std::result::Result<Option<[f32; 3]>, String> {
-    let mut words: Vec<&str> = rest.split_whitespace().collect();
-    match words.first() {
-        Some(&"spectral") => return Ok(None),
-        Some(&"xyz") => {
-            words.remove(0);
-        }
-        _ => {}
-    }
-    let numbers = words
-        .iter()
-        .map(|w| {
-            w.parse::<f32>()
-                .ok()
-                .filter(|x| x.is_finite())
-                .ok_or_else(|| format!("'{w}' is not a number"))
-        })
-        .collect::<std::result::Result<Vec<f32>, String>>()?;
-    match numbers[..] {
-        [g] => Ok(Some([g; 3])),
-        [r, g, b] => Ok(Some([r, g, b])),
-        _ => Err(format!(
-            "expected 1 or 3 numbers (r [g b]), found {}",
-            numbers.len()
-        )),
-    }
-}
-
-/// The file name of a `map_Kd` value, past its options (`-s 2 2 1`, `-bm 1`, `-clamp on`, ...);
-/// the rest of the line is the name, spaces included.
-fn texture_file(value: &str) -> std::result::Result<&str, String> {
-    let mut rest = value.trim();
-    while rest.starts_with('-') {
-        let (option, after) = keyword(rest);
-        // (arguments required, at most, numeric)
-        let (min, max, numeric) = match option {
-            "-o" | "-s" | "-t" => (1, 3, true),
-            "-mm" => (2, 2, true),
-            "-bm" | "-boost" | "-texres" => (1, 1, true),
-            "-blendu" | "-blendv" | "-cc" | "-clamp" | "-imfchan" | "-type" => (1, 1, false),
-            _ => return Err(format!("unknown option '{option}'")),
-        };
-        rest = after;
-        for k in 0..max {
-            let (word, after) = keyword(rest);
-            let ok =
-                !word.is_empty() && (!numeric || word.parse::<f32>().is_ok_and(f32::is_finite));
-            if !ok {
-                if k < min {
-                    return Err(format!(
-                        "option '{option}' needs {min} {}",
-                        if numeric { "numbers" } else { "values" }
-                    ));
-                }
-                break;
-            }
-            rest = after;
-        }
-    }
-    if rest.is_empty() {
-        return Err("no file name".into());
-    }
-    Ok(rest)
 }
 
 /// Checks every face index of an OBJ against the vertices, texture coordinates and normals the

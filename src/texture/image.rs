@@ -6,11 +6,13 @@ use crate::error::{Error, Result};
 use crate::math::{Rgb, Vec2, floor_fast, linear_to_srgb8, srgb8_table};
 use std::path::Path;
 
-mod float_tiff;
 mod hdr;
 mod jpeg;
+mod jpeg_other;
+mod openexr;
 mod png_decode;
 mod storage;
+mod tiff;
 
 pub use storage::ImageRequest;
 use storage::Storage;
@@ -229,6 +231,16 @@ impl ImageData {
             Texels::Srgb8(_) => 4,
             Texels::Linear(_) => 12,
         }
+    }
+
+    /// Bytes the texel storage takes (padding to whole tiles included).
+    #[must_use]
+    pub fn texels_bytes(&self) -> u64 {
+        let n = match &self.texels {
+            Texels::Srgb8(v) => v.len(),
+            Texels::Linear(v) => v.len(),
+        };
+        n as u64 * self.bytes_per_texel() as u64
     }
 
     /// Whether the image holds linear (HDR or 16-bit) values.
@@ -463,11 +475,10 @@ fn decode(
             return jpeg::decode_jpeg(reader.into_inner(), req).map_err(err);
         }
         Some(image::ImageFormat::Tiff) => {
-            let mut file = reader.into_inner();
-            if let Some(storage) = float_tiff::decode_gray_f32(&mut file, req).map_err(err)? {
-                return Ok(storage);
-            }
-            reader = image::ImageReader::with_format(file, image::ImageFormat::Tiff);
+            return tiff::decode_tiff(reader.into_inner(), req).map_err(err);
+        }
+        Some(image::ImageFormat::OpenExr) => {
+            return openexr::decode_exr(reader.into_inner(), req).map_err(err);
         }
         _ => {}
     }

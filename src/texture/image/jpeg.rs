@@ -73,6 +73,14 @@ pub(super) fn decode_jpeg(r: impl Read, req: ImageRequest) -> Result<Storage, St
     if data.len() as u64 > max_bytes {
         return Err(format!("larger than {}", approx_bytes(max_bytes)));
     }
+    if let Some(frame) = super::jpeg_other::frame(&data) {
+        if let Some(why) = super::jpeg_other::unsupported(frame) {
+            return Err(why);
+        }
+        if super::jpeg_other::wanted(frame) {
+            return super::jpeg_other::decode(&data, frame, req);
+        }
+    }
     let mut header = JpegDecoder::new_with_options(ZCursor::new(&data[..]), options(false));
     header.decode_headers().map_err(|e| {
         if is_truncation(&e) {

@@ -68,8 +68,25 @@ pub(super) fn decode_png(
             storage.put_row(row, line.data(), layout);
             row += 1;
         }
+        check_image_data_crc(&mut reader)?;
     }
     Ok(storage)
+}
+
+/// Reads past the last row to the end of the file, so that the checksum of the image data's last
+/// chunk is checked: the rows are all decoded before it is reached, and a corrupt image would
+/// otherwise be accepted (PngSuite's `xcsn0g01.png`). Only a bad `IDAT` checksum is refused;
+/// what follows the image data (text, a missing `IEND`) cannot change the pixels, so problems
+/// there are ignored as browsers ignore them.
+fn check_image_data_crc<R: BufRead + std::io::Seek>(
+    reader: &mut png::Reader<R>,
+) -> Result<(), String> {
+    match reader.finish() {
+        Err(e) if e.to_string().contains("CRC error") && e.to_string().contains("IDAT") => {
+            Err("the image data is corrupt: an IDAT chunk's checksum (CRC) is wrong".into())
+        }
+        _ => Ok(()),
+    }
 }
 
 #[cfg(test)]

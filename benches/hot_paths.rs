@@ -1,8 +1,12 @@
 //! The renderer's hot paths: ray-shape intersection per shape, each mapping, each texture filter
 //! per lookup, the footprint filter's summed-area table against its tap grid by footprint size
-//! (and the table's build), and one full 1-spp pass of the Earth.
+//! (and the table's build), one full 1-spp pass of the Earth, and meshes traced as packets
+//! against one ray at a time (`mesh-N`: the `bench --mesh N` scene's primary and shadow rays).
 //!
 //! `cargo bench --bench hot_paths -- --warm-up-time 1 --measurement-time 3`
+
+#[path = "hot_paths/mesh_packets.rs"]
+mod mesh_packets;
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
@@ -217,6 +221,7 @@ criterion_group!(
     mappings,
     filters,
     footprint_sizes,
-    earth_pass
+    earth_pass,
+    mesh_packets::mesh_packets
 );
 criterion_main!(benches);

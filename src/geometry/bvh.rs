@@ -4,7 +4,11 @@
 //! never culls a box the ray touches (Ize 2013, "Robust BVH Ray Traversal"), so a watertight
 //! triangle test stays watertight.
 
-use crate::math::{Vec3, Vec3A};
+mod lanes;
+
+pub use lanes::{BoxRays, Leaves, any_lane, dominant_axis, pick};
+
+use crate::math::Vec3;
 
 /// Most primitives in a leaf (below 16: the traversal stack packs a leaf's count in 4 bits).
 pub const MAX_LEAF: usize = 8;
@@ -133,76 +137,6 @@ struct Prim {
     index: u32,
 }
 
-/// A ray prepared for box tests.
-#[derive(Clone, Copy, Debug)]
-pub struct BoxRay {
-    origin: Vec3A,
-    inv_dir: Vec3A,
-    /// Axes the ray runs parallel to (direction component exactly zero).
-    parallel: [bool; 3],
-    any_parallel: bool,
-}
-
-impl BoxRay {
-    /// Prepares `origin + t dir`. Inverses are clamped to finite values (no 0 x inf NaN in a
-    /// slab test); axes the ray runs parallel to are tested by position instead (a ray lying in
-    /// a box's face is inside it).
-    #[must_use]
-    #[inline]
-    pub fn new(origin: Vec3A, dir: Vec3A) -> Self {
-        let inv = (Vec3A::ONE / dir).clamp(Vec3A::splat(-f32::MAX), Vec3A::splat(f32::MAX));
-        let inv_dir = Vec3A::select(inv.cmpeq(inv), inv, Vec3A::splat(f32::MAX));
-        let parallel = [dir.x == 0.0, dir.y == 0.0, dir.z == 0.0];
-        Self {
-            origin,
-            inv_dir: Vec3A::select(
-                glam::BVec3A::new(parallel[0], parallel[1], parallel[2]),
-                Vec3A::ZERO,
-                inv_dir,
-            ),
-            parallel,
-            any_parallel: parallel.iter().any(|p| *p),
-        }
-    }
-
-    /// Where the ray enters `n`'s box, if it meets it within (0, `t_max`) (conservatively).
-    #[inline(always)]
-    fn entry(&self, n: &Node, t_max: f32) -> Option<f32> {
-        let (bmin, bmax) = (Vec3A::from_array(n.min), Vec3A::from_array(n.max));
-        let lo = (bmin - self.origin) * self.inv_dir;
-        let hi = (bmax - self.origin) * self.inv_dir;
-        let (mut near_v, mut far_v) = (lo.min(hi), lo.max(hi));
-        if self.any_parallel {
-            // Parallel axes constrain nothing along t (their inverse is zero) but the origin
-            // must lie within the slab.
-            for axis in 0..3 {
-                if self.parallel[axis] {
-                    let o = self.origin[axis];
-                    if o < bmin[axis] || o > bmax[axis] {
-                        return None;
-                    }
-                    near_v[axis] = f32::NEG_INFINITY;
-                    far_v[axis] = f32::INFINITY;
-                }
-            }
-        }
-        // No NaN can occur (finite inverses), so plain comparisons (maxss, minss) do.
-        let near = fmax(fmax(near_v.x, near_v.y), fmax(near_v.z, 0.0));
-        let far = fmin(fmin(far_v.x, far_v.y), fmin(far_v.z, t_max)) * ROBUST_FAR;
-        (near <= far).then_some(near)
-    }
-}
-
-#[inline(always)]
-fn fmax(a: f32, b: f32) -> f32 {
-    if a > b { a } else { b }
-}
-
-#[inline(always)]
-fn fmin(a: f32, b: f32) -> f32 {
-    if a < b { a } else { b }
-}
-
 /// The component along `axis` (0, 1, 2) as a plain function, chosen once per node rather than
 /// indexed per primitive.
 fn component(axis: usize) -> fn(Vec3) -> f32 {
@@ -303,81 +237,6 @@ impl Bvh {
         Aabb {
             min: Vec3::from_array(self.root.min),
             max: Vec3::from_array(self.root.max),
-        }
-    }
-
-    /// Visits the leaves `ray` may hit within (0, `t_max`), nearer children first. `leaf` gets
-    /// the primitive range and the current `t_max` and returns a closer `t_max` when it found
-    /// a hit; with `any` the walk stops at the first hit.
-    #[inline]
-    pub fn traverse(
-        &self,
-        ray: &BoxRay,
-        mut t_max: f32,
-        any: bool,
-        mut leaf: impl FnMut(u32, u32, f32) -> Option<f32>,
-    ) -> bool {
-        let mut found = false;
-        if self.root.count == 0 && self.pairs.is_empty() {
-            return false;
-        }
-        if ray.entry(&self.root, t_max).is_none() {
-            return false;
-        }
-        // Subtrees still to visit, each packed in 8 bytes (the stack is cleared per ray): the
-        // node's index and count (`index | count << 28`) above the bits of the distance where
-        // the ray enters it.
-        let mut stack = [0u64; MAX_DEPTH + 1];
-        let push = |index: u32, count: u16, t: f32| {
-            u64::from(index | u32::from(count) << 28) << 32 | u64::from(t.to_bits())
-        };
-        let mut top = 0usize;
-        let (mut index, mut count) = (self.root.index, u32::from(self.root.count));
-        loop {
-            if count > 0 {
-                if let Some(t) = leaf(index, count, t_max) {
-                    t_max = t;
-                    found = true;
-                    if any {
-                        return true;
-                    }
-                }
-            } else {
-                let [a, b] = &self.pairs[index as usize].0;
-                match (ray.entry(a, t_max), ray.entry(b, t_max)) {
-                    (Some(ta), Some(tb)) => {
-                        // The nearer first; the other waits with its entry distance.
-                        let (near, far, t_far) = if tb < ta { (b, a, ta) } else { (a, b, tb) };
-                        stack[top] = push(far.index, far.count, t_far);
-                        top += 1;
-                        (index, count) = (near.index, u32::from(near.count));
-                        continue;
-                    }
-                    (Some(_), None) => {
-                        (index, count) = (a.index, u32::from(a.count));
-                        continue;
-                    }
-                    (None, Some(_)) => {
-                        (index, count) = (b.index, u32::from(b.count));
-                        continue;
-                    }
-                    (None, None) => {}
-                }
-            }
-            // Pop the next subtree the ray still enters before the nearest hit so far (the
-            // same widening as the box test: a box the ray grazes is never culled).
-            loop {
-                if top == 0 {
-                    return found;
-                }
-                top -= 1;
-                let entry = stack[top];
-                if f32::from_bits(entry as u32) <= t_max * ROBUST_FAR {
-                    let node = (entry >> 32) as u32;
-                    (index, count) = (node & ((1 << 28) - 1), node >> 28);
-                    break;
-                }
-            }
         }
     }
 }
@@ -596,7 +455,7 @@ fn partition(v: &mut [Prim], left: impl Fn(&Prim) -> bool) -> usize {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::math::SampleRng;
+    use crate::math::{SampleRng, Vec3A};
 
     fn random_boxes(n: usize, seed: u32) -> Vec<Aabb> {
         let mut rng = SampleRng::new(seed, 0, 0);
@@ -669,19 +528,45 @@ mod tests {
         assert_eq!(leaves.map(|n| n.count as usize).sum::<usize>(), 1000);
     }
 
+    /// Counts the leaves a walk reaches.
+    struct Reached(u32);
+
+    impl Leaves<pulp::Scalar> for Reached {
+        fn leaf(&mut self, _: pulp::Scalar, _: u32, _: u32, lanes: bool) {
+            self.0 += u32::from(lanes);
+        }
+        fn bound(&self, _: pulp::Scalar) -> f32 {
+            f32::INFINITY
+        }
+        fn searching(&self, _: pulp::Scalar) -> bool {
+            true
+        }
+    }
+
     /// A ray along a box's face (zero thickness box, axis-parallel ray) is not culled.
     #[test]
     fn flat_boxes_and_axis_parallel_rays_are_not_culled() {
+        use crate::math::lanes::V3;
         let flat = Aabb {
             min: Vec3::new(-1.0, 0.0, -1.0),
             max: Vec3::new(1.0, 0.0, 1.0),
         };
         let (bvh, _) = Bvh::build(&[flat]);
-        let ray = BoxRay::new(Vec3A::new(0.3, 2.0, 0.7), Vec3A::new(0.0, -1.0, 0.0));
-        assert!(bvh.traverse(&ray, f32::INFINITY, true, |_, _, _| Some(1.0)));
-        let ray = BoxRay::new(Vec3A::new(1.0, 2.0, 1.0), Vec3A::new(0.0, -1.0, 0.0));
-        assert!(bvh.traverse(&ray, f32::INFINITY, true, |_, _, _| Some(1.0)));
-        let ray = BoxRay::new(Vec3A::new(1.001, 2.0, 1.0), Vec3A::new(0.0, -1.0, 0.0));
-        assert!(!bvh.traverse(&ray, f32::INFINITY, true, |_, _, _| Some(1.0)));
+        let s = pulp::Scalar;
+        let reaches = |x: f32, z: f32| {
+            let (o, d) = (V3::one(Vec3A::new(x, 2.0, z)), V3::one(Vec3A::NEG_Y));
+            let mut r = Reached(0);
+            bvh.walk(
+                s,
+                &BoxRays::new(s, &o, &d, true),
+                f32::INFINITY,
+                true,
+                &mut r,
+            );
+            r.0 > 0
+        };
+        assert!(reaches(0.3, 0.7));
+        assert!(reaches(1.0, 1.0));
+        assert!(!reaches(1.001, 1.0));
     }
 }

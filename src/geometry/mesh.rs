@@ -5,13 +5,18 @@
 //! triangles; a [`Bvh`] finds the candidates.
 
 mod displacement;
+mod packet;
+mod surface;
 
 pub use displacement::Displacement;
+pub use packet::TriangleHits;
+pub use surface::MeshSurface;
 
 use super::LocalHit;
-use super::bvh::{Aabb, BoxRay, Bvh};
+use super::bvh::{Aabb, Bvh};
 use crate::error::{Error, Result};
-use crate::math::{Mat3A, Ray, Vec2, Vec3, Vec3A};
+use crate::math::lanes::{MAX_LANES, V3};
+use crate::math::{Ray, Vec2, Vec3, Vec3A};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
@@ -473,58 +478,29 @@ impl Mesh {
             .map(move |t| t.map(|k| uvs[k as usize]))
     }
 
-    /// The nearest triangle hit in (0, `t_max`) of an object-space ray.
+    /// The nearest triangle hit in (0, `t_max`) of an object-space ray: the width-1 instance of
+    /// [`Mesh::closest_hit_lanes`] (equal t go to the lower triangle index).
     #[must_use]
     #[inline]
     pub fn closest_hit(&self, ray: &Ray, t_max: f32) -> Option<TriangleHit> {
-        let woop = WoopRay::new(ray)?;
-        let box_ray = BoxRay::new(ray.origin, ray.dir);
-        let mut best = None;
-        self.bvh
-            .traverse(&box_ray, t_max, false, |first, count, t_max| {
-                let mut t_best = t_max;
-                for i in first..first + count {
-                    let [a, b, c] = self.triangles[i as usize];
-                    if let Some((t, bary)) = woop.test(
-                        self.positions[a as usize],
-                        self.positions[b as usize],
-                        self.positions[c as usize],
-                        t_best,
-                    ) {
-                        t_best = t;
-                        best = Some(TriangleHit {
-                            triangle: i,
-                            t,
-                            bary,
-                        });
-                    }
-                }
-                (t_best < t_max).then_some(t_best)
-            });
-        best
+        let s = pulp::Scalar;
+        let (o, d) = (V3::one(ray.origin), V3::one(ray.dir));
+        let h = self.closest_hit_lanes(s, &o, &d, t_max, true);
+        h.hit.then(|| TriangleHit {
+            triangle: h.triangle[0],
+            t: h.t,
+            bary: Vec3::new(h.bary.x, h.bary.y, h.bary.z),
+        })
     }
 
-    /// Whether any triangle lies on the object-space ray within (0, `t_max`) (shadow rays).
+    /// Whether any triangle lies on the object-space ray within (0, `t_max`) (shadow rays):
+    /// the width-1 instance of [`Mesh::occluded_lanes`].
     #[must_use]
     #[inline]
     pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
-        let Some(woop) = WoopRay::new(ray) else {
-            return false;
-        };
-        let box_ray = BoxRay::new(ray.origin, ray.dir);
-        self.bvh
-            .traverse(&box_ray, t_max, true, |first, count, t_max| {
-                (first..first + count).find_map(|i| {
-                    let [a, b, c] = self.triangles[i as usize];
-                    woop.test(
-                        self.positions[a as usize],
-                        self.positions[b as usize],
-                        self.positions[c as usize],
-                        t_max,
-                    )
-                    .map(|(t, _)| t)
-                })
-            })
+        let s = pulp::Scalar;
+        let (o, d) = (V3::one(ray.origin), V3::one(ray.dir));
+        self.occluded_lanes(s, &o, &d, t_max, true)
     }
 
     /// The nearest hit as a [`LocalHit`], with dp/du and dp/dv.
@@ -568,39 +544,27 @@ impl Mesh {
         dp_duv(p0, p1, p2, self.uvs[a], self.uvs[b], self.uvs[c])
     }
 
-    /// [`Mesh::surface`] without dp/du and dp/dv.
+    /// [`Mesh::surface`] without dp/du and dp/dv: the width-1 instance of
+    /// [`Mesh::surface_lanes`].
     #[must_use]
     pub fn surface_point(&self, hit: TriangleHit, shading: Shading) -> LocalHit {
-        let i = hit.triangle as usize;
-        let [a, b, c] = self.triangles[i].map(|k| k as usize);
-        let (w0, w1, w2) = (hit.bary.x, hit.bary.y, hit.bary.z);
-        let (p0, p1, p2) = (self.positions[a], self.positions[b], self.positions[c]);
-        let p = p0 * w0 + p1 * w1 + p2 * w2;
-        let mut n = (p1 - p0).cross(p2 - p0).normalize_or(Vec3::Y);
-        let ns = match shading {
-            Shading::Flat => n,
-            Shading::Smooth => {
-                let ns = (self.normals[a] * w0 + self.normals[b] * w1 + self.normals[c] * w2)
-                    .normalize_or(n);
-                // The outside is where the shading normals point, whatever the winding.
-                if ns.dot(n) < 0.0 {
-                    n = -n;
-                }
-                ns
-            }
+        let mut triangle = [0; MAX_LANES];
+        triangle[0] = hit.triangle;
+        let hits = TriangleHits::<pulp::Scalar> {
+            t: hit.t,
+            hit: true,
+            triangle,
+            bary: V3::one(hit.bary.into()),
         };
-        let uv = (!self.uvs.is_empty()).then(|| {
-            let (t0, t1, t2) = (self.uvs[a], self.uvs[b], self.uvs[c]);
-            t0 * w0 + t1 * w1 + t2 * w2
-        });
+        let m = self.surface_lanes(pulp::Scalar, &hits, shading);
         LocalHit {
             t: hit.t,
-            p: p.into(),
-            n: n.into(),
-            ns: ns.into(),
-            uv,
+            p: m.p.vec(),
+            n: m.n.vec(),
+            ns: m.ns.vec(),
+            uv: m.has_uv.then(|| Vec2::new(m.u, m.v)),
             dpduv: None,
-            part: self.file_index[i],
+            part: m.part[0],
             prim: hit.triangle,
         }
     }
@@ -675,82 +639,6 @@ fn area_weighted_normals(positions: &[Vec3], triangles: &[[u32; 3]]) -> Vec<Vec3
         *n = n.normalize_or_zero();
     }
     acc
-}
-
-/// A ray prepared for the watertight test: the shear that maps the ray onto the +z axis of a
-/// permuted frame (largest direction component last, winding preserved).
-#[derive(Clone, Copy, Debug)]
-struct WoopRay {
-    origin: Vec3A,
-    shear: Mat3A,
-}
-
-impl WoopRay {
-    #[inline]
-    fn new(ray: &Ray) -> Option<Self> {
-        let d = ray.dir;
-        if !d.is_finite() || !ray.origin.is_finite() {
-            return None;
-        }
-        let a = d.abs();
-        let kz = if a.x >= a.y && a.x >= a.z {
-            0
-        } else if a.y >= a.z {
-            1
-        } else {
-            2
-        };
-        if d[kz] == 0.0 {
-            return None;
-        }
-        let mut kx = (kz + 1) % 3;
-        let mut ky = (kx + 1) % 3;
-        if d[kz] < 0.0 {
-            std::mem::swap(&mut kx, &mut ky);
-        }
-        let (sx, sy, sz) = (d[kx] / d[kz], d[ky] / d[kz], 1.0 / d[kz]);
-        let mut cols = [Vec3A::ZERO; 3];
-        cols[kx] = Vec3A::X;
-        cols[ky] = Vec3A::Y;
-        cols[kz] = Vec3A::new(-sx, -sy, sz);
-        Some(Self {
-            origin: ray.origin,
-            shear: Mat3A::from_cols(cols[0], cols[1], cols[2]),
-        })
-    }
-
-    /// The hit's t and barycentrics, or `None`. Each vertex is transformed alone, so a shared
-    /// edge's function has the same magnitude in both triangles; exact zeros are recomputed in
-    /// f64 (exact for products of f32), so the sign test never lets a ray through a crack.
-    #[inline(always)]
-    fn test(&self, p0: Vec3, p1: Vec3, p2: Vec3, t_max: f32) -> Option<(f32, Vec3)> {
-        let a = self.shear * (Vec3A::from(p0) - self.origin);
-        let b = self.shear * (Vec3A::from(p1) - self.origin);
-        let c = self.shear * (Vec3A::from(p2) - self.origin);
-        let mut u = c.x * b.y - c.y * b.x;
-        let mut v = a.x * c.y - a.y * c.x;
-        let mut w = b.x * a.y - b.y * a.x;
-        if u == 0.0 || v == 0.0 || w == 0.0 {
-            let f = f64::from;
-            u = (f(c.x) * f(b.y) - f(c.y) * f(b.x)) as f32;
-            v = (f(a.x) * f(c.y) - f(a.y) * f(c.x)) as f32;
-            w = (f(b.x) * f(a.y) - f(b.y) * f(a.x)) as f32;
-        }
-        if (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0) {
-            return None;
-        }
-        let det = u + v + w;
-        if det == 0.0 {
-            return None;
-        }
-        let t_scaled = u * a.z + v * b.z + w * c.z;
-        let inv = 1.0 / det;
-        let t = t_scaled * inv;
-        if !(t > 0.0 && t < t_max) {
-            return None;
-        }
-        Some((t, Vec3::new(u, v, w) * inv))
-    }
 }
 
 #[cfg(test)]

@@ -8,8 +8,7 @@ use crate::math::lanes::{F, M, MAX_LANES, V3, from_array, mask_splat, to_array};
 use crate::math::{INV_PI, Rgb};
 use pulp::Simd;
 
-/// A colour per lane.
-pub type C3<S> = [F<S>; 3];
+pub use crate::math::lanes::C3;
 
 /// A colour in every lane.
 #[must_use]

@@ -37,6 +37,9 @@ pub struct V3<S: Simd> {
     pub z: S::f32s,
 }
 
+/// A colour per lane (linear RGB).
+pub type C3<S> = [F<S>; 3];
+
 /// `x` in every lane.
 #[must_use]
 #[inline(always)]

@@ -3,8 +3,8 @@
 //! [`ImageData::bilinear`] is its width-1 instance.
 
 use super::{ImageData, Lookup, Wrap};
-use crate::material::C3;
-use crate::math::lanes::{F, MAX_LANES, from_array, to_array};
+
+use crate::math::lanes::{C3, F, MAX_LANES, from_array, to_array};
 use crate::math::{Rgb, Vec2, floor_fast};
 use pulp::Simd;
 

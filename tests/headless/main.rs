@@ -38,7 +38,6 @@ mod lessons_claims;
 mod materials;
 mod memory;
 mod meshes;
-mod obj_files;
 mod peer;
 mod presets;
 mod real_files;

@@ -5,7 +5,7 @@ use super::shade::Resolved;
 use crate::geometry::Shape;
 use crate::material::{C3, GLOW_FADE, Light, Terms};
 use crate::math::lanes::{
-    F, M, MAX_LANES, V3, clamp, from_array, mask_from_array, mask_to_array, to_array,
+    F, M, MAX_LANES, V3, clamp, finite, from_array, mask_from_array, mask_to_array, to_array,
 };
 use crate::math::{Ray, Vec3A};
 use crate::scene::Scene;
@@ -80,7 +80,29 @@ impl Scene {
             );
             let mut reach = s.and_m32s(on, s.not_m32s(below));
             let mut share = None;
-            if shadows && crate::math::lanes::any(s, reach) {
+            if shadows && crate::math::lanes::any(s, reach) && !self.has_clips {
+                // The packet's shadow rays traced together (`Scene::occluded_lanes`).
+                let rays = super::Rays {
+                    o: r.p.at(s, offset, &r.ng),
+                    d: wi,
+                    active: reach,
+                };
+                let t_max = s.select_f32s(
+                    finite(s, dist),
+                    s.sub_f32s(dist, offset),
+                    s.splat_f32s(f32::INFINITY),
+                );
+                let skip = std::array::from_fn(|i| if self_shadows[i] { usize::MAX } else { k });
+                let blocked = self.occluded_lanes(s, &rays, t_max, &skip);
+                let flags = mask_to_array(s, blocked);
+                for (i, key) in keys.iter_mut().enumerate().take(S::F32_LANES) {
+                    if flags[i] {
+                        *key |= (1 << (16 + li.min(14))) as u32;
+                    }
+                }
+                reach = s.and_m32s(reach, s.not_m32s(blocked));
+            } else if shadows && crate::math::lanes::any(s, reach) {
+                // Clip maps let part of the light through: each lane's transmittance.
                 let mut flags = mask_to_array(s, reach);
                 let (pa, nga, offs) = (r.p.to_arrays(), r.ng.to_arrays(), to_array::<S>(offset));
                 let (wa, da) = (wi.to_arrays(), to_array::<S>(dist));
@@ -98,21 +120,15 @@ impl Scene {
                     };
                     let skip = if self_shadows[i] { usize::MAX } else { k };
                     let ray = Ray::new(origin, v(&wa));
-                    let blocked = if self.has_clips {
-                        tr[i] = self.transmittance(&ray, t_max, skip);
-                        tr[i] <= 0.0
-                    } else {
-                        self.occluded_except(&ray, t_max, skip)
-                    };
+                    tr[i] = self.transmittance(&ray, t_max, skip);
+                    let blocked = tr[i] <= 0.0;
                     if blocked {
                         keys[i] |= (1 << (16 + li.min(14))) as u32;
                         flags[i] = false;
                     }
                 }
                 reach = mask_from_array(s, &flags);
-                if self.has_clips {
-                    share = Some(from_array::<S>(&tr));
-                }
+                share = Some(from_array::<S>(&tr));
             }
             terms.add_light(
                 s, reach, &r.ns, &r.wo, &wi, radiance, ndotwi, share, &mut l, &mut lit,

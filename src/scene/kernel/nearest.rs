@@ -3,9 +3,10 @@
 
 use super::{Rays, lanes};
 use crate::geometry::lanes::{Flat, ShapeHits, cylinder, flat, sphere};
+use crate::geometry::mesh::{MeshSurface, TriangleHits};
 use crate::geometry::{LocalHit, Shape};
-use crate::math::lanes::{F, M, MAX_LANES, V3, from_array, mask_from_array, mask_to_array};
-use crate::math::{Ray, Vec2, Vec3A};
+use crate::math::lanes::{F, M, MAX_LANES, V3, mask_from_array, mask_to_array};
+use crate::math::{Vec2, Vec3A};
 use crate::scene::Scene;
 use pulp::Simd;
 
@@ -106,51 +107,92 @@ impl Scene {
                 Shape::Disk => flat(s, &o, &d, h.t, Flat::Disk),
                 Shape::Cylinder { capped } => cylinder(s, &o, &d, h.t, *capped),
                 Shape::Mesh(m) => {
-                    let (oa, da, ta) = (o.to_arrays(), d.to_arrays(), lanes::<S>(h.t));
-                    let active = mask_to_array(s, rays.active);
-                    let mut any = false;
-                    let (mut t, mut hit) = (ta, [false; MAX_LANES]);
-                    let (mut p, mut n, mut ns) = (
-                        [[0.0; MAX_LANES]; 3],
-                        [[0.0; MAX_LANES]; 3],
-                        [[0.0; MAX_LANES]; 3],
-                    );
-                    for i in 0..S::F32_LANES {
-                        if !active[i] {
-                            continue;
-                        }
-                        let v = |a: &[[f32; MAX_LANES]; 3]| Vec3A::new(a[0][i], a[1][i], a[2][i]);
-                        let ray = Ray::new(v(&oa), v(&da));
-                        let Some(th) = m.mesh.closest_hit(&ray, ta[i]) else {
-                            continue;
-                        };
-                        let lh = m.mesh.surface_point(th, m.shading);
-                        any = true;
-                        hit[i] = true;
-                        t[i] = lh.t;
-                        (p[0][i], p[1][i], p[2][i]) = (lh.p.x, lh.p.y, lh.p.z);
-                        (n[0][i], n[1][i], n[2][i]) = (lh.n.x, lh.n.y, lh.n.z);
-                        (ns[0][i], ns[1][i], ns[2][i]) = (lh.ns.x, lh.ns.y, lh.ns.z);
-                        h.object[i] = k as u32;
-                        h.part[i] = lh.part;
-                        h.prim[i] = lh.prim;
-                        h.uv[i] = lh.uv;
+                    // The whole packet walks the BVH together (geometry::mesh::packet).
+                    let th = m.mesh.closest_hit_lanes(s, &o, &d, h.t, rays.active);
+                    if crate::math::lanes::any(s, th.hit) {
+                        let ms = m.mesh.surface_lanes(s, &th, m.shading);
+                        Self::take_mesh(s, &mut h, &th, &ms, k as u32);
                     }
-                    if !any {
-                        continue;
-                    }
-                    let won = mask_from_array(s, &hit);
-                    h.t = s.select_f32s(won, from_array::<S>(&t), h.t);
-                    h.p = V3::select(s, won, &V3::from_arrays(&p), &h.p);
-                    h.n = V3::select(s, won, &V3::from_arrays(&n), &h.n);
-                    h.ns = V3::select(s, won, &V3::from_arrays(&ns), &h.ns);
-                    h.hit = s.or_m32s(h.hit, won);
                     continue;
                 }
             };
             Self::take(s, &mut h, &found, k as u32);
         }
         h
+    }
+
+    /// Keeps a mesh's hits `th` (with their surface `ms`) of object `k` where it hit.
+    #[inline(always)]
+    fn take_mesh<S: Simd>(
+        s: S,
+        h: &mut Hits<S>,
+        th: &TriangleHits<S>,
+        ms: &MeshSurface<S>,
+        k: u32,
+    ) {
+        h.t = s.select_f32s(th.hit, th.t, h.t);
+        h.p = V3::select(s, th.hit, &ms.p, &h.p);
+        h.n = V3::select(s, th.hit, &ms.n, &h.n);
+        h.ns = V3::select(s, th.hit, &ms.ns, &h.ns);
+        h.hit = s.or_m32s(h.hit, th.hit);
+        let won = mask_to_array(s, th.hit);
+        let (u, v) = (lanes::<S>(ms.u), lanes::<S>(ms.v));
+        for i in 0..S::F32_LANES {
+            if won[i] {
+                h.object[i] = k;
+                h.part[i] = ms.part[i];
+                h.prim[i] = th.triangle[i];
+                h.uv[i] = ms.has_uv.then(|| Vec2::new(u[i], v[i]));
+            }
+        }
+    }
+
+    /// Which lanes of `rays` some shadow-casting object blocks within (0, `t_max`), leaving
+    /// out object `skip[i]` for lane `i` (`usize::MAX`: none): the shadow rays of a packet,
+    /// traced together; each lane stops at its first blocker, the packet when all have.
+    #[inline(always)]
+    pub(crate) fn occluded_lanes<S: Simd>(
+        &self,
+        s: S,
+        rays: &Rays<S>,
+        t_max: F<S>,
+        skip: &[usize; MAX_LANES],
+    ) -> M<S> {
+        let zero = s.splat_f32s(0.0);
+        let mut blocked = crate::math::lanes::mask_splat(s, false);
+        for (k, ob) in self.objects.iter().enumerate() {
+            if !ob.casts_shadows {
+                continue;
+            }
+            let others: [bool; MAX_LANES] = std::array::from_fn(|i| skip[i] != k);
+            let open = s.and_m32s(
+                s.and_m32s(rays.active, mask_from_array(s, &others)),
+                s.not_m32s(blocked),
+            );
+            if !crate::math::lanes::any(s, open) {
+                continue;
+            }
+            // Closed lanes search (0, 0): nothing hits them.
+            let t = s.select_f32s(open, t_max, zero);
+            let (o, d) = if ob.identity {
+                (rays.o, rays.d)
+            } else {
+                (
+                    rays.o.point(s, &ob.object_from_world),
+                    rays.d.linear(s, &ob.object_from_world.matrix3),
+                )
+            };
+            let hit = match &ob.shape {
+                Shape::Sphere => sphere(s, &o, &d, t).hit,
+                Shape::Plane => flat(s, &o, &d, t, Flat::Plane).hit,
+                Shape::Rectangle => flat(s, &o, &d, t, Flat::Rectangle).hit,
+                Shape::Disk => flat(s, &o, &d, t, Flat::Disk).hit,
+                Shape::Cylinder { capped } => cylinder(s, &o, &d, t, *capped).hit,
+                Shape::Mesh(m) => m.mesh.occluded_lanes(s, &o, &d, t, open),
+            };
+            blocked = s.or_m32s(blocked, s.and_m32s(open, hit));
+        }
+        blocked
     }
 
     /// Keeps a generic shape's hits `f` of object `k` where it hit (nearer than before).

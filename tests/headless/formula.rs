@@ -129,10 +129,10 @@ fn the_lecture_formulas_render_as_the_builtin_mappings_under_every_filter() {
     }
 }
 
-/// A formula mapping runs per lane on the packet path: the image is the scalar path's, the
+/// A formula mapping runs per lane in the kernel's packets: the image is the width-1 kernel's, the
 /// marked pixels (NaN below the equator, where sqrt(y) is) included.
 #[test]
-fn a_formula_mapping_renders_the_same_on_the_packet_and_scalar_paths() {
+fn a_formula_mapping_renders_the_same_in_packets_and_at_width_one() {
     let path = root().join("presets/earth.ron");
     let (_, own) = preset_pair("earth", Mapping::Spherical);
     let mut half = own.clone();

@@ -124,14 +124,14 @@ fn packet_renders_are_the_same_for_1_and_2_threads() {
     }
 }
 
-/// A scene whose packets mix hits of a packet-shaded sphere, hits of a mirror the packet path
-/// hands back to the scalar path, and misses; with every material term the packet path shades
+/// A scene whose packets mix hits of a sphere, hits of a mirror (a nested masked packet), and
+/// misses; with every material term the kernel shades
 /// (Matte's ka, kd and cd; Phong's ks, cs, exp and a constant glow ce; Emissive's ls and ce)
 /// and every light kind with and without shadows (a directional light, a shadowing point light
 /// across objects, a point light without shadows), a rotated and scaled plane under a (u, v)
 /// transform, and a disk and rectangle.
 #[test]
-fn packets_with_hits_misses_and_scalar_lanes_match_the_scalar_path() {
+fn packets_with_hits_mirrors_and_misses_match_the_width_one_kernel() {
     let text = r"(
         version: 1,
         camera: (eye: (0.3, 1.2, 5), look_at: (0, 0, 0), projection: Pinhole(fov: 50)),
@@ -208,7 +208,7 @@ fn assert_films_identical(name: &str, scene: &Scene, passes: u32) {
     for (i, (p, q)) in packet.pixels().iter().zip(scalar.pixels()).enumerate() {
         assert!(
             p.map(f32::to_bits) == q.map(f32::to_bits),
-            "{name}: pixel ({}, {}) is {p:?} on the packet path, {q:?} on the scalar path",
+            "{name}: pixel ({}, {}) is {p:?} in packets, {q:?} at width 1",
             i as u32 % s.width,
             i as u32 / s.width
         );

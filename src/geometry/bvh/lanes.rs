@@ -174,6 +174,26 @@ impl<S: Simd> BoxRays<S> {
         }
     }
 
+    /// The slab of `n` along `axis` for the lanes' origins `o` and inverse directions `inv`:
+    /// the t where each lane enters it and where it leaves. (A method, not a closure: closures
+    /// are compiled outside the dispatched instruction set and call each SIMD operation.)
+    #[inline(always)]
+    fn slab(&self, s: S, n: &Node, axis: usize, o: F<S>, inv: F<S>) -> (F<S>, F<S>) {
+        let (lo, hi) = (n.min[axis], n.max[axis]);
+        let (near, far) = if let Some(neg) = self.octant {
+            let (a, b) = if neg[axis] { (hi, lo) } else { (lo, hi) };
+            (s.splat_f32s(a), s.splat_f32s(b))
+        } else {
+            let (lo, hi) = (s.splat_f32s(lo), s.splat_f32s(hi));
+            let neg = self.neg[axis];
+            (s.select_f32s(neg, hi, lo), s.select_f32s(neg, lo, hi))
+        };
+        (
+            s.mul_f32s(s.sub_f32s(near, o), inv),
+            s.mul_f32s(s.sub_f32s(far, o), inv),
+        )
+    }
+
     /// Which of `lanes` enter `n`'s box within (0, `t_max`) (conservatively), and each lane's
     /// entry along its dominant axis (meaningful in the lanes that enter).
     #[must_use]
@@ -183,24 +203,9 @@ impl<S: Simd> BoxRays<S> {
             let (m, entry) = one.enters(n, to_array::<S>(t_max)[0]);
             return (s.and_m32s(lanes, mask_splat(s, m)), s.splat_f32s(entry));
         }
-        let slab = |axis: usize, o: F<S>, inv: F<S>| {
-            let (lo, hi) = (n.min[axis], n.max[axis]);
-            let (near, far) = if let Some(neg) = self.octant {
-                let (a, b) = if neg[axis] { (hi, lo) } else { (lo, hi) };
-                (s.splat_f32s(a), s.splat_f32s(b))
-            } else {
-                let (lo, hi) = (s.splat_f32s(lo), s.splat_f32s(hi));
-                let neg = self.neg[axis];
-                (s.select_f32s(neg, hi, lo), s.select_f32s(neg, lo, hi))
-            };
-            (
-                s.mul_f32s(s.sub_f32s(near, o), inv),
-                s.mul_f32s(s.sub_f32s(far, o), inv),
-            )
-        };
-        let (nx, fx) = slab(0, self.o.x, self.inv.x);
-        let (ny, fy) = slab(1, self.o.y, self.inv.y);
-        let (nz, fz) = slab(2, self.o.z, self.inv.z);
+        let (nx, fx) = self.slab(s, n, 0, self.o.x, self.inv.x);
+        let (ny, fy) = self.slab(s, n, 1, self.o.y, self.inv.y);
+        let (nz, fz) = self.slab(s, n, 2, self.o.z, self.inv.z);
         let entry = pick(
             s,
             self.kz.0,
@@ -231,11 +236,13 @@ impl<S: Simd> BoxRays<S> {
         }
         // `a > b ? a : b` and `a < b ? a : b`: no NaN reaches here in an active lane (finite
         // inverses and origins).
-        let mx = |a: F<S>, b: F<S>| s.select_f32s(s.greater_than_f32s(a, b), a, b);
-        let mn = |a: F<S>, b: F<S>| s.select_f32s(s.less_than_f32s(a, b), a, b);
-        let t_near = mx(mx(near[0], near[1]), mx(near[2], s.splat_f32s(0.0)));
+        let t_near = mx(
+            s,
+            mx(s, near[0], near[1]),
+            mx(s, near[2], s.splat_f32s(0.0)),
+        );
         let t_far = s.mul_f32s(
-            mn(mn(far[0], far[1]), mn(far[2], t_max)),
+            mn(s, mn(s, far[0], far[1]), mn(s, far[2], t_max)),
             s.splat_f32s(ROBUST_FAR),
         );
         (
@@ -393,4 +400,17 @@ impl Bvh {
             }
         }
     }
+}
+
+/// `a > b ? a : b` per lane (no NaN reaches the box test in an active lane: finite inverses and
+/// origins).
+#[inline(always)]
+fn mx<S: Simd>(s: S, a: F<S>, b: F<S>) -> F<S> {
+    s.select_f32s(s.greater_than_f32s(a, b), a, b)
+}
+
+/// `a < b ? a : b` per lane.
+#[inline(always)]
+fn mn<S: Simd>(s: S, a: F<S>, b: F<S>) -> F<S> {
+    s.select_f32s(s.less_than_f32s(a, b), a, b)
 }

@@ -60,19 +60,17 @@ impl<S: Simd> WoopRays<S> {
         let dz = pick(s, zx, zy, d);
         let neg = s.less_than_f32s(dz, s.splat_f32s(0.0));
         let pos = s.not_m32s(neg);
-        let either =
-            |a: M<S>, b: M<S>, c: M<S>, e: M<S>| s.or_m32s(s.and_m32s(a, b), s.and_m32s(c, e));
         // kx = kz + 1, ky = kz + 2 (mod 3), the two swapped where d[kz] < 0.
-        let kx = (either(zz, pos, zy, neg), either(zx, pos, zz, neg));
-        let ky = (either(zy, pos, zz, neg), either(zz, pos, zx, neg));
+        let kx = (either(s, zz, pos, zy, neg), either(s, zx, pos, zz, neg));
+        let ky = (either(s, zy, pos, zz, neg), either(s, zz, pos, zx, neg));
         let (dx, dy) = (pick(s, kx.0, kx.1, d), pick(s, ky.0, ky.1, d));
         let valid = s.and_m32s(
             s.and_m32s(active, s.and_m32s(o.finite(s), d.finite(s))),
             s.not_m32s(s.equal_f32s(dz, s.splat_f32s(0.0))),
         );
-        let code = |m: M<S>, k: u32| s.select_u32s(m, s.splat_u32s(k), s.splat_u32s(0));
-        let codes =
-            to_array_u32::<S>(s.add_u32s(s.add_u32s(code(zy, 1), code(zz, 2)), code(neg, 3)));
+        let codes = to_array_u32::<S>(
+            s.add_u32s(s.add_u32s(code(s, zy, 1), code(s, zz, 2)), code(s, neg, 3)),
+        );
         let lanes = mask_to_array(s, valid);
         let mut valid_codes = (0..S::F32_LANES).filter(|&i| lanes[i]).map(|i| codes[i]);
         let uniform = valid_codes.next().and_then(|first| {
@@ -129,19 +127,27 @@ impl<S: Simd> WoopRays<S> {
     #[inline(always)]
     pub(super) fn test(&self, s: S, p0: Vec3, p1: Vec3, p2: Vec3, lanes: M<S>) -> Hit<S> {
         let (a, b, c) = (self.vertex(s, p0), self.vertex(s, p1), self.vertex(s, p2));
-        let edge = |p: &V3<S>, q: &V3<S>| s.sub_f32s(s.mul_f32s(p.x, q.y), s.mul_f32s(p.y, q.x));
-        let (mut u, mut v, mut w) = (edge(&c, &b), edge(&a, &c), edge(&b, &a));
+        let (mut u, mut v, mut w) = (edge(s, &c, &b), edge(s, &a, &c), edge(s, &b, &a));
         let zero = s.splat_f32s(0.0);
-        let is0 = |x: F<S>| s.equal_f32s(x, zero);
-        let exact = s.and_m32s(lanes, s.or_m32s(s.or_m32s(is0(u), is0(v)), is0(w)));
+        let exact = s.and_m32s(
+            lanes,
+            s.or_m32s(
+                s.or_m32s(s.equal_f32s(u, zero), s.equal_f32s(v, zero)),
+                s.equal_f32s(w, zero),
+            ),
+        );
         if any_lane(s, exact) {
             (u, v, w) = exact_edges(s, exact, (&a, &b, &c), (u, v, w));
         }
-        let lt = |x: F<S>| s.less_than_f32s(x, zero);
-        let gt = |x: F<S>| s.greater_than_f32s(x, zero);
         let outside = s.and_m32s(
-            s.or_m32s(s.or_m32s(lt(u), lt(v)), lt(w)),
-            s.or_m32s(s.or_m32s(gt(u), gt(v)), gt(w)),
+            s.or_m32s(
+                s.or_m32s(s.less_than_f32s(u, zero), s.less_than_f32s(v, zero)),
+                s.less_than_f32s(w, zero),
+            ),
+            s.or_m32s(
+                s.or_m32s(s.greater_than_f32s(u, zero), s.greater_than_f32s(v, zero)),
+                s.greater_than_f32s(w, zero),
+            ),
         );
         let inside = s.and_m32s(lanes, s.not_m32s(outside));
         if !any_lane(s, inside) {
@@ -166,7 +172,13 @@ impl<S: Simd> WoopRays<S> {
         let nearest = s.select_f32s(s.less_than_f32s(b.z, a.z), b.z, a.z);
         let nearest = s.select_f32s(s.less_than_f32s(c.z, nearest), c.z, nearest);
         let t = s.select_f32s(s.less_than_f32s(t, nearest), nearest, t);
-        let ok = s.and_m32s(inside, s.and_m32s(s.not_m32s(is0(det)), gt(t)));
+        let ok = s.and_m32s(
+            inside,
+            s.and_m32s(
+                s.not_m32s(s.equal_f32s(det, zero)),
+                s.greater_than_f32s(t, zero),
+            ),
+        );
         Hit {
             ok,
             t,
@@ -185,6 +197,18 @@ pub(super) struct Hit<S: Simd> {
     pub(super) ok: M<S>,
     pub(super) t: F<S>,
     pub(super) bary: V3<S>,
+}
+
+/// `(a and b) or (c and e)` per lane.
+#[inline(always)]
+fn either<S: Simd>(s: S, a: M<S>, b: M<S>, c: M<S>, e: M<S>) -> M<S> {
+    s.or_m32s(s.and_m32s(a, b), s.and_m32s(c, e))
+}
+
+/// `k` where `m`, else 0, per lane.
+#[inline(always)]
+fn code<S: Simd>(s: S, m: M<S>, k: u32) -> U<S> {
+    s.select_u32s(m, s.splat_u32s(k), s.splat_u32s(0))
 }
 
 /// The edge functions of the lanes of `exact` recomputed in f64, where one of them was exactly
@@ -365,6 +389,13 @@ impl Mesh {
         }
         blocked.found
     }
+}
+
+/// The edge function `p.x q.y - p.y q.x` per lane (a function, not a closure: closures are
+/// compiled outside the dispatched instruction set and call each SIMD operation).
+#[inline(always)]
+fn edge<S: Simd>(s: S, p: &V3<S>, q: &V3<S>) -> F<S> {
+    s.sub_f32s(s.mul_f32s(p.x, q.y), s.mul_f32s(p.y, q.x))
 }
 
 #[cfg(test)]

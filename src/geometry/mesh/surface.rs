@@ -31,9 +31,6 @@ pub struct MeshSurface<S: Simd> {
     pub part: [u32; MAX_LANES],
 }
 
-/// Per-lane buffers of three vertices' coordinates: `[corner][axis][lane]`.
-type Corners = [[[f32; MAX_LANES]; 3]; 3];
-
 /// `w0 a + w1 b + w2 c` per lane, summed as glam's `a * w0 + b * w1 + c * w2`.
 #[inline(always)]
 fn blend<S: Simd>(s: S, w: &V3<S>, a: F<S>, b: F<S>, c: F<S>) -> F<S> {
@@ -91,9 +88,12 @@ impl Mesh {
         let triangle: [u32; MAX_LANES] =
             std::array::from_fn(|i| if hit[i] { hits.triangle[i] } else { 0 });
         let w = &hits.bary;
-        let corner = |c: &Corners, k: usize| V3::<S>::from_arrays(&c[k]);
         let pc = self.gather(lanes, &triangle, &self.positions, |v: Vec3| v.to_array());
-        let (p0, p1, p2) = (corner(&pc, 0), corner(&pc, 1), corner(&pc, 2));
+        let (p0, p1, p2) = (
+            V3::<S>::from_arrays(&pc[0]),
+            V3::<S>::from_arrays(&pc[1]),
+            V3::<S>::from_arrays(&pc[2]),
+        );
         let p = V3 {
             x: blend(s, w, p0.x, p1.x, p2.x),
             y: blend(s, w, p0.y, p1.y, p2.y),
@@ -105,7 +105,11 @@ impl Mesh {
             Shading::Flat => n,
             Shading::Smooth => {
                 let nc = self.gather(lanes, &triangle, &self.normals, |v: Vec3| v.to_array());
-                let (n0, n1, n2) = (corner(&nc, 0), corner(&nc, 1), corner(&nc, 2));
+                let (n0, n1, n2) = (
+                    V3::<S>::from_arrays(&nc[0]),
+                    V3::<S>::from_arrays(&nc[1]),
+                    V3::<S>::from_arrays(&nc[2]),
+                );
                 let blended = V3 {
                     x: blend(s, w, n0.x, n1.x, n2.x),
                     y: blend(s, w, n0.y, n1.y, n2.y),
@@ -120,10 +124,21 @@ impl Mesh {
         let has_uv = !self.uvs.is_empty();
         let (u, v) = if has_uv {
             let tc = self.gather(lanes, &triangle, &self.uvs, |v: Vec2| v.to_array());
-            let c = |k: usize, axis: usize| from_array::<S>(&tc[k][axis]);
             (
-                blend(s, w, c(0, 0), c(1, 0), c(2, 0)),
-                blend(s, w, c(0, 1), c(1, 1), c(2, 1)),
+                blend(
+                    s,
+                    w,
+                    from_array::<S>(&tc[0][0]),
+                    from_array::<S>(&tc[1][0]),
+                    from_array::<S>(&tc[2][0]),
+                ),
+                blend(
+                    s,
+                    w,
+                    from_array::<S>(&tc[0][1]),
+                    from_array::<S>(&tc[1][1]),
+                    from_array::<S>(&tc[2][1]),
+                ),
             )
         } else {
             (s.splat_f32s(0.0), s.splat_f32s(0.0))

@@ -321,8 +321,8 @@ mod tests {
         assert_eq!(f16_to_f32(0x3c00), 1.0);
         assert_eq!(f16_to_f32(0xc000), -2.0);
         assert_eq!(f16_to_f32(0x0001), 2f32.powi(-24));
-        // 0b101_011_11 0b1_0000000: three 3-bit samples 5, 3, 7, then 4.
-        let row = [0b1010_1111, 0b1000_0000];
+        // 0b101_011_11 0b1_100_0000: 3-bit samples 5, 3, 7 (across the byte), then 4.
+        let row = [0b1010_1111, 0b1100_0000];
         let got: Vec<u64> = (0..4).map(|i| packed(&row, i * 3, 3)).collect();
         assert_eq!(got, [5, 3, 7, 4]);
     }

@@ -403,8 +403,14 @@ impl ExplorerApp {
         }
     }
 
-    /// Which gesture this frame's changes belong to (one undo step per drag or wheel run).
+    /// Which gesture this frame's changes belong to (one undo step per drag, wheel run or stay
+    /// of the keyboard in one text field).
     fn gesture(&mut self, ctx: &egui::Context) -> Option<Gesture> {
+        let typing = ctx
+            .egui_wants_keyboard_input()
+            .then(|| ctx.memory(egui::Memory::focused))
+            .flatten()
+            .map(|id| id.value());
         ctx.input(|i| {
             self.gestures.update(
                 web_time::Instant::now(),
@@ -415,6 +421,7 @@ impl ExplorerApp {
                         .events
                         .iter()
                         .any(|e| matches!(e, egui::Event::MouseWheel { .. })),
+                typing,
             )
         })
     }

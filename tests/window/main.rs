@@ -13,6 +13,7 @@ mod gui_edit;
 mod gui_exercise;
 mod gui_files;
 mod gui_formula;
+mod gui_formula_typing;
 mod gui_frame_time;
 mod gui_labels;
 mod gui_layout;

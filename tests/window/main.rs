@@ -20,5 +20,6 @@ mod gui_layout;
 mod gui_lessons;
 mod gui_lessons_class;
 mod gui_materials;
+mod gui_save;
 mod gui_texture_panel;
 mod gui_view;

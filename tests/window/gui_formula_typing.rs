@@ -111,7 +111,7 @@ fn type_keys(
         if error.is_some() {
             refused += 1;
         } else if applies {
-            last_valid = prefix.to_owned();
+            prefix.clone_into(&mut last_valid);
         }
         assert_eq!(
             scene(h),

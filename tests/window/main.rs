@@ -8,6 +8,7 @@ mod gui_common;
 
 mod gui;
 mod gui_browse;
+mod gui_class;
 mod gui_displace;
 mod gui_edit;
 mod gui_exercise;

@@ -100,6 +100,8 @@ pub struct ExplorerApp {
     pub(super) ui_scale: f32,
     /// The image pane's space for the image at the last frame (points).
     pub(super) image_space: Option<egui::Rect>,
+    /// The image as drawn at the last frame (points).
+    pub(super) image_rect: Option<egui::Rect>,
     pub(super) error: Option<String>,
     /// A confirmation shown for a few seconds ("Screenshot saved to ...") and when it came.
     notice: Option<(String, web_time::Instant)>,
@@ -118,6 +120,8 @@ pub struct ExplorerApp {
     /// Whether a camera move alone counts as an unsaved change (off: orbiting does not make
     /// switching presets ask to save; *Save* still writes the camera).
     pub(super) camera_is_unsaved: bool,
+    /// A pixel was clicked: the inspector's tab comes forward once the tiles are drawn.
+    pub(super) show_inspector: bool,
     /// The *Help → Keyboard shortcuts* window is open.
     pub(super) shortcuts_open: bool,
     /// The window title last sent, so it is sent only when it changes.
@@ -143,6 +147,7 @@ impl ExplorerApp {
             layout: Layout::default(),
             ui_scale: 1.0,
             image_space: None,
+            image_rect: None,
             error: None,
             notice: None,
             scene_panel: ScenePanel::with_browser(options.browser.clone()),
@@ -157,6 +162,7 @@ impl ExplorerApp {
             layout_time: 0.0,
             gestures: Gestures::default(),
             camera_is_unsaved: false,
+            show_inspector: false,
             shortcuts_open: false,
             title_sent: String::new(),
         };
@@ -217,6 +223,12 @@ impl ExplorerApp {
     #[must_use]
     pub fn image_space(&self) -> Option<egui::Rect> {
         self.image_space
+    }
+
+    /// The image as drawn at the last frame (points), once there is one.
+    #[must_use]
+    pub fn image_rect(&self) -> Option<egui::Rect> {
+        self.image_rect
     }
 
     /// Whether presentation mode is on (*View → Presentation mode*, F5).
@@ -412,8 +424,14 @@ impl ExplorerApp {
         }
     }
 
-    /// Which gesture this frame's changes belong to (one undo step per drag or wheel run).
+    /// Which gesture this frame's changes belong to (one undo step per drag, wheel run or stay
+    /// of the keyboard in one text field).
     fn gesture(&mut self, ctx: &egui::Context) -> Option<Gesture> {
+        let typing = ctx
+            .egui_wants_keyboard_input()
+            .then(|| ctx.memory(egui::Memory::focused))
+            .flatten()
+            .map(|id| id.value());
         ctx.input(|i| {
             self.gestures.update(
                 web_time::Instant::now(),
@@ -424,6 +442,7 @@ impl ExplorerApp {
                         .events
                         .iter()
                         .any(|e| matches!(e, egui::Event::MouseWheel { .. })),
+                typing,
             )
         })
     }
@@ -520,8 +539,8 @@ impl ExplorerApp {
         }
     }
 
-    /// Ctrl+Z undoes, Ctrl+Shift+Z and Ctrl+Y redo, F1 opens the shortcuts, F5 presents, I
-    /// shows the inspector; not while a text field has the keyboard (it has its own undo).
+    /// Ctrl+Z undoes, Ctrl+Shift+Z and Ctrl+Y redo, F1 opens the shortcuts, F5 or P presents,
+    /// I shows the inspector; not while a text field has the keyboard (it has its own undo).
     /// Ctrl+= and Ctrl+- scale the UI and Ctrl+0 resets it, always.
     fn edit_shortcuts(&mut self, ctx: &egui::Context) -> Vec<Command> {
         self.ui_scale_shortcuts(ctx);
@@ -532,7 +551,7 @@ impl ExplorerApp {
             if i.consume_shortcut(&help::SHORTCUTS_KEY) {
                 self.shortcuts_open = !self.shortcuts_open;
             }
-            if i.consume_shortcut(&help::PRESENT) {
+            if i.consume_shortcut(&help::PRESENT) || i.consume_shortcut(&help::PRESENT_P) {
                 self.toggle_presentation();
             }
             if i.consume_shortcut(&help::INSPECTOR) {
@@ -651,11 +670,16 @@ fn view_menu(
     } else {
         "Presentation mode"
     };
+    let keys = format!(
+        "{} or {}",
+        ui.ctx().format_shortcut(&help::PRESENT),
+        ui.ctx().format_shortcut(&help::PRESENT_P)
+    );
     if ui
-        .add(egui::Button::new(text).shortcut_text(ui.ctx().format_shortcut(&help::PRESENT)))
+        .add(egui::Button::new(text).shortcut_text(keys))
         .on_hover_text(
-            "The image alone, the panels in a strip at the left, the lesson's Look for and \
-             question over the image in large type",
+            "The image alone, the panels in a strip at the left (their text at least 20 px \
+             high), the lesson's Look for and question beside the image in large type",
         )
         .clicked()
     {

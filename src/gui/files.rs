@@ -6,6 +6,10 @@
 //! read-only here: *Save* on one (the menu, Ctrl+S, the unsaved-changes prompt) is always
 //! *Save as*, and *Save as* refuses them as targets.
 
+mod dialog;
+mod folder;
+mod save;
+
 pub use super::browse::{BrowseFor, Browser, IMAGE_EXTENSIONS};
 use super::command::Command;
 use crate::scene::read_png_preset;
@@ -36,7 +40,8 @@ enum Pending {
     Quit,
 }
 
-/// Why a file is not saved over, if it is not.
+/// Why a file is not saved over (or, a new one, written), if it is not: a shipped file, a
+/// lesson's scene, or a path in the folder of texplore's copy of the shipped files.
 fn read_only_reason(path: &Path, protected: &[PathBuf]) -> Option<String> {
     let name = path.file_name().map_or_else(
         || path.display().to_string(),
@@ -51,7 +56,7 @@ fn read_only_reason(path: &Path, protected: &[PathBuf]) -> Option<String> {
             "{name} is a lesson's scene and is read-only here: save your scene under another name"
         ))
     } else {
-        None
+        save::shipped_folder_reason(path)
     }
 }
 
@@ -68,6 +73,10 @@ struct Dialog {
     note: Option<String>,
     /// *Save as* from the unsaved-changes prompt: what to do once saved.
     then: Option<Pending>,
+    /// The path last checked for a save, and why it is refused, if it is.
+    refused: Option<(String, Option<String>)>,
+    /// texplore's own chooser is shown under the path (no system dialog).
+    folders: bool,
 }
 
 /// The files state.
@@ -164,6 +173,17 @@ pub fn screenshot_default(current: &Path) -> PathBuf {
     p
 }
 
+/// The files a path dialog of `kind` lists in texplore's own chooser.
+fn extensions(kind: DialogKind) -> &'static [&'static str] {
+    match kind {
+        DialogKind::Open => &["ron", "png"],
+        DialogKind::SaveAs => &["ron"],
+        DialogKind::Screenshot => &["png"],
+        DialogKind::Image => &IMAGE_EXTENSIONS,
+        DialogKind::Mesh => &["ply", "obj"],
+    }
+}
+
 /// Largest recent-files list read (a list of paths takes a few kilobytes).
 const MAX_RECENT_BYTES: u64 = 1 << 20;
 
@@ -255,6 +275,8 @@ impl Files {
             focus: true,
             note: None,
             then: None,
+            refused: None,
+            folders: false,
         });
     }
 
@@ -494,140 +516,30 @@ impl Files {
         out
     }
 
-    /// The path dialog (Open, Save as, Save screenshot), while open; what it confirms goes to
-    /// `out` (or to the replace prompt).
-    fn path_dialog(&mut self, ctx: &egui::Context, description: &str, out: &mut Vec<Command>) {
-        if let Some(mut dialog) = self.dialog.take() {
-            let kind = dialog.kind;
-            let mut keep = true;
-            let title = match kind {
-                DialogKind::Open => "Open a preset or a texplore PNG",
-                DialogKind::SaveAs => "Save the scene as a preset (.ron)",
-                DialogKind::Screenshot => "Save a screenshot (.png, with the scene inside)",
-                DialogKind::Image => "Choose an image for the selected object",
-                DialogKind::Mesh => "Choose a mesh (PLY, OBJ) for the selected object",
-            };
-            let native = self.browser.missing().is_none();
-            let modal = egui::Modal::new(egui::Id::unique("path-dialog")).show(ctx, |ui| {
-                ui.heading(title);
-                if let Some(note) = &dialog.note {
-                    ui.label(note);
-                } else if let Some(why) = self.browser.missing() {
-                    // No system dialog: no Browse… below, and the reason.
-                    ui.weak(why);
-                }
-                let mut go = false;
-                let text = &mut dialog.text;
-                ui.horizontal(|ui| {
-                    let l = ui.label("Path");
-                    let r = ui
-                        .add(egui::TextEdit::singleline(text).desired_width(360.0))
-                        .labelled_by(l.id);
-                    if std::mem::take(&mut dialog.focus) {
-                        r.request_focus();
-                    }
-                    go |= r.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
-                    if native
-                        && ui
-                            .button("Browse…")
-                            .on_hover_text("Choose the file in the system's file dialog")
-                            .clicked()
-                    {
-                        let what = match kind {
-                            DialogKind::Open => BrowseFor::Scene,
-                            DialogKind::SaveAs => BrowseFor::Preset,
-                            DialogKind::Screenshot => BrowseFor::Screenshot,
-                            DialogKind::Image => BrowseFor::Image,
-                            DialogKind::Mesh => BrowseFor::Mesh,
-                        };
-                        let typed = Path::new(text.trim());
-                        let start = if text.trim().is_empty() {
-                            folder_of(&self.current)
-                        } else {
-                            folder_of(typed)
-                        };
-                        let name = typed
-                            .file_name()
-                            .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
-                        if let Some(p) = self.browser.pick(what, start, &name) {
-                            *text = p.display().to_string();
-                            go = true;
-                        }
-                    }
-                });
-                if kind == DialogKind::SaveAs {
-                    let d = dialog
-                        .description
-                        .get_or_insert_with(|| description.to_owned());
-                    let l = ui.label("Description (shown in the Presets menu)");
-                    ui.add(
-                        egui::TextEdit::multiline(d)
-                            .desired_rows(2)
-                            .desired_width(420.0),
-                    )
-                    .labelled_by(l.id);
-                }
-                self.quick_picks(ui, kind, text);
-                ui.horizontal(|ui| {
-                    let ok = match kind {
-                        DialogKind::Open => "Open",
-                        DialogKind::Image | DialogKind::Mesh => "Use",
-                        DialogKind::SaveAs | DialogKind::Screenshot => "Save",
-                    };
-                    go |= ui
-                        .add_enabled(!text.trim().is_empty(), egui::Button::new(ok))
-                        .clicked();
-                    if ui.button("Cancel").clicked() {
-                        keep = false;
-                    }
-                });
-                if go && !text.trim().is_empty() {
-                    let p = PathBuf::from(text.trim());
-                    keep = false;
-                    match kind {
-                        DialogKind::Open => self.requested = Some(Pending::Open(p)),
-                        DialogKind::Image => out.push(Command::UseImage(p)),
-                        DialogKind::Mesh => out.push(Command::UseMesh(p)),
-                        DialogKind::SaveAs | DialogKind::Screenshot => {
-                            let refused = if kind == DialogKind::SaveAs {
-                                read_only_reason(&p, &self.protected)
-                            } else {
-                                None
-                            };
-                            if let Some(why) = refused {
-                                // The dialog stays, saying why.
-                                dialog.note = Some(why);
-                                keep = true;
-                            } else {
-                                if let Some(d) = dialog.description.take()
-                                    && d != description
-                                {
-                                    out.push(Command::Describe(d));
-                                }
-                                let action = if kind == DialogKind::SaveAs {
-                                    Command::Save(p.clone())
-                                } else {
-                                    Command::Screenshot(p.clone())
-                                };
-                                let then = dialog.then.take();
-                                if p.exists() {
-                                    self.overwrite = Some((action, then));
-                                } else {
-                                    out.push(action);
-                                    if let Some(then) = then {
-                                        out.push(self.confirm(then));
-                                    }
-                                }
-                            }
-                        }
-                    }
-                }
-            });
-            // Esc (or a click beside the dialog) closes it, as Cancel does.
-            if keep && !modal.should_close() {
-                self.dialog = Some(dialog);
-            }
+    /// The system's file dialog for a path dialog of `kind`, starting at the folder of the path
+    /// `text` (or of the scene's file); returns whether a file was chosen (then in `text`).
+    fn browse(&self, kind: DialogKind, text: &mut String) -> bool {
+        let what = match kind {
+            DialogKind::Open => BrowseFor::Scene,
+            DialogKind::SaveAs => BrowseFor::Preset,
+            DialogKind::Screenshot => BrowseFor::Screenshot,
+            DialogKind::Image => BrowseFor::Image,
+            DialogKind::Mesh => BrowseFor::Mesh,
+        };
+        let typed = Path::new(text.trim());
+        let start = if text.trim().is_empty() {
+            folder_of(&self.current)
+        } else {
+            folder_of(typed)
+        };
+        let name = typed
+            .file_name()
+            .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+        let picked = self.browser.pick(what, start, &name);
+        if let Some(p) = &picked {
+            *text = p.display().to_string();
         }
+        picked.is_some()
     }
 
     /// A *Browse…* found no system dialog: the path dialog says why, and an image or a mesh

@@ -19,6 +19,8 @@ pub const SHORTCUTS_KEY: KeyboardShortcut = KeyboardShortcut::new(Modifiers::NON
 
 /// Presentation mode on or off.
 pub const PRESENT: KeyboardShortcut = KeyboardShortcut::new(Modifiers::NONE, Key::F5);
+/// Presentation mode on or off, the key no browser takes (F5 reloads a page).
+pub const PRESENT_P: KeyboardShortcut = KeyboardShortcut::new(Modifiers::NONE, Key::P);
 /// Show or hide the inspector (one key away in presentation mode).
 pub const INSPECTOR: KeyboardShortcut = KeyboardShortcut::new(Modifiers::NONE, Key::I);
 /// A larger UI.
@@ -31,7 +33,7 @@ pub const SCALE_DOWN: KeyboardShortcut = KeyboardShortcut::new(Modifiers::COMMAN
 pub const SCALE_RESET: KeyboardShortcut = KeyboardShortcut::new(Modifiers::COMMAND, Key::Num0);
 
 /// The keys, in the order the window lists them, with what they do.
-pub const KEYS: [(KeyboardShortcut, &str); 12] = [
+pub const KEYS: [(KeyboardShortcut, &str); 13] = [
     (OPEN, "Open a preset or a texplore PNG"),
     (
         SAVE,
@@ -45,6 +47,10 @@ pub const KEYS: [(KeyboardShortcut, &str); 12] = [
         PRESENT,
         "Presentation mode: the image alone, with the lesson's captions",
     ),
+    (
+        PRESENT_P,
+        "Presentation mode (in the page too, where F5 reloads)",
+    ),
     (INSPECTOR, "Show or hide the inspector"),
     (SCALE_UP, "Larger UI (for a projector)"),
     (SCALE_UP_PLUS, "Larger UI"),
@@ -57,7 +63,7 @@ pub const POINTER: [(&str, &str); 7] = [
     ("Drag", "Orbit the camera around the point looked at"),
     ("Right-drag, Shift+drag", "Pan the camera"),
     ("Wheel", "Zoom (slows near the surface, stops short of it)"),
-    ("Click", "Pin the inspector to that pixel"),
+    ("Click", "Pin the inspector to that pixel and show it"),
     (
         "Drag the A/B divider",
         "Move the split between the two renders",
@@ -88,6 +94,9 @@ pub fn shortcuts_window(ctx: &egui::Context, open: &mut bool) {
                         ui.end_row();
                     }
                 });
-            ui.weak("Undo covers every change of the scene; a drag or a run of wheel clicks is one step.");
+            ui.weak(
+                "Undo covers every change of the scene; a drag, a run of wheel clicks or the \
+                 typing in one field is one step.",
+            );
         });
 }

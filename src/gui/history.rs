@@ -6,8 +6,8 @@
 //! viewport's camera, the file actions and any panel added later are all undone the same way,
 //! and a new field of the description needs nothing here.
 //!
-//! Changes that belong to one gesture (an orbit drag, a number dragged, a run of wheel clicks)
-//! carry the same [`Gesture`] and merge into one step.
+//! Changes that belong to one gesture (an orbit drag, a number dragged, a run of wheel clicks,
+//! the typing in one text field) carry the same [`Gesture`] and merge into one step.
 
 use crate::scene::{ObjectDesc, SceneDesc, TextureDesc};
 use crate::texture::Filter;
@@ -22,6 +22,9 @@ pub enum Gesture {
     Press(u64),
     /// Made by a run of wheel clicks (the number of that run).
     Wheel(u64),
+    /// Made while the keyboard stayed in one text field (the number of that stay): a formula
+    /// typed key by key is one step, however many of its prefixes were valid.
+    Typing(u64),
 }
 
 /// A pause longer than this between wheel clicks starts a new zoom step.
@@ -33,24 +36,37 @@ pub struct Gestures {
     presses: u64,
     runs: u64,
     last_wheel: Option<web_time::Instant>,
+    stays: u64,
+    /// The text field the keyboard is in (egui's id of it, as a number).
+    typing_in: Option<u64>,
 }
 
 impl Gestures {
     /// This frame's gesture: `pressed` a button went down this frame, `held` one is down or was
-    /// released this frame (a click lands on release), `scrolled` the wheel moved.
+    /// released this frame (a click lands on release), `scrolled` the wheel moved, `typing`
+    /// the text field the keyboard is in (any number naming it), if any.
     pub fn update(
         &mut self,
         now: web_time::Instant,
         pressed: bool,
         held: bool,
         scrolled: bool,
+        typing: Option<u64>,
     ) -> Option<Gesture> {
         if pressed {
             self.presses += 1;
         }
+        if typing != self.typing_in {
+            self.typing_in = typing;
+            self.stays += 1;
+        }
         if pressed || held {
             self.last_wheel = None;
             return Some(Gesture::Press(self.presses));
+        }
+        if typing.is_some() {
+            self.last_wheel = None;
+            return Some(Gesture::Typing(self.stays));
         }
         if scrolled {
             if self
@@ -405,37 +421,68 @@ mod tests {
         let mut g = Gestures::default();
         let t0 = web_time::Instant::now();
         let ms = |n| t0 + std::time::Duration::from_millis(n);
-        assert_eq!(g.update(t0, false, false, false), None);
-        let press = g.update(ms(10), true, true, false);
+        assert_eq!(g.update(t0, false, false, false, None), None);
+        let press = g.update(ms(10), true, true, false, None);
         assert_eq!(
-            g.update(ms(20), false, true, false),
+            g.update(ms(20), false, true, false, None),
             press,
             "the drag goes on"
         );
         assert_eq!(
-            g.update(ms(30), false, true, false),
+            g.update(ms(30), false, true, false, None),
             press,
             "released: the click lands"
         );
-        assert_ne!(g.update(ms(40), true, true, false), press, "another press");
-        let run = g.update(ms(100), false, false, true);
+        assert_ne!(
+            g.update(ms(40), true, true, false, None),
+            press,
+            "another press"
+        );
+        let run = g.update(ms(100), false, false, true, None);
         assert!(matches!(run, Some(Gesture::Wheel(_))));
         assert_eq!(
-            g.update(ms(500), false, false, true),
+            g.update(ms(500), false, false, true, None),
             run,
             "clicks in a run"
         );
         assert_eq!(
-            g.update(ms(1200), false, false, true),
+            g.update(ms(1200), false, false, true, None),
             run,
             "0.7 s apart still runs"
         );
         assert_ne!(
-            g.update(ms(2100), false, false, true),
+            g.update(ms(2100), false, false, true, None),
             run,
             "a pause starts a new run"
         );
-        assert_eq!(g.update(ms(2200), false, false, false), None);
+        assert_eq!(g.update(ms(2200), false, false, false, None), None);
+    }
+
+    #[test]
+    fn the_typing_in_one_text_field_is_one_gesture() {
+        let mut g = Gestures::default();
+        let t0 = web_time::Instant::now();
+        let field = g.update(t0, false, false, false, Some(7));
+        assert!(matches!(field, Some(Gesture::Typing(_))));
+        assert_eq!(
+            g.update(t0, false, false, false, Some(7)),
+            field,
+            "key after key"
+        );
+        let other = g.update(t0, false, false, false, Some(8));
+        assert!(matches!(other, Some(Gesture::Typing(_))) && other != field);
+        assert_eq!(g.update(t0, false, false, false, None), None);
+        assert_ne!(
+            g.update(t0, false, false, false, Some(8)),
+            other,
+            "back in the field: a new stay"
+        );
+        let mut h = History::default();
+        h.reset(Some(&0));
+        for v in 1..=5 {
+            h.observe(Some(&v), field, label);
+        }
+        assert_eq!(h.undo_len(), 1);
     }
 
     #[test]

@@ -10,6 +10,7 @@ use crate::scene::Scene;
 use crate::texture::{ImageData, Lookup};
 use std::sync::Arc;
 
+mod answer;
 mod diagram;
 mod mirror;
 mod normals;
@@ -32,6 +33,8 @@ pub struct Inspector {
     hints: Vec<String>,
     overview: Option<(usize, egui::TextureHandle)>,
     zoom: Option<(ZoomKey, egui::TextureHandle)>,
+    /// A pixel was pinned since the panel was last drawn: it scrolls back to the answer.
+    scroll_to_top: bool,
 }
 
 #[derive(Clone, Copy, PartialEq)]
@@ -51,6 +54,7 @@ impl Default for Inspector {
             hints: Vec::new(),
             overview: None,
             zoom: None,
+            scroll_to_top: false,
         }
     }
 }
@@ -84,6 +88,7 @@ impl Inspector {
     pub fn pointer(&mut self, scene: &Scene, hover: Option<Vec2>, click: Option<Vec2>) {
         if let Some(c) = click {
             self.pinned = Some(c);
+            self.scroll_to_top = true;
         }
         let at = self.pinned.or(hover);
         if at.is_some() && at != self.at {
@@ -94,6 +99,11 @@ impl Inspector {
                 .as_ref()
                 .map_or_else(Vec::new, |i| mapping_hints(scene, i.object));
         }
+    }
+
+    /// Whether a pixel was pinned since the last call (the panel then scrolls to its top).
+    pub fn take_scroll_to_top(&mut self) -> bool {
+        std::mem::take(&mut self.scroll_to_top)
     }
 
     /// The inspection shown, if any.
@@ -128,6 +138,7 @@ impl Inspector {
             }
             return;
         };
+        answer::answer(ui, &i);
         for h in &self.hints {
             ui.label(
                 egui::RichText::new(format!("Hint: {h}"))

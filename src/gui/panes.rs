@@ -5,6 +5,7 @@
 use super::app::ExplorerApp;
 use super::command::Command;
 use super::layout::{Open, Pane};
+use super::lessons::captions;
 use super::viewport;
 use crate::math::Vec2;
 
@@ -19,6 +20,29 @@ fn strip_name(pane: Pane) -> &'static str {
         Pane::Lessons => "Lesson",
         Pane::Inspector => "Inspect",
         Pane::Texture => "Texture",
+    }
+}
+
+/// The body text of the panels in presentation mode, in pixels of a 720-row window (a larger
+/// window scales it with its height): read from the back of a classroom.
+pub const PRESENT_BODY_PX: f32 = 20.0;
+
+/// Presentation mode's panel text: every text style of `ui` scaled so that body text is at
+/// least [`PRESENT_BODY_PX`] pixels high at 720 rows (more on a taller window; a UI scale that
+/// already makes it larger is kept).
+fn presentation_text(ui: &mut egui::Ui) {
+    let ctx = ui.ctx().clone();
+    let ppp = ctx.pixels_per_point();
+    let rows = ctx.content_rect().height() * ppp;
+    let target = PRESENT_BODY_PX * (rows / 720.0).max(1.0);
+    let style = ui.style_mut();
+    let body = style
+        .text_styles
+        .get(&egui::TextStyle::Body)
+        .map_or(13.0, |f| f.size);
+    let factor = (target / (body * ppp)).max(1.0);
+    for font in style.text_styles.values_mut() {
+        font.size *= factor;
     }
 }
 
@@ -38,6 +62,9 @@ impl egui_tiles::Behavior<Pane> for Panes<'_> {
         _tile_id: egui_tiles::TileId,
         pane: &mut Pane,
     ) -> egui_tiles::UiResponse {
+        if *pane != Pane::Image && self.app.layout.presenting() {
+            presentation_text(ui);
+        }
         // Each pane inside a margin, so its content never touches the tab bar or a neighbour.
         egui::Frame::new()
             .inner_margin(egui::Margin::same(6))
@@ -128,6 +155,11 @@ impl ExplorerApp {
             })
             .inner;
         self.layout.tree = tree;
+        if std::mem::take(&mut self.show_inspector) {
+            self.layout
+                .tree
+                .make_active(|_, tile| matches!(tile, egui_tiles::Tile::Pane(Pane::Inspector)));
+        }
         let mut open = self.open_panels();
         for p in closed {
             open.set(p, false);
@@ -174,9 +206,18 @@ impl ExplorerApp {
     /// The inspector: its content changes with every pixel hovered, and scrolls within the
     /// pane.
     fn inspector_pane(&mut self, ui: &mut egui::Ui) {
-        egui::ScrollArea::both()
-            .auto_shrink([false, false])
-            .show(ui, |ui| self.inspector.ui(ui));
+        // In presentation mode its large text wraps in the narrow pane instead of running off.
+        let mut area = if self.layout.presenting() {
+            egui::ScrollArea::vertical()
+        } else {
+            egui::ScrollArea::both()
+        }
+        .auto_shrink([false, false]);
+        if self.inspector.take_scroll_to_top() {
+            // A new pixel pinned: its answer, at the top, in view.
+            area = area.vertical_scroll_offset(0.0);
+        }
+        area.show(ui, |ui| self.inspector.ui(ui));
     }
 
     /// The texture panel.
@@ -185,7 +226,8 @@ impl ExplorerApp {
     }
 
     /// The image: the render (or the A/B split), its pointer's camera commands, the inspector
-    /// following the pointer; in presentation mode the lesson's captions over it.
+    /// following the pointer (a click pins a pixel and shows the inspector); in presentation
+    /// mode the lesson's captions beside or over it.
     fn image_pane(&mut self, ui: &mut egui::Ui, commands: &mut Vec<Command>) {
         let size = self
             .viewer
@@ -196,28 +238,62 @@ impl ExplorerApp {
             .doc
             .desc
             .as_ref()
-            .map(|d| Vec2::new(d.render.width as f32, d.render.height as f32));
+            .map(|d| egui::vec2(d.render.width as f32, d.render.height as f32));
+        let caption = if self.layout.presenting() && self.layout.captions {
+            self.lessons.caption(self.doc.desc.as_ref())
+        } else {
+            None
+        };
+        let ctx = ui.ctx().clone();
+        let scale = captions::Scale::of(&ctx);
+        let mut placed = None;
+        let mut area = |avail: egui::Rect| match (&caption, aspect) {
+            (Some(c), Some(a)) => {
+                let measure = |text: &str, size: f32, width: f32| {
+                    ctx.fonts_mut(|f| {
+                        f.layout(
+                            text.to_owned(),
+                            egui::FontId::proportional(size),
+                            egui::Color32::WHITE,
+                            width,
+                        )
+                        .size()
+                    })
+                };
+                let l = captions::place(avail, a, c, scale, &measure);
+                let image = l.image;
+                placed = Some(l);
+                image
+            }
+            _ => avail,
+        };
         let view = self.doc.desc.as_mut().map(|d| &mut d.render.view);
         let out = if self.ab.enabled {
-            viewport::show_split(ui, &mut self.ab, size, view, hint.as_deref())
+            viewport::show_split(ui, &mut self.ab, size, view, hint.as_deref(), &mut area)
         } else {
             let texture = self.viewer.live.texture();
-            viewport::show(ui, texture, size, view, hint.as_deref())
+            viewport::show(ui, texture, size, view, hint.as_deref(), &mut area)
         };
         self.image_space = Some(out.avail);
+        self.image_rect = (out.image != egui::Rect::NOTHING).then_some(out.image);
         if let Some(aspect) = aspect {
-            let ppp = ui.ctx().pixels_per_point();
-            self.resolution.viewport(out.avail, aspect, ppp, ui.ctx());
+            let ppp = ctx.pixels_per_point();
+            let held = ctx.input(|i| i.pointer.any_down());
+            let aspect = Vec2::new(aspect.x, aspect.y);
+            self.resolution.viewport(out.area, aspect, ppp, held, &ctx);
         }
-        if self.layout.presenting()
-            && self.layout.captions
-            && let Some(caption) = self.lessons.caption(self.doc.desc.as_ref())
-        {
-            viewport::captions(ui, out.avail, &caption);
+        if let (Some(l), Some(a)) = (&placed, aspect) {
+            captions::draw(ui, l, a, out.avail);
         }
         commands.extend(out.edit);
         if let Some(scene) = self.viewer.scene() {
             self.inspector.pointer(scene, out.hover, out.click);
+        }
+        if out.click.is_some() {
+            // The pinned pixel's inspector: opened, its tab brought forward (once the tiles
+            // are drawn).
+            self.inspector.open = true;
+            self.show_inspector = true;
         }
     }
 
@@ -272,5 +348,7 @@ impl ExplorerApp {
         let mut open = self.open_panels();
         self.layout.toggle_presentation(&mut open);
         self.set_open_panels(open);
+        // The render follows the image in presentation mode, at once.
+        self.resolution.presenting = self.layout.presenting();
     }
 }

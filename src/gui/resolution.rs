@@ -1,14 +1,20 @@
-//! The resolution the window renders at: by default the image pane's own size in screen
-//! pixels (at the preset's aspect ratio), so a larger pane, a projector or a higher UI scale
-//! gets a sharper image instead of a 640x480 film drawn large; or the preset's resolution. A
-//! scale renders a fraction of either (a view setting, never saved in the scene).
+//! The resolution the window renders at: by default the image's own size in screen pixels (at
+//! the preset's aspect ratio), so a larger pane, a projector or a higher UI scale gets a
+//! sharper image instead of a 640x480 film drawn large; or the preset's resolution, except in
+//! presentation mode, which always follows the image (the page renders at the preset's
+//! resolution otherwise). A scale renders a fraction of either (a view setting, never saved in
+//! the scene).
+//!
+//! A new size is taken at once (presentation mode, a panel opened or closed, the window
+//! resized, the UI scale), except while a pointer button is held: a divider being dragged
+//! restarts the render once the size has held for a quarter of a second, or when it is let go.
 
 use crate::math::Vec2;
 use std::time::Duration;
 use web_time::Instant;
 
-/// How long the pane's size must hold before the render follows it (a drag of a divider does
-/// not restart the render on every frame).
+/// How long the image's size must hold, while a pointer button is held, before the render
+/// follows it (a drag of a divider does not restart the render on every frame).
 const SETTLE: Duration = Duration::from_millis(250);
 
 /// The smallest film side the viewport asks for.
@@ -21,6 +27,8 @@ pub struct ViewResolution {
     pub follow_viewport: bool,
     /// The fraction of that size rendered (0.125 to 2).
     pub scale: f32,
+    /// Presentation mode: the render follows the image whatever `follow_viewport` says.
+    pub presenting: bool,
     /// The pane's size in pixels, once it has held for [`SETTLE`].
     settled: Option<(u32, u32)>,
     /// A new pane size and when it was first seen.
@@ -34,6 +42,7 @@ impl Default for ViewResolution {
         Self {
             follow_viewport: false,
             scale: 1.0,
+            presenting: false,
             settled: None,
             pending: None,
         }
@@ -50,9 +59,17 @@ impl ViewResolution {
         }
     }
 
-    /// The image pane's space this frame: `avail` in points, the scene's `aspect` (its preset
-    /// width and height), `ppp` screen pixels per point.
-    pub fn viewport(&mut self, avail: egui::Rect, aspect: Vec2, ppp: f32, ctx: &egui::Context) {
+    /// The image's space this frame: `avail` in points, the scene's `aspect` (its preset
+    /// width and height), `ppp` screen pixels per point; `held` whether a pointer button is
+    /// down (a drag: the size is taken once it holds or the button is let go).
+    pub fn viewport(
+        &mut self,
+        avail: egui::Rect,
+        aspect: Vec2,
+        ppp: f32,
+        held: bool,
+        ctx: &egui::Context,
+    ) {
         let Some(size) = pane_pixels(avail, aspect, ppp) else {
             return;
         };
@@ -62,7 +79,7 @@ impl ViewResolution {
         }
         let now = Instant::now();
         match self.pending {
-            _ if self.settled.is_none() => {
+            _ if self.settled.is_none() || !held => {
                 self.settled = Some(size);
                 self.pending = None;
             }
@@ -86,7 +103,7 @@ impl ViewResolution {
     #[must_use]
     pub fn film(&self, preset: (u32, u32)) -> (u32, u32) {
         let base = match self.settled {
-            Some(s) if self.follow_viewport => s,
+            Some(s) if self.follow_viewport || self.presenting => s,
             _ => preset,
         };
         let side = |v: u32| ((v as f32 * self.scale).round() as u32).max(1);
@@ -96,7 +113,7 @@ impl ViewResolution {
     /// What the slider's tooltip says the scale is a fraction of.
     #[must_use]
     pub fn of_what(&self) -> &'static str {
-        if self.follow_viewport {
+        if self.follow_viewport || self.presenting {
             "the image pane's size in screen pixels"
         } else {
             "the preset's resolution"
@@ -137,17 +154,22 @@ mod tests {
     }
 
     #[test]
-    fn the_first_size_is_taken_at_once_and_later_ones_once_they_hold() {
+    fn a_new_size_is_taken_at_once_but_while_dragging_once_it_holds() {
         let ctx = egui::Context::default();
         let mut r = ViewResolution {
             follow_viewport: true,
             ..ViewResolution::default()
         };
         let aspect = Vec2::new(4.0, 3.0);
-        r.viewport(rect(400.0, 300.0), aspect, 1.0, &ctx);
+        r.viewport(rect(400.0, 300.0), aspect, 1.0, false, &ctx);
         assert_eq!(r.film((640, 480)), (400, 300));
-        r.viewport(rect(800.0, 600.0), aspect, 1.0, &ctx);
-        assert_eq!(r.film((640, 480)), (400, 300), "not before it holds");
+        // Presentation mode, a panel closed: at once.
+        r.viewport(rect(600.0, 450.0), aspect, 1.0, false, &ctx);
+        assert_eq!(r.film((640, 480)), (600, 450));
+        // A divider dragged: once it holds.
+        r.viewport(rect(400.0, 300.0), aspect, 1.0, true, &ctx);
+        r.viewport(rect(800.0, 600.0), aspect, 1.0, true, &ctx);
+        assert_eq!(r.film((640, 480)), (600, 450), "not before it holds");
         r.pending = r.pending.map(|(s, t)| {
             (
                 s,
@@ -155,11 +177,20 @@ mod tests {
                     .expect("the clock runs longer than that"),
             )
         });
-        r.viewport(rect(800.0, 600.0), aspect, 1.0, &ctx);
+        r.viewport(rect(800.0, 600.0), aspect, 1.0, true, &ctx);
         assert_eq!(r.film((640, 480)), (800, 600));
+        r.viewport(rect(700.0, 525.0), aspect, 1.0, true, &ctx);
+        r.viewport(rect(700.0, 525.0), aspect, 1.0, false, &ctx);
+        assert_eq!(r.film((640, 480)), (700, 525), "let go: at once");
         r.scale = 0.5;
-        assert_eq!(r.film((640, 480)), (400, 300));
+        assert_eq!(r.film((640, 480)), (350, 263));
         r.follow_viewport = false;
         assert_eq!(r.film((640, 480)), (320, 240));
+        r.presenting = true;
+        assert_eq!(
+            r.film((640, 480)),
+            (350, 263),
+            "presentation mode follows the image"
+        );
     }
 }

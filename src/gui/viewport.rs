@@ -25,9 +25,13 @@ pub struct ViewOutput {
     pub click: Option<Vec2>,
     /// The debug view was changed.
     pub view_changed: bool,
-    /// The space the image is fitted into (below the toolbar), in points (`Rect::NOTHING`
-    /// until drawn).
+    /// The image pane's space below the toolbar, in points (`Rect::NOTHING` until drawn).
     pub avail: egui::Rect,
+    /// The space the image is fitted into: `avail`, or less where presentation mode's captions
+    /// take some of it.
+    pub area: egui::Rect,
+    /// The image as drawn (`Rect::NOTHING` until there is one).
+    pub image: egui::Rect,
 }
 
 impl Default for ViewOutput {
@@ -38,6 +42,8 @@ impl Default for ViewOutput {
             click: None,
             view_changed: false,
             avail: egui::Rect::NOTHING,
+            area: egui::Rect::NOTHING,
+            image: egui::Rect::NOTHING,
         }
     }
 }
@@ -288,25 +294,29 @@ fn interact(
 }
 
 /// Draws the toolbar and `texture` (an image of `size` pixels) fitted and centred in the space
-/// left, or a spinner until there is one, with the debug view's colour key and `hint` over it;
-/// returns what the pointer did over it.
+/// `area` leaves of the space below the toolbar (all of it but where presentation mode puts
+/// its captions), or a spinner until there is one, with the debug view's colour key and
+/// `hint` over it; returns what the pointer did over it.
 pub fn show(
     ui: &mut egui::Ui,
     texture: Option<&egui::TextureHandle>,
     size: Option<Vec2>,
     view: Option<&mut View>,
     hint: Option<&str>,
+    area: &mut dyn FnMut(egui::Rect) -> egui::Rect,
 ) -> ViewOutput {
     let mut out = ViewOutput::default();
     let shown_view = view.as_deref().copied().unwrap_or_default();
     toolbar(ui, &mut out, view);
     let avail = ui.available_rect_before_wrap();
     out.avail = avail;
+    out.area = area(avail);
     let (Some(t), Some(size)) = (texture, size) else {
         ui.centered_and_justified(egui::Ui::spinner);
         return out;
     };
-    let rect = fit(avail, size);
+    let rect = fit(out.area, size);
+    out.image = rect;
     interact(ui, rect, size, &mut out);
     ui.painter().image(
         t.id(),
@@ -322,13 +332,15 @@ pub fn show(
     out
 }
 
-/// The A/B viewport: A left of the divider, B right of it; the divider drags.
+/// The A/B viewport: A left of the divider, B right of it; the divider drags (`area` as for
+/// [`show`]).
 pub fn show_split(
     ui: &mut egui::Ui,
     ab: &mut AbSplit,
     size: Option<Vec2>,
     view: Option<&mut View>,
     hint: Option<&str>,
+    area: &mut dyn FnMut(egui::Rect) -> egui::Rect,
 ) -> ViewOutput {
     let mut out = ViewOutput::default();
     let shown_view = view.as_deref().copied().unwrap_or_default();
@@ -336,10 +348,12 @@ pub fn show_split(
     ab.controls(ui);
     let avail = ui.available_rect_before_wrap();
     out.avail = avail;
+    out.area = area(avail);
     let Some(size) = size else {
         return out;
     };
-    let rect = fit(avail, size);
+    let rect = fit(out.area, size);
+    out.image = rect;
     // The images first, the divider after: egui gives a drag to the topmost widget under the
     // pointer, and a widget registered later lies on top. Registered the other way round (as
     // before issue 16), the images took every drag, the camera orbited and the divider stayed.
@@ -414,43 +428,4 @@ pub fn show_split(
         image_hint(ui, rect, hint);
     }
     out
-}
-
-/// Presentation mode's captions over the image, in type a room can read: the experiment tried
-/// and its *Look for* at the top, the lesson's question at the bottom (each an accessible
-/// label).
-pub fn captions(ui: &egui::Ui, avail: egui::Rect, caption: &super::lessons::Caption) {
-    let painter = ui.painter().with_clip_rect(avail);
-    let width = (avail.width() - 32.0).max(80.0);
-    let band = |text: String, size: f32, top: bool, key: &str| {
-        let galley = painter.layout(
-            text.clone(),
-            egui::FontId::proportional(size),
-            egui::Color32::WHITE,
-            width,
-        );
-        let x = avail.center().x - galley.size().x / 2.0;
-        let y = if top {
-            avail.top() + 12.0
-        } else {
-            avail.bottom() - 12.0 - galley.size().y
-        };
-        let pos = egui::pos2(x, y);
-        let back = egui::Rect::from_min_size(pos, galley.size()).expand(8.0);
-        painter.rect_filled(back, 6.0, egui::Color32::from_black_alpha(200));
-        painter.galley(pos, galley, egui::Color32::WHITE);
-        let response = ui.interact(back, ui.scope_id().with(key), egui::Sense::hover());
-        response.widget_info(|| egui::WidgetInfo::labeled(egui::Role::Label, true, &text));
-    };
-    if let Some((label, look_for)) = &caption.experiment {
-        band(
-            format!("{label}\nLook for: {look_for}"),
-            26.0,
-            true,
-            "caption-look-for",
-        );
-    }
-    if !caption.question.is_empty() {
-        band(caption.question.clone(), 22.0, false, "caption-question");
-    }
 }

@@ -6,7 +6,7 @@
 use crate::gui_common::{WINDOW, harness, harness_with, settle, small_earth};
 use egui::accesskit::Role;
 use egui_kittest::Harness;
-use egui_kittest::kittest::Queryable as _;
+use egui_kittest::kittest::{NodeT as _, Queryable as _};
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 use texplore::gui::{AppOptions, BrowseFor, Browser, ExplorerApp};
@@ -325,13 +325,38 @@ fn without_a_system_dialog_browse_opens_the_windows_own_path_dialog_and_says_why
         image_path(h.state()).as_deref(),
         Some("pictures/checker_512.png")
     );
-    // The Open dialog says it too, and offers no Browse… of its own.
+    // The Open dialog says it too, and its Browse… lists the folder typed instead: a folder
+    // clicked opens, a file clicked goes into the field.
+    let other = dir.path().join("scenes/other.ron");
+    std::fs::create_dir_all(other.parent().expect("folder")).expect("folder");
+    std::fs::copy(dir.path().join("earth-small.ron"), &other).expect("copy");
+    std::fs::copy(
+        dir.path().join("earth_2048x1024.jpg"),
+        dir.path().join("scenes/earth_2048x1024.jpg"),
+    )
+    .expect("copy");
     menu(&mut h, "File", "Open…");
     let _ = h.get_by_label("Open a preset or a texplore PNG");
     let _ = h.get_by_label(why);
-    assert_eq!(
-        h.query_all_by_label("Browse…").count(),
-        1,
-        "the scene panel's only"
-    );
+    h.get_by_role_and_label(Role::TextInput, "Path")
+        .set_text_value_accesskit(&format!("{}/", dir.path().display()));
+    h.step();
+    dialog_browse(&mut h);
+    h.get_by_label(&format!("scenes{}", std::path::MAIN_SEPARATOR))
+        .click();
+    h.run_steps(3);
+    h.get_by_label("other.ron").click();
+    h.run_steps(3);
+    let typed = h
+        .get_by_role_and_label(Role::TextInput, "Path")
+        .accesskit_node()
+        .value();
+    assert_eq!(typed.as_deref(), Some(other.display().to_string().as_str()));
+    h.get_by_label("Open").click();
+    h.run_steps(3);
+    // The image chosen above is an unsaved change.
+    h.get_by_label("Discard changes").click();
+    settle(&mut h);
+    assert!(h.state().error().is_none(), "{:?}", h.state().error());
+    assert_eq!(h.state().path(), other);
 }

@@ -75,16 +75,23 @@ fn typing_a_formula_changes_the_image_and_a_mistake_shows_under_the_field() {
         Some(MappingDesc::Formula { u, .. }) if u == "fract(atan2(x, z) / tau + 0.25)"
     ));
 
-    // A mistake: named under the field, the image stays as it was.
+    // A mistake: named under the field, which keeps it; the scene and the image stay as
+    // they were.
     type_formula(&mut h, "u =", "fract(atan2(x, z) / tau + w)");
     built(&mut h);
     assert!(
-        h.query_by_label_contains(
-            "objects[0].material.cd.mapping.u (object \"Earth\"): column 27: unknown name `w`"
-        )
-        .is_some(),
+        h.query_by_label_contains("u: column 27: unknown name `w`")
+            .is_some(),
         "the mistake is shown, naming the field"
     );
+    assert_eq!(
+        h.get_by_role_and_label(Role::TextInput, "u =")
+            .value()
+            .as_deref(),
+        Some("fract(atan2(x, z) / tau + w)"),
+        "the field keeps what was typed"
+    );
+    assert!(h.state().error().is_none(), "{:?}", h.state().error());
     assert_eq!(image_bytes(&h), turned, "the last good image stays");
 }
 

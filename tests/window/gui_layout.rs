@@ -12,7 +12,7 @@ use texplore::lesson::{Lesson, load_dir};
 use texplore::scene::load_preset;
 
 /// Lesson 2 (the texel lookup), its scene a 640x480 rectangle.
-fn lesson_two() -> Lesson {
+pub fn lesson_two() -> Lesson {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons");
     let loaded = load_dir(&dir).expect("the shipped lessons");
     loaded

@@ -12,6 +12,7 @@
 //! an edited description in place) that the app carries out the way it carries out every
 //! other panel's edit.
 
+pub mod captions;
 mod exercise;
 
 use super::command::Command;

@@ -198,7 +198,7 @@ pub(super) fn texture_settings_ui(
     }
     if let Some(current) = t.mapping() {
         let mut m = current.clone();
-        if super::texture::mapping_ui(ui, "mapping", &mut m) {
+        if super::texture::mapping_ui(ui, "mapping", &mut m, picker.object) {
             t.set_mapping(m);
             changed = true;
         }
@@ -230,7 +230,8 @@ pub(super) fn texture_settings_ui(
         }
         TextureDesc::Constant(c) => changed |= colour(ui, "colour", c),
         TextureDesc::Formula { grey, r, g, b, .. } => {
-            changed |= super::texture::colour_formulas_ui(ui, grey, [r, g, b]);
+            changed |=
+                super::texture::colour_formulas_ui(ui, image_label, picker.object, grey, [r, g, b]);
         }
     }
     changed

@@ -9,6 +9,7 @@
 
 mod camera;
 mod formula;
+mod formula_fields;
 mod lights;
 mod maps;
 mod material;

@@ -2,11 +2,12 @@
 //! settings (an image's path, filter, lookup, wrap and scale; a checker's squares and
 //! colours), with the list of images in `assets/`.
 
+use super::formula_fields::{check_colour, check_mapping, formula_group};
 use super::{PathText, ScenePanel, browse_button};
 use crate::gui::files::{BrowseFor, IMAGE_EXTENSIONS};
 use crate::gui::widgets::{colour, enum_combo, number, number_tip, uv_transform};
 use crate::mapping::formula::compare::lecture_formula;
-use crate::mapping::{FormulaError, FormulaMapping, Mapping};
+use crate::mapping::{FormulaMapping, Mapping};
 use crate::names::Named as _;
 use crate::scene::{MappingDesc, RenderDesc, TextureDesc, TextureKind, relative_asset_path};
 use crate::texture::{Filter, MAX_ANISOTROPY_LIMIT};
@@ -64,7 +65,7 @@ impl ScenePanel {
         }
         if let Some(current) = tex.mapping() {
             let mut m = current.clone();
-            if mapping_ui(ui, "Mapping", &mut m) {
+            if mapping_ui(ui, "Mapping", &mut m, self.key.number()) {
                 tex.set_mapping(m);
                 changed = true;
             }
@@ -150,7 +151,7 @@ impl ScenePanel {
                 mapping,
                 ..
             } => {
-                changed |= colour_formulas_ui(ui, grey, [r, g, b]);
+                changed |= colour_formulas_ui(ui, "colour", self.key.number(), grey, [r, g, b]);
                 // A formula mapping's editor above already counts the texture's NaNs.
                 if !matches!(mapping, MappingDesc::Formula { .. }) {
                     self.non_finite_ui(ui);
@@ -330,10 +331,16 @@ fn anisotropy(ui: &mut egui::Ui, filter: Filter, value: &mut f32) -> bool {
     .inner
 }
 
-/// The mapping menu: the built-in mappings and `formula`, whose two text fields follow, each
-/// with its mistake underneath (compiled here on each edit: microseconds; the scene itself is
-/// rebuilt off the UI thread through the document, like every edit). Returns whether it changed.
-pub(super) fn mapping_ui(ui: &mut egui::Ui, label: &str, desc: &mut MappingDesc) -> bool {
+/// The mapping menu: the built-in mappings and `formula`, whose two fields follow (see
+/// [`formula_group`]: the typing is the fields' own, and goes into the scene only when valid;
+/// the scene itself is rebuilt off the UI thread through the document, like every edit).
+/// `owner` is the object's number. Returns whether it changed.
+pub(super) fn mapping_ui(
+    ui: &mut egui::Ui,
+    label: &str,
+    desc: &mut MappingDesc,
+    owner: usize,
+) -> bool {
     let mut changed = false;
     let selected = desc.builtin().map_or("formula", |m| m.name());
     ui.horizontal(|ui| {
@@ -375,65 +382,47 @@ pub(super) fn mapping_ui(ui: &mut egui::Ui, label: &str, desc: &mut MappingDesc)
             .labelled_by(l.id);
     });
     if let MappingDesc::Formula { u, v } = desc {
-        changed |= formula_field(ui, "u =", u);
-        changed |= formula_field(ui, "v =", v);
-        match FormulaMapping::checked(u, v) {
-            Ok(f) => {
-                ui.label(egui::RichText::new(f.derivative_note()).weak());
-            }
-            Err(e) => formula_error(ui, &e),
+        let id = ui.make_persistent_id(("mapping-formulas", label, owner));
+        changed |= formula_group(
+            ui,
+            id,
+            &["u =", "v ="],
+            &mut [&mut *u, &mut *v],
+            check_mapping,
+            |_, _| {},
+        );
+        // The derivatives of the formulas the scene holds (the last valid ones), decided on
+        // the UI thread without building them (`checked`).
+        if let Ok(f) = FormulaMapping::checked(u, v) {
+            ui.label(egui::RichText::new(f.derivative_note()).weak());
         }
     }
     changed
 }
 
-/// The colour formulas of a formula texture: grey, or r, g and b.
+/// The colour formulas of a formula texture: grey, or r, g and b (`owner` is the object's
+/// number; `place` tells this texture's fields from another's of the same object).
 pub(super) fn colour_formulas_ui(
     ui: &mut egui::Ui,
+    place: &str,
+    owner: usize,
     grey: &mut String,
     rgb: [&mut String; 3],
 ) -> bool {
-    let mut changed = formula_field(ui, "grey =", grey);
-    ui.label(egui::RichText::new("or, with grey empty, one formula per channel:").weak());
     let [r, g, b] = rgb;
-    changed |= formula_field(ui, "r =", r);
-    changed |= formula_field(ui, "g =", g);
-    changed |= formula_field(ui, "b =", b);
-    let vars = crate::mapping::formula::TEXTURE_VARS;
-    let check = if grey.trim().is_empty() {
-        [("r", &*r), ("g", &*g), ("b", &*b)]
-            .into_iter()
-            .find_map(|(name, t)| crate::mapping::formula::Expr::compile(name, t, &vars).err())
-    } else {
-        crate::mapping::formula::Expr::compile("grey", grey, &vars).err()
-    };
-    if let Some(e) = check {
-        formula_error(ui, &e);
-    }
-    changed
-}
-
-/// One formula's text field; returns whether it changed.
-fn formula_field(ui: &mut egui::Ui, label: &str, text: &mut String) -> bool {
-    ui.horizontal(|ui| {
-        let l = ui.label(label);
-        ui.add(
-            egui::TextEdit::singleline(text)
-                .font(egui::TextStyle::Monospace)
-                .desired_width(f32::INFINITY),
-        )
-        .labelled_by(l.id)
-        .changed()
-    })
-    .inner
-}
-
-/// A formula's mistake under its field: the message, and the formula with a caret under the
-/// column.
-fn formula_error(ui: &mut egui::Ui, e: &FormulaError) {
-    let red = ui.visuals().error_fg_color;
-    ui.label(egui::RichText::new(e.to_string()).color(red));
-    if let Some(p) = e.pointer() {
-        ui.label(egui::RichText::new(p).monospace().color(red));
-    }
+    let id = ui.make_persistent_id(("colour-formulas", place, owner));
+    formula_group(
+        ui,
+        id,
+        &["grey =", "r =", "g =", "b ="],
+        &mut [grey, r, g, b],
+        check_colour,
+        |ui, i| {
+            if i == 0 {
+                ui.label(
+                    egui::RichText::new("or, with grey empty, one formula per channel:").weak(),
+                );
+            }
+        },
+    )
 }

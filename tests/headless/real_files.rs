@@ -246,14 +246,14 @@ fn tiff_variants_image_refused_load() {
     // Signed: offset by half the range, as ImageMagick reads them.
     let p = save("i16.tif", &|e| {
         e.write_image::<colortype::GrayI16>(2, 1, &[-32768, 32767])
-            .unwrap()
+            .unwrap();
     });
     let img = load_image(&p, false).unwrap();
     assert_eq!((img.texel_top(0, 0).0, img.texel_top(1, 0).0), (0.0, 1.0));
     // 64-bit float: linear, as it is.
     let p = save("f64.tif", &|e| {
         e.write_image::<colortype::Gray64Float>(2, 1, &[0.25, 3.5])
-            .unwrap()
+            .unwrap();
     });
     assert_eq!(
         load_image(&p, true).unwrap().texel_top(1, 0),
@@ -262,7 +262,7 @@ fn tiff_variants_image_refused_load() {
     // 32-bit unsigned: the full range is [0, 1].
     let p = save("u32.tif", &|e| {
         e.write_image::<colortype::Gray32>(2, 1, &[0, u32::MAX])
-            .unwrap()
+            .unwrap();
     });
     assert_eq!(
         load_image(&p, false).unwrap().texel_top(1, 0),

@@ -46,8 +46,11 @@ struct Prepared {
     /// numbers stay those of the file; `mtllib` lines replaced by `mtllib K`, K indexing
     /// `libraries`; keywords separated from their argument by one space.
     text: String,
-    /// The files of each `mtllib` line.
+    /// The files of each `mtllib` line that names one not named before.
     libraries: Vec<Vec<PathBuf>>,
+    /// Polylines (`l`) and points (`p`) left out.
+    lines: usize,
+    points: usize,
 }
 
 /// Reads the lines of `r` (at most `max_bytes`), joining backslash continuations; calls `f`
@@ -147,6 +150,8 @@ fn prepare(path: &Path, dir: &Path) -> Result<Prepared> {
     let mut out = Prepared {
         text: String::new(),
         libraries: Vec::new(),
+        lines: 0,
+        points: 0,
     };
     // Every library name seen so far: a name repeated (on one line or many) is read once.
     let mut named = HashSet::new();
@@ -178,7 +183,14 @@ fn prepare(path: &Path, dir: &Path) -> Result<Prepared> {
             "usemtl" | "o" | "g" => {
                 let _ = writeln!(out.text, "{word} {rest}");
             }
-            "l" | "p" => out.text.push('\n'),
+            "l" | "p" => {
+                out.text.push('\n');
+                *if word == "l" {
+                    &mut out.lines
+                } else {
+                    &mut out.points
+                } += 1;
+            }
             // `v x y z w` keeps its weight; `v x y z r g b [a]` loses its colour.
             "v" if rest.split_whitespace().count() >= 5 => {
                 let xyz: Vec<&str> = rest.split_whitespace().take(3).collect();
@@ -345,6 +357,16 @@ pub fn read_obj(path: &Path) -> Result<MeshData> {
                 format!("more than {MAX_TRIANGLES} triangles"),
             ));
         }
+    }
+    if data.triangles.is_empty() && prepared.lines + prepared.points > 0 {
+        return Err(fail(
+            "faces".into(),
+            format!(
+                "no triangles: the file has only polylines ({} `l`) and points ({} `p`), \
+                 which are not surfaces",
+                prepared.lines, prepared.points
+            ),
+        ));
     }
     data.faces = data.triangles.len();
     if has_uv && !data.positions.is_empty() {

@@ -53,6 +53,9 @@ pub struct Prefs {
     pub camera_is_unsaved: bool,
     /// *View → UI scale* (Ctrl+= / Ctrl+- / Ctrl+0): egui's zoom factor.
     pub ui_scale: f32,
+    /// The lesson open when the window closed (its name), if its scene was open: the page
+    /// opens on it again after a reload.
+    pub lesson: Option<String>,
 }
 
 impl Default for Prefs {
@@ -61,6 +64,7 @@ impl Default for Prefs {
             last_scene: None,
             camera_is_unsaved: false,
             ui_scale: 1.0,
+            lesson: None,
         }
     }
 }
@@ -201,6 +205,7 @@ impl ExplorerApp {
             last_scene: Some(std::path::absolute(path).unwrap_or_else(|_| path.clone())),
             camera_is_unsaved: self.camera_is_unsaved,
             ui_scale: self.ui_scale,
+            lesson: self.lessons.active_lesson(),
         }
     }
 
@@ -398,6 +403,12 @@ impl ExplorerApp {
         }
         let title = self.title();
         if title != self.title_sent {
+            // A page's title is its document's (eframe's web runner has no viewport title).
+            #[cfg(target_arch = "wasm32")]
+            if let Some(d) = web_sys::window().and_then(|w| w.document()) {
+                d.set_title(&title);
+            }
+            #[cfg(not(target_arch = "wasm32"))]
             ctx.send_viewport_cmd(egui::ViewportCommand::Title(title.clone()));
             self.title_sent = title;
         }

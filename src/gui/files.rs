@@ -343,9 +343,13 @@ impl Files {
                         }
                     }
                 });
-                ui.separator();
-                if ui.button("Quit").clicked() {
-                    self.requested = Some(Pending::Quit);
+                // A page is closed with its tab: no Quit there.
+                #[cfg(not(target_arch = "wasm32"))]
+                {
+                    ui.separator();
+                    if ui.button("Quit").clicked() {
+                        self.requested = Some(Pending::Quit);
+                    }
                 }
             });
             ui.menu_button("Edit", edit);

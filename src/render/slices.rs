@@ -37,7 +37,11 @@ mod protocol;
 mod worker;
 
 pub use farm::{Farm, Landed, Port, SceneSource, describe, source_of};
-pub use protocol::{Chunk, FromWorker, TileRows, ToWorker};
+pub use protocol::Chunk;
+#[cfg(test)]
+use protocol::TileRows;
+#[cfg(test)]
+use protocol::{FromWorker, ToWorker};
 pub use worker::Worker;
 
 /// The finest preview block a sliced render shows: a preview is rendered whole, and a block of
@@ -69,7 +73,10 @@ impl PassWork {
         let tiles = tile_count(film.height());
         let rows = film.width() as usize * TILE_ROWS;
         let empty = match &pixels {
-            PassPixels::Masked(mask, _) => mask.chunks(rows.max(1)).map(|t| !t.contains(&true)).collect(),
+            PassPixels::Masked(mask, _) => mask
+                .chunks(rows.max(1))
+                .map(|t| !t.contains(&true))
+                .collect(),
             _ => Vec::new(),
         };
         // Tiles an adaptive pass samples nothing of are never handed out.
@@ -537,7 +544,9 @@ impl Drop for SlicedRender {
 #[cfg(target_arch = "wasm32")]
 mod driver;
 #[cfg(target_arch = "wasm32")]
-pub use driver::{add_worker, run_slices, worker_errors, worker_lost, worker_memory, worker_message};
+pub use driver::{
+    add_worker, run_slices, worker_errors, worker_lost, worker_memory, worker_message,
+};
 #[cfg(target_arch = "wasm32")]
 pub(super) use driver::{finish, queue, queue_after, register, run_one};
 

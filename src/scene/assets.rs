@@ -151,9 +151,12 @@ impl AssetCache {
             // In a page, a shipped image not downloaded yet (it is, when a scene renders it):
             // a check stands it in unread. The shipped lessons' scenes are checked in full by
             // the test suite (`tests/headless/lessons.rs`), and a page has no lessons of its own.
-            return Ok(Arc::new(ImageData::from_fn(1, 1, "not downloaded", |_, _| {
-                crate::math::Rgb(0.5, 0.5, 0.5)
-            })));
+            return Ok(Arc::new(ImageData::from_fn(
+                1,
+                1,
+                "not downloaded",
+                |_, _| crate::math::Rgb(0.5, 0.5, 0.5),
+            )));
         }
         let file = open_input(path)?;
         let key = (file_id(&file, path), req.srgb, req.alpha);

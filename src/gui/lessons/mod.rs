@@ -180,6 +180,14 @@ impl LessonsPanel {
         self.show_answer = false;
     }
 
+    /// The name of the lesson under way (its scene open from the panel), if any.
+    #[must_use]
+    pub fn active_lesson(&self) -> Option<String> {
+        self.active
+            .then(|| self.lesson().map(|l| l.name.clone()))
+            .flatten()
+    }
+
     /// Whether `desc` is the lesson's scene or one of its experiments' (not the learner's
     /// work: switching lessons asks nothing).
     fn is_lessons_own(&self, desc: &SceneDesc) -> bool {

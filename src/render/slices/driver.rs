@@ -38,9 +38,9 @@ pub(in crate::render) fn run_one(force: bool) -> bool {
     // Out of the borrow: the work may queue more.
     let next = QUEUE.with(|q| {
         let mut q = q.borrow_mut();
-        let i = q.iter().position(|(files, _)| {
-            force || files.iter().all(|f| crate::input::is_ready(f))
-        })?;
+        let i = q
+            .iter()
+            .position(|(files, _)| force || files.iter().all(|f| crate::input::is_ready(f)))?;
         q.remove(i)
     });
     next.map(|(_, work)| work()).is_some()

@@ -187,12 +187,6 @@ impl Farm {
         self.slots.len() - 1
     }
 
-    /// The workers alive.
-    #[must_use]
-    pub fn workers(&self) -> usize {
-        self.slots.iter().filter(|s| s.alive).count()
-    }
-
     /// Each worker's memory in bytes, as it last said (0: not yet), and whether it is alive.
     #[must_use]
     pub fn memory(&self) -> Vec<(u64, bool)> {

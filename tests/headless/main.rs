@@ -26,6 +26,7 @@ mod images;
 mod layering;
 mod lessons;
 mod lessons_claims;
+mod link;
 mod materials;
 mod memory;
 mod meshes;

@@ -250,3 +250,74 @@ fn scene(data: &str) -> Result<String, LinkError> {
     }
     Ok(text)
 }
+
+/// The text of the scene `link` opens: a scene link's, or a lesson link's lesson scene at its
+/// experiment (asset paths relative to the shipped presets' folder either way).
+///
+/// # Errors
+/// The link is refused ([`parse`]), or names a lesson or experiment there is not.
+pub fn scene_text(link: &str) -> Result<String, LinkError> {
+    match parse(link)? {
+        Link::Scene(text) => Ok(text),
+        Link::Lesson { lesson, experiment } => {
+            let loaded = crate::lesson::load_default();
+            let l = crate::lesson::find(&loaded.lessons, &lesson).map_err(refuse)?;
+            let base = crate::scene::load_preset(&l.preset).map_err(|e| refuse(e.to_string()))?;
+            let desc = match experiment {
+                Some(k) if k >= l.experiments.len() => {
+                    return Err(refuse(format!(
+                        "lesson {lesson} has {} experiments, not {}",
+                        l.experiments.len(),
+                        k + 1
+                    )));
+                }
+                Some(k) => l.scene(k, &base).map_err(refuse)?,
+                None => base,
+            };
+            Ok(to_ron(&desc))
+        }
+    }
+}
+
+/// A name for a link's scene file, the same for the same scene.
+fn file_name(text: &str) -> String {
+    // FNV-1a: a name, not a security measure (the text is checked on reading).
+    let hash = text.bytes().fold(0xcbf2_9ce4_8422_2325_u64, |h, b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
+    });
+    format!("link-{hash:016x}.ron")
+}
+
+/// Opens what `link` names as a preset file the window can open like any other, and returns
+/// its path: in a page, mounted under `links/` (beside `presets/`, so its asset paths read the
+/// same); elsewhere, written (atomically) into `texplore/links` in the user's cache folder, its
+/// asset paths pointing into the copy of the shipped files.
+///
+/// # Errors
+/// The link is refused, or the file cannot be written.
+pub fn materialise(link: &str) -> Result<PathBuf, LinkError> {
+    let text = scene_text(link)?;
+    #[cfg(target_arch = "wasm32")]
+    {
+        let path = Path::new("links").join(file_name(&text));
+        crate::input::mount(&path, text.into_bytes());
+        Ok(path)
+    }
+    #[cfg(not(target_arch = "wasm32"))]
+    {
+        let presets = crate::shipped::presets_dir().map_err(refuse)?;
+        let dir = dirs::cache_dir()
+            .ok_or_else(|| refuse("there is no cache folder to open it from"))?
+            .join("texplore")
+            .join("links");
+        std::fs::create_dir_all(&dir)
+            .map_err(|e| refuse(format!("cannot make {}: {e}", dir.display())))?;
+        let mut desc =
+            parse_preset(&text, Path::new(LINK_PRESET)).map_err(|e| refuse(e.to_string()))?;
+        crate::scene::rebase_assets(&mut desc, &presets, &dir);
+        let path = dir.join(file_name(&text));
+        crate::output::write_own_file(&path, to_ron(&desc).as_bytes())
+            .map_err(|e| refuse(e.to_string()))?;
+        Ok(path)
+    }
+}

@@ -25,6 +25,13 @@ fn main() -> std::process::ExitCode {
 
 #[cfg(feature = "gui")]
 fn open_window(open: Option<std::path::PathBuf>, simd: SimdMode) -> anyhow::Result<()> {
+    // A link to a scene (`texplore 'https://.../#texplore1-...'`) opens as the file it names.
+    let open = match open {
+        Some(p) if p.to_string_lossy().contains("#texplore") => {
+            Some(texplore::link::materialise(&p.to_string_lossy())?)
+        }
+        other => other,
+    };
     texplore::gui::run(open, simd)
 }
 

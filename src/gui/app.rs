@@ -440,6 +440,10 @@ impl ExplorerApp {
             .map_or("", |d| d.description.as_str());
         let dirty = self.is_dirty();
         commands.extend(self.files.dialogs(ctx, dirty, description));
+        commands.extend(
+            self.files
+                .link_dialogs(ctx, self.doc.desc.as_ref(), self.doc.folder()),
+        );
         if self.files.close_requested(ctx, dirty) {
             ctx.send_viewport_cmd(egui::ViewportCommand::CancelClose);
         }

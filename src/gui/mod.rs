@@ -13,6 +13,7 @@ mod history;
 mod inspector;
 mod layout;
 mod lessons;
+mod links;
 mod live;
 mod overlay;
 mod panes;

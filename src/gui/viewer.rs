@@ -100,7 +100,8 @@ impl Viewer {
         !p.finished && !p.cancelled
     }
 
-    /// The render's progress, once one has started.
+    /// The render's progress, once one has started (the page publishes it for scripts).
+    #[cfg_attr(not(target_arch = "wasm32"), allow(dead_code))]
     #[must_use]
     pub fn progress(&self) -> Option<crate::render::Progress> {
         self.job.as_ref().map(RenderJob::progress)

@@ -124,3 +124,21 @@ fn hostile_links_are_refused_with_a_clear_message() {
     assert!(refused("#texplore1-l-../../etc").contains("not a lesson's name"));
     assert!(refused("#texplore1-l-06-spherical~x").contains("not an experiment's number"));
 }
+
+#[test]
+fn a_link_opens_as_a_preset_file_with_the_same_scene() {
+    let desc = load_preset(Path::new("presets/earth.ron")).unwrap();
+    let (fragment, _) = scene_fragment(&desc, Path::new("presets")).unwrap();
+    let path = texplore::link::materialise(&format!("#{fragment}")).unwrap();
+    let opened = load_preset(&path).unwrap();
+    assert_eq!(opened.objects.len(), desc.objects.len());
+    // Its image is the shipped Earth, wherever the file was written.
+    let scene =
+        texplore::scene::build_scene(&opened, &path, &mut texplore::scene::AssetCache::new());
+    assert!(scene.is_ok(), "{:?}", scene.err());
+    // A lesson link opens the experiment's scene.
+    let lesson = texplore::link::scene_text("#texplore1-l-06-spherical-mapping~3").unwrap();
+    assert!(lesson.contains("UvGrid"), "{lesson}");
+    let m = texplore::link::scene_text("#texplore1-l-06-spherical-mapping~99").unwrap_err();
+    assert!(m.to_string().contains("experiments, not 99"), "{m}");
+}

@@ -51,6 +51,8 @@ pub struct LessonsPanel {
     markdown: egui_commonmark::CommonMarkCache,
     /// The lesson whose exercises are being written, and each exercise's fields and verdict.
     attempts: (Option<usize>, Vec<exercise::Attempt>),
+    /// The experiment whose link was copied last, and the link.
+    link: Option<(usize, String)>,
 }
 
 impl Default for LessonsPanel {
@@ -88,6 +90,7 @@ impl LessonsPanel {
             drawn: None,
             markdown: egui_commonmark::CommonMarkCache::default(),
             attempts: (None, Vec::new()),
+            link: None,
         }
     }
 
@@ -428,6 +431,19 @@ impl LessonsPanel {
                         }
                     }
                 }
+                if ui
+                    .small_button("Link")
+                    .on_hover_text("Copies a link that opens this lesson at this experiment")
+                    .clicked()
+                {
+                    let link = format!(
+                        "{}#{}",
+                        super::links::page_address(),
+                        crate::link::lesson_fragment(&lesson.name, Some(k))
+                    );
+                    ui.ctx().copy_text(link.clone());
+                    self.link = Some((k, link));
+                }
                 if on
                     && let Some(base) = &self.base
                     && ui
@@ -448,6 +464,9 @@ impl LessonsPanel {
                     *action = Some(Command::Apply(back));
                 }
             });
+            if let Some((_, link)) = self.link.as_ref().filter(|(j, _)| *j == k) {
+                ui.weak(format!("Link copied: {link}"));
+            }
             if let Some(a) = x.after {
                 ui.weak(format!(
                     "Builds on \"{}\": its edits come first.",

@@ -495,11 +495,21 @@ pub async fn start(canvas_id: &str) -> Result<(), String> {
             Box::new(|cc| {
                 CONTEXT.with(|c| *c.borrow_mut() = Some(cc.egui_ctx.clone()));
                 let prefs = super::Prefs::load(cc.storage);
-                // The lesson open last time, on its scene (a reload keeps it).
-                let lesson = prefs.lesson.as_deref().and_then(|name| {
-                    let loaded = crate::lesson::load_default();
-                    crate::lesson::find(&loaded.lessons, name).ok().cloned()
-                });
+                // A link to a scene in the page's address opens that scene.
+                let link = web_sys::window()
+                    .and_then(|w| w.location().hash().ok())
+                    .filter(|h| h.contains("#texplore"))
+                    .map(|h| crate::link::materialise(&h));
+                // The lesson open last time, on its scene (a reload keeps it), unless a link
+                // says what to open.
+                let lesson = prefs
+                    .lesson
+                    .as_deref()
+                    .filter(|_| link.is_none())
+                    .and_then(|name| {
+                        let loaded = crate::lesson::load_default();
+                        crate::lesson::find(&loaded.lessons, name).ok().cloned()
+                    });
                 let app_options = AppOptions {
                     recent_file: None,
                     lesson: lesson.clone(),
@@ -508,15 +518,24 @@ pub async fn start(canvas_id: &str) -> Result<(), String> {
                     follow_viewport: false,
                     simd: crate::scene::SimdMode::Auto,
                 };
-                // The scene open last time, if it is a shipped one (uploads do not outlive the
-                // page), else the Earth.
-                let open = lesson.map(|l| l.preset).or_else(|| {
-                    prefs
-                        .last_scene
-                        .filter(|p| crate::input::exists(p) && !p.starts_with(UPLOADS))
-                        .or_else(|| Some(PathBuf::from(DEFAULT_PRESET)))
-                });
-                let inner = ExplorerApp::restore(cc.storage, open, app_options);
+                // The link's scene, the lesson's, the scene open last time if it is a shipped
+                // one (uploads do not outlive the page), else the Earth.
+                let linked = match &link {
+                    Some(Ok(path)) => Some(path.clone()),
+                    _ => None,
+                };
+                let open = linked
+                    .or_else(|| lesson.as_ref().map(|l| l.preset.clone()))
+                    .or_else(|| {
+                        prefs
+                            .last_scene
+                            .filter(|p| crate::input::exists(p) && !p.starts_with(UPLOADS))
+                            .or_else(|| Some(PathBuf::from(DEFAULT_PRESET)))
+                    });
+                let mut inner = ExplorerApp::restore(cc.storage, open, app_options);
+                if let Some(Err(e)) = link {
+                    inner.error = Some(e.to_string());
+                }
                 Ok(Box::new(WebApp { inner, frames: 0 }))
             }),
         )

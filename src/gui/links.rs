@@ -1,0 +1,118 @@
+//! Links that open a scene, in the window (issue 36 §5): *File > Copy link to this scene* (and
+//! the link beside each lesson experiment) put the scene in an address's fragment
+//! ([`crate::link`]), shown in a dialog and copied; *File > Open link…* opens one pasted.
+
+use super::command::Command;
+use crate::scene::SceneDesc;
+use std::path::Path;
+
+/// What the File menu asked for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LinkAsk {
+    /// Copy a link to the scene showing.
+    Copy,
+    /// Open a link pasted.
+    Open,
+}
+
+/// The link dialogs' state.
+#[derive(Debug, Default)]
+pub struct LinkDialog {
+    /// The link made, with the notices (files left out), shown until closed.
+    made: Option<(String, Vec<String>)>,
+    /// The link being pasted, and why it was refused.
+    open: Option<(String, Option<String>)>,
+}
+
+/// The page's address without its fragment (in a page), so a link is whole; elsewhere nothing:
+/// the teacher's page address goes before the `#`.
+pub(super) fn page_address() -> String {
+    #[cfg(target_arch = "wasm32")]
+    if let Some(l) = web_sys::window().map(|w| w.location()) {
+        return format!(
+            "{}{}",
+            l.origin().unwrap_or_default(),
+            l.pathname().unwrap_or_default()
+        );
+    }
+    String::new()
+}
+
+impl LinkDialog {
+    /// Handles `ask` and draws the dialogs open; returns the command to run (a file to open,
+    /// an error).
+    pub fn ui(
+        &mut self,
+        ctx: &egui::Context,
+        ask: Option<LinkAsk>,
+        desc: Option<&SceneDesc>,
+        folder: &Path,
+    ) -> Option<Command> {
+        let mut out = None;
+        match ask {
+            Some(LinkAsk::Copy) => match desc.map(|d| crate::link::scene_fragment(d, folder)) {
+                Some(Ok((fragment, notices))) => {
+                    let link = format!("{}#{fragment}", page_address());
+                    ctx.copy_text(link.clone());
+                    self.made = Some((link, notices));
+                }
+                Some(Err(e)) => out = Some(Command::Error(e.to_string())),
+                None => {}
+            },
+            Some(LinkAsk::Open) => self.open = Some((String::new(), None)),
+            None => {}
+        }
+        if let Some((link, notices)) = &self.made {
+            let mut close = false;
+            egui::Modal::new(egui::Id::unique("texplore-link-made")).show(ctx, |ui| {
+                ui.heading("Link to this scene");
+                ui.label("Copied. Anyone who opens it sees this scene (the page needs no server):");
+                let mut text = link.clone();
+                ui.add(
+                    egui::TextEdit::multiline(&mut text)
+                        .desired_rows(3)
+                        .desired_width(480.0),
+                );
+                if link.starts_with('#') {
+                    ui.weak("Put your page's address (where students open texplore) before the #.");
+                }
+                for n in notices {
+                    ui.colored_label(egui::Color32::from_rgb(230, 160, 60), n);
+                }
+                close = ui.button("Close").clicked();
+            });
+            if close {
+                self.made = None;
+            }
+        }
+        if let Some((text, error)) = &mut self.open {
+            let (mut go, mut close) = (false, false);
+            egui::Modal::new(egui::Id::unique("texplore-link-open")).show(ctx, |ui| {
+                ui.heading("Open link");
+                ui.label("Paste a link to a scene (it ends in #texplore1-…):");
+                let field = ui.add(egui::TextEdit::singleline(text).desired_width(480.0));
+                go = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
+                if let Some(e) = error.as_ref() {
+                    ui.colored_label(egui::Color32::from_rgb(230, 90, 80), e);
+                }
+                ui.horizontal(|ui| {
+                    go |= ui.button("Open").clicked();
+                    close = ui.button("Cancel").clicked();
+                });
+            });
+            if go {
+                match crate::link::materialise(text) {
+                    Ok(path) => {
+                        out = Some(Command::Open(path));
+                        close = true;
+                    }
+                    Err(e) => *error = Some(e.to_string()),
+                }
+            }
+            if close {
+                self.open = None;
+            }
+        }
+        out
+    }
+}

@@ -158,13 +158,12 @@ pub fn lesson_fragment(lesson: &str, experiment: Option<usize>) -> String {
     }
 }
 
-/// What `link` opens: a whole address (`https://.../#texplore1-...`), or its fragment with or
-/// without `#`.
+/// The fragment of `link` (a whole address or its fragment, with or without `#`), without
+/// the `#`.
 ///
 /// # Errors
-/// Too long, not a texplore link, another version, damaged (base64, deflate, UTF-8), a preset
-/// that does not parse as a preset file would not, or a file named that is not a shipped one.
-pub fn parse(link: &str) -> Result<Link, LinkError> {
+/// It is longer than [`MAX_LINK_BYTES`].
+pub fn fragment(link: &str) -> Result<&str, LinkError> {
     let link = link.trim();
     let fragment = link.rsplit_once('#').map_or(link, |(_, f)| f);
     if fragment.len() > MAX_LINK_BYTES {
@@ -173,6 +172,17 @@ pub fn parse(link: &str) -> Result<Link, LinkError> {
             fragment.len()
         )));
     }
+    Ok(fragment)
+}
+
+/// What `link` opens: a whole address (`https://.../#texplore1-...`), or its fragment with or
+/// without `#`.
+///
+/// # Errors
+/// Too long, not a texplore link, another version, damaged (base64, deflate, UTF-8), a preset
+/// that does not parse as a preset file would not, or a file named that is not a shipped one.
+pub fn parse(link: &str) -> Result<Link, LinkError> {
+    let fragment = fragment(link)?;
     let Some(rest) = fragment.strip_prefix("texplore") else {
         return Err(refuse(
             "it is not a texplore link (it should end in #texplore1-...)",
@@ -251,6 +261,24 @@ fn scene(data: &str) -> Result<String, LinkError> {
     Ok(text)
 }
 
+/// The lesson a lesson link names, among the shipped lessons and the teacher's own, and its
+/// experiment checked against the lesson's.
+fn lesson_of(
+    lesson: &str,
+    experiment: Option<usize>,
+) -> Result<(crate::lesson::Lesson, Option<usize>), LinkError> {
+    let loaded = crate::lesson::load_default();
+    let l = crate::lesson::find(&loaded.lessons, lesson).map_err(refuse)?;
+    if let Some(k) = experiment.filter(|&k| k >= l.experiments.len()) {
+        return Err(refuse(format!(
+            "lesson {lesson} has {} experiments, not {}",
+            l.experiments.len(),
+            k + 1
+        )));
+    }
+    Ok((l.clone(), experiment))
+}
+
 /// The text of the scene `link` opens: a scene link's, or a lesson link's lesson scene at its
 /// experiment (asset paths relative to the shipped presets' folder either way).
 ///
@@ -260,21 +288,38 @@ pub fn scene_text(link: &str) -> Result<String, LinkError> {
     match parse(link)? {
         Link::Scene(text) => Ok(text),
         Link::Lesson { lesson, experiment } => {
-            let loaded = crate::lesson::load_default();
-            let l = crate::lesson::find(&loaded.lessons, &lesson).map_err(refuse)?;
+            let (l, experiment) = lesson_of(&lesson, experiment)?;
             let base = crate::scene::load_preset(&l.preset).map_err(|e| refuse(e.to_string()))?;
             let desc = match experiment {
-                Some(k) if k >= l.experiments.len() => {
-                    return Err(refuse(format!(
-                        "lesson {lesson} has {} experiments, not {}",
-                        l.experiments.len(),
-                        k + 1
-                    )));
-                }
                 Some(k) => l.scene(k, &base).map_err(refuse)?,
                 None => base,
             };
             Ok(to_ron(&desc))
+        }
+    }
+}
+
+/// What the window opens for a link.
+#[derive(Clone, Debug)]
+pub enum Target {
+    /// A preset file holding the link's scene ([`materialise`]).
+    Scene(PathBuf),
+    /// A lesson, with the Lessons panel open on it, at one of its experiments (0-based).
+    Lesson(Box<crate::lesson::Lesson>, Option<usize>),
+}
+
+/// What the window opens for `link`: a scene link's scene as a preset file ([`materialise`]),
+/// or a lesson link's lesson (checked: it exists, and so does its experiment).
+///
+/// # Errors
+/// The link is refused, names a lesson or experiment there is not, or its scene's file cannot
+/// be written.
+pub fn resolve(link: &str) -> Result<Target, LinkError> {
+    match parse(link)? {
+        Link::Scene(_) => materialise(link).map(Target::Scene),
+        Link::Lesson { lesson, experiment } => {
+            let (l, k) = lesson_of(&lesson, experiment)?;
+            Ok(Target::Lesson(Box::new(l), k))
         }
     }
 }

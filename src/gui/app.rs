@@ -56,6 +56,8 @@ pub struct Prefs {
     /// The lesson open when the window closed (its name), if its scene was open: the page
     /// opens on it again after a reload.
     pub lesson: Option<String>,
+    /// The lesson's experiment that scene showed (0-based), put back with it.
+    pub experiment: Option<usize>,
 }
 
 impl Default for Prefs {
@@ -65,6 +67,7 @@ impl Default for Prefs {
             camera_is_unsaved: false,
             ui_scale: 1.0,
             lesson: None,
+            experiment: None,
         }
     }
 }
@@ -206,6 +209,7 @@ impl ExplorerApp {
             camera_is_unsaved: self.camera_is_unsaved,
             ui_scale: self.ui_scale,
             lesson: self.lessons.active_lesson(),
+            experiment: self.lessons.experiment_shown(self.doc.desc.as_ref()),
         }
     }
 
@@ -444,6 +448,12 @@ impl ExplorerApp {
             self.files
                 .link_dialogs(ctx, self.doc.desc.as_ref(), self.doc.folder()),
         );
+        // A lesson link: the panel starts on the lesson, and on its experiment once it opened.
+        if let Some((name, k)) = self.files.links.take_lesson() {
+            self.lessons.start(&name);
+            self.lessons.then_experiment(k);
+        }
+        commands.extend(self.lessons.due());
         if self.files.close_requested(ctx, dirty) {
             ctx.send_viewport_cmd(egui::ViewportCommand::CancelClose);
         }

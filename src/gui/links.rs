@@ -1,6 +1,7 @@
 //! Links that open a scene, in the window (issue 36 §5): *File > Copy link to this scene* (and
 //! the link beside each lesson experiment) put the scene in an address's fragment
-//! ([`crate::link`]), shown in a dialog and copied; *File > Open link…* opens one pasted.
+//! ([`crate::link`]), shown in a dialog and copied; *File > Open link…* opens one pasted (a
+//! lesson link opens the lesson, with the Lessons panel, at its experiment).
 
 use super::command::Command;
 use crate::scene::SceneDesc;
@@ -22,6 +23,8 @@ pub struct LinkDialog {
     made: Option<(String, Vec<String>)>,
     /// The link being pasted, and why it was refused.
     open: Option<(String, Option<String>)>,
+    /// A lesson link opened: the lesson and its experiment, for the Lessons panel.
+    lesson: Option<(String, Option<usize>)>,
 }
 
 /// The page's address without its fragment (in a page), so a link is whole; elsewhere nothing:
@@ -38,7 +41,29 @@ pub(super) fn page_address() -> String {
     String::new()
 }
 
+/// In a page, puts `fragment` in the address bar (replacing the entry, so Back is unchanged):
+/// the address is then the link, and a reload opens the page where it was (the page's start
+/// makes the link's scene again). Elsewhere nothing.
+pub(super) fn show_in_address(fragment: &str) {
+    #[cfg(target_arch = "wasm32")]
+    if let Some(history) = web_sys::window().and_then(|w| w.history().ok()) {
+        let _ = history.replace_state_with_url(
+            &wasm_bindgen::JsValue::NULL,
+            "",
+            Some(&format!("#{fragment}")),
+        );
+    }
+    #[cfg(not(target_arch = "wasm32"))]
+    let _ = fragment;
+}
+
 impl LinkDialog {
+    /// The lesson (its name) and experiment of a lesson link just opened, for the Lessons
+    /// panel to start on while its preset opens.
+    pub fn take_lesson(&mut self) -> Option<(String, Option<usize>)> {
+        self.lesson.take()
+    }
+
     /// Handles `ask` and draws the dialogs open; returns the command to run (a file to open,
     /// an error).
     pub fn ui(
@@ -52,6 +77,7 @@ impl LinkDialog {
         match ask {
             Some(LinkAsk::Copy) => match desc.map(|d| crate::link::scene_fragment(d, folder)) {
                 Some(Ok((fragment, notices))) => {
+                    show_in_address(&fragment);
                     let link = format!("{}#{fragment}", page_address());
                     ctx.copy_text(link.clone());
                     self.made = Some((link, notices));
@@ -101,9 +127,20 @@ impl LinkDialog {
                 });
             });
             if go {
-                match crate::link::materialise(text) {
-                    Ok(path) => {
+                if let Ok(f) = crate::link::fragment(text) {
+                    show_in_address(f);
+                }
+                match crate::link::resolve(text) {
+                    Ok(crate::link::Target::Scene(path)) => {
                         out = Some(Command::Open(path));
+                        close = true;
+                    }
+                    Ok(crate::link::Target::Lesson(lesson, k)) => {
+                        out = Some(Command::OpenLesson {
+                            preset: lesson.preset.clone(),
+                            force: false,
+                        });
+                        self.lesson = Some((lesson.name.clone(), k));
                         close = true;
                     }
                     Err(e) => *error = Some(e.to_string()),

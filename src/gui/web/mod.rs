@@ -21,6 +21,7 @@
 //!   storage; they are also written when the page is hidden or left (`visibilitychange`,
 //!   `pagehide`), so a reload keeps the lesson and the panels.
 
+pub mod widgets;
 pub mod workers;
 
 use super::files::BrowseFor;
@@ -297,13 +298,15 @@ impl WebApp {
         let memory = crate::render::worker_memory();
         set(
             "workers",
-            memory.iter().filter(|(_, alive)| *alive).count() as f64,
+            memory.iter().filter(|(_, _, alive)| *alive).count() as f64,
         );
-        let bytes = js_sys::Array::new();
-        for (m, _) in &memory {
+        let (bytes, chunks) = (js_sys::Array::new(), js_sys::Array::new());
+        for (m, c, _) in &memory {
             bytes.push(&JsValue::from_f64(*m as f64));
+            chunks.push(&JsValue::from_f64(*c as f64));
         }
         let _ = js_sys::Reflect::set(&status, &"workerMemory".into(), &bytes);
+        let _ = js_sys::Reflect::set(&status, &"workerChunks".into(), &chunks);
         let lesson = self.inner.lessons.active_lesson().unwrap_or_default();
         let _ = js_sys::Reflect::set(&status, &"lesson".into(), &lesson.into());
         let _ = js_sys::Reflect::set(&js_sys::global(), &"texploreStatus".into(), &status);
@@ -452,6 +455,23 @@ fn install_listeners() -> Result<(), String> {
     Ok(())
 }
 
+/// Whether the page was reloaded (not opened from a link or the address bar): the browser's
+/// navigation timing says so.
+fn reloaded() -> bool {
+    let Some(performance) = web_sys::window().and_then(|w| w.performance()) else {
+        return false;
+    };
+    performance
+        .get_entries_by_type("navigation")
+        .iter()
+        .any(|e| {
+            js_sys::Reflect::get(&e, &"type".into())
+                .ok()
+                .and_then(|t| t.as_string())
+                .is_some_and(|t| t == "reload")
+        })
+}
+
 /// Replaces the page's loading message with `message` (the window could not start).
 pub fn show_failure(message: &str) {
     if let Some(e) = web_sys::window()
@@ -494,22 +514,37 @@ pub async fn start(canvas_id: &str) -> Result<(), String> {
             options,
             Box::new(|cc| {
                 CONTEXT.with(|c| *c.borrow_mut() = Some(cc.egui_ctx.clone()));
+                if widgets::asked() {
+                    widgets::install(&cc.egui_ctx);
+                }
                 let prefs = super::Prefs::load(cc.storage);
-                // A link to a scene in the page's address opens that scene.
-                let link = web_sys::window()
+                // A link in the page's address opens its scene, or its lesson at its
+                // experiment; a reload, or no link, opens the lesson open last time on the
+                // experiment it showed, else the scene open last time (the address's link
+                // made again, so a link's scene reopens).
+                let hash = web_sys::window()
                     .and_then(|w| w.location().hash().ok())
-                    .filter(|h| h.contains("#texplore"))
-                    .map(|h| crate::link::materialise(&h));
-                // The lesson open last time, on its scene (a reload keeps it), unless a link
-                // says what to open.
-                let lesson = prefs
-                    .lesson
-                    .as_deref()
-                    .filter(|_| link.is_none())
-                    .and_then(|name| {
-                        let loaded = crate::lesson::load_default();
-                        crate::lesson::find(&loaded.lessons, name).ok().cloned()
-                    });
+                    .filter(|h| h.contains("#texplore"));
+                let link = match hash {
+                    Some(h) if reloaded() => {
+                        let _ = crate::link::materialise(&h);
+                        None
+                    }
+                    Some(h) => Some(crate::link::resolve(&h)),
+                    None => None,
+                };
+                let (linked, lesson, experiment) = match &link {
+                    Some(Ok(crate::link::Target::Scene(path))) => (Some(path.clone()), None, None),
+                    Some(Ok(crate::link::Target::Lesson(l, k))) => (None, Some((**l).clone()), *k),
+                    Some(Err(_)) => (None, None, None),
+                    None => {
+                        let lesson = prefs.lesson.as_deref().and_then(|name| {
+                            let loaded = crate::lesson::load_default();
+                            crate::lesson::find(&loaded.lessons, name).ok().cloned()
+                        });
+                        (None, lesson, prefs.experiment)
+                    }
+                };
                 let app_options = AppOptions {
                     recent_file: None,
                     lesson: lesson.clone(),
@@ -520,10 +555,6 @@ pub async fn start(canvas_id: &str) -> Result<(), String> {
                 };
                 // The link's scene, the lesson's, the scene open last time if it is a shipped
                 // one (uploads do not outlive the page), else the Earth.
-                let linked = match &link {
-                    Some(Ok(path)) => Some(path.clone()),
-                    _ => None,
-                };
                 let open = linked
                     .or_else(|| lesson.as_ref().map(|l| l.preset.clone()))
                     .or_else(|| {
@@ -533,6 +564,9 @@ pub async fn start(canvas_id: &str) -> Result<(), String> {
                             .or_else(|| Some(PathBuf::from(DEFAULT_PRESET)))
                     });
                 let mut inner = ExplorerApp::restore(cc.storage, open, app_options);
+                if lesson.is_some() {
+                    inner.lessons.then_experiment(experiment);
+                }
                 if let Some(Err(e)) = link {
                     inner.error = Some(e.to_string());
                 }

@@ -113,8 +113,9 @@ pub fn worker_errors() -> Vec<String> {
     with_farm(Farm::take_errors)
 }
 
-/// Each worker's memory in bytes, as it last said, and whether it is alive.
-pub fn worker_memory() -> Vec<(u64, bool)> {
+/// Each worker's memory in bytes, as it last said, the chunks it rendered, and whether it is
+/// alive.
+pub fn worker_memory() -> Vec<(u64, u64, bool)> {
     with_farm(|f| f.memory())
 }
 

@@ -113,6 +113,8 @@ struct Slot {
     /// Milliseconds a tile took, lately.
     tile_millis: Option<f64>,
     memory: u64,
+    /// Chunks it rendered.
+    chunks: u64,
 }
 
 /// An answer for a render.
@@ -183,14 +185,19 @@ impl Farm {
             held: Vec::new(),
             tile_millis: None,
             memory: 0,
+            chunks: 0,
         });
         self.slots.len() - 1
     }
 
-    /// Each worker's memory in bytes, as it last said (0: not yet), and whether it is alive.
+    /// Each worker's memory in bytes, as it last said (0: not yet), the chunks it rendered,
+    /// and whether it is alive.
     #[must_use]
-    pub fn memory(&self) -> Vec<(u64, bool)> {
-        self.slots.iter().map(|s| (s.memory, s.alive)).collect()
+    pub fn memory(&self) -> Vec<(u64, u64, bool)> {
+        self.slots
+            .iter()
+            .map(|s| (s.memory, s.chunks, s.alive))
+            .collect()
     }
 
     /// Sends `source`'s scene (and the files it names that a worker lacks) to every worker
@@ -318,6 +325,7 @@ impl Farm {
                 // A chunk no longer held was cancelled: its rows are dropped.
                 if let Some(i) = slot.held.iter().position(|h| *h == held) {
                     slot.held.remove(i);
+                    slot.chunks += 1;
                     let ms = micros as f64 / 1e3 / f64::from(tiles.max(1));
                     slot.tile_millis = Some(slot.tile_millis.map_or(ms, |m| 0.7 * m + 0.3 * ms));
                     let landed = if rows.is_whole() {

@@ -315,3 +315,85 @@ fn hostile_messages_are_refused_not_trusted() {
     };
     assert!(!rows.is_whole());
 }
+
+#[test]
+fn a_scene_a_worker_cannot_build_renders_on_the_page_and_says_why() {
+    // The workers read the scene's files from a folder that has none of them: they answer
+    // that they cannot build it, and the page's thread renders it alone, the same film.
+    let desc = earth_desc(2, false);
+    let whole = render_blocking(&build(&desc, EARTH), |_| {});
+    let scene = build(&desc, EARTH);
+    let dir = tempfile::tempdir().unwrap();
+    describe(&scene, &desc, &dir.path().join("earth.ron"));
+    let mut pool = Pool::new(2);
+    let out = Arc::new(Shared::default());
+    let source = source_of(&scene);
+    let mut r = SlicedRender::new(
+        scene,
+        RenderOptions::default(),
+        Generation::new(),
+        0,
+        out.clone(),
+        source,
+    );
+    for _ in 0..100_000 {
+        r.step(Instant::now(), &mut pool.farm);
+        if r.is_done() {
+            break;
+        }
+        pool.deliver();
+    }
+    assert!(r.is_done());
+    let film = out.lock().film.clone().unwrap();
+    assert!(film.pixels() == whole.pixels());
+    let errors = pool.farm.take_errors();
+    assert_eq!(errors.len(), 2, "{errors:?}");
+    assert!(
+        errors[0].starts_with("a render worker could not build the scene: ")
+            && errors[0].contains("earth_2048x1024.jpg"),
+        "{errors:?}"
+    );
+    assert!(pool.farm.take_errors().is_empty(), "said once");
+    // Both workers alive, having rendered nothing.
+    assert_eq!(pool.farm.memory(), vec![(0, 0, true); 2]);
+}
+
+#[test]
+fn a_scene_no_render_uses_is_dropped_in_the_workers() {
+    let desc = earth_desc(1, false);
+    let mut pool = Pool::new(1);
+    let scene = build(&desc, EARTH);
+    describe(&scene, &desc, Path::new(EARTH));
+    let id = source_of(&scene).unwrap().id;
+    pool.farm.prepare(&source_of(&scene).unwrap());
+    pool.deliver();
+    assert_eq!(pool.farm.ready(id), 1, "built");
+    let chunk = |job| {
+        protocol::encode(&ToWorker::Render(Chunk {
+            job,
+            scene: id,
+            pass: 0,
+            first: 0,
+            tiles: 1,
+            mask: None,
+        }))
+    };
+    let answer = |pool: &mut Pool, job| {
+        let (worker, inbox) = &mut pool.workers[0];
+        while let Some(m) = inbox.borrow_mut().pop_front() {
+            worker.receive(&m).unwrap();
+        }
+        worker.receive(&chunk(job)).unwrap();
+        protocol::decode::<FromWorker>(&worker.work().unwrap()).unwrap()
+    };
+    pool.farm.forget_unused();
+    assert!(matches!(
+        answer(&mut pool, 1),
+        FromWorker::Rendered { job: 1, .. }
+    ));
+    // The window dropped the scene (an edit built another): the worker drops its copy.
+    drop(scene);
+    pool.farm.forget_unused();
+    let a = answer(&mut pool, 2);
+    assert!(matches!(a, FromWorker::Skipped { job: 2, .. }), "{a:?}");
+}

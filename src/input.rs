@@ -21,7 +21,7 @@ pub use mounted::{
 };
 
 /// Whether `path` is a shipped file the page has not downloaded yet (it downloads when a scene
-/// needs it: [`want`]); never, outside a page.
+/// needs it: `want`, in a page); never, outside a page.
 #[must_use]
 pub fn is_deferred(path: &Path) -> bool {
     #[cfg(target_arch = "wasm32")]

@@ -112,15 +112,14 @@ pub fn scene_fragment(
     for o in &mut d.objects {
         for (_, t) in o.textures_mut() {
             if let TextureDesc::Image { path, .. } = t {
-                match shipped_asset(&preset_dir.join(&*path)) {
-                    Some(rel) => *path = format!("../{rel}"),
-                    None => {
-                        notices.push(format!(
-                            "{path} is not one of the shipped files: the link leaves it out \
-                             (its texture is grey there)"
-                        ));
-                        *t = TextureDesc::Constant(crate::math::Rgb(0.5, 0.5, 0.5));
-                    }
+                if let Some(rel) = shipped_asset(&preset_dir.join(&*path)) {
+                    *path = format!("../{rel}");
+                } else {
+                    notices.push(format!(
+                        "{path} is not one of the shipped files: the link leaves it out \
+                         (its texture is grey there)"
+                    ));
+                    *t = TextureDesc::Constant(crate::math::Rgb(0.5, 0.5, 0.5));
                 }
             }
         }

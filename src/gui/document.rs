@@ -417,7 +417,6 @@ fn needs(recipe: &Recipe, path: &Path) -> Vec<PathBuf> {
 
 /// Builds the scenes of `recipe` (on a pool thread); in a page, each is described for the
 /// render workers, which rebuild it from its text (`render::describe_scene`).
-
 fn build(recipe: &Recipe, path: &Path, cache: &mut AssetCache) -> Result<Built, String> {
     let simd = recipe.simd;
     let with_simd = |mut s: Scene| {

@@ -1,6 +1,7 @@
 //! A link that opens a scene (issue 36 §5): every shipped preset goes through a link and comes
 //! back the same scene; hostile links are refused with a message that says why.
 
+use base64::Engine as _;
 use std::path::Path;
 use texplore::link::{LINK_PRESET, Link, MAX_LINK_BYTES, lesson_fragment, parse, scene_fragment};
 use texplore::scene::{TextureDesc, list_presets, load_preset, parse_preset};
@@ -105,7 +106,6 @@ fn hostile_links_are_refused_with_a_clear_message() {
             .unwrap()
             .replace("../assets/earth_2048x1024.jpg", path);
         let deflated = miniz_oxide::deflate::compress_to_vec(text.as_bytes(), 9);
-        use base64::Engine as _;
         let data = base64::engine::general_purpose::URL_SAFE_NO_PAD.encode(deflated);
         let m = refused(&format!("#texplore1-s-{data}"));
         assert!(m.contains("not one of the shipped files"), "{path}: {m}");
@@ -113,7 +113,6 @@ fn hostile_links_are_refused_with_a_clear_message() {
     // A preset that a preset file would not be.
     let bad = "(objects: [(shape: Sphere, material: Matte(ka: NaN))])";
     let deflated = miniz_oxide::deflate::compress_to_vec(bad.as_bytes(), 9);
-    use base64::Engine as _;
     let data = base64::engine::general_purpose::URL_SAFE_NO_PAD.encode(deflated);
     let m = refused(&format!("#texplore1-s-{data}"));
     assert!(

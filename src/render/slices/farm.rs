@@ -190,8 +190,8 @@ impl Farm {
         self.slots.len() - 1
     }
 
-    /// Each worker's memory in bytes, as it last said (0: not yet), the chunks it rendered,
-    /// and whether it is alive.
+    /// Each worker's memory in bytes, as it last said (after a build or a chunk; 0: not yet),
+    /// the chunks it rendered, and whether it is alive.
     #[must_use]
     pub fn memory(&self) -> Vec<(u64, u64, bool)> {
         self.slots
@@ -315,7 +315,9 @@ impl Farm {
                 tiles,
                 rows,
                 micros,
+                memory,
             } => {
+                slot.memory = memory;
                 let held = Held {
                     job,
                     pass,

@@ -90,6 +90,8 @@ pub enum FromWorker {
         rows: TileRows,
         /// The time the chunk took in the worker, in microseconds.
         micros: u64,
+        /// The worker's memory after it, in bytes.
+        memory: u64,
     },
     /// A chunk the worker could not render (its scene was dropped or did not build).
     Skipped {

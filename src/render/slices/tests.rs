@@ -168,8 +168,7 @@ fn on_workers(desc: &SceneDesc, path: &str, pool: &mut Pool, page_helps: bool) -
     assert!(r.is_done(), "the render ends");
     let p = out.lock().progress;
     assert!(p.finished && !p.cancelled, "{p:?}");
-    let film = out.lock().film.clone().unwrap();
-    film
+    out.lock().film.clone().unwrap()
 }
 
 #[test]

@@ -84,6 +84,7 @@ impl Worker {
         Some(encode(&self.render(chunk)))
     }
 
+    #[cfg_attr(not(target_arch = "wasm32"), allow(clippy::unused_self))]
     fn mount(&mut self, files: Vec<SentFile>) {
         #[cfg(target_arch = "wasm32")]
         {
@@ -189,6 +190,7 @@ impl Worker {
             tiles,
             rows: rows_out,
             micros,
+            memory: (self.memory)(),
         }
     }
 }

@@ -448,10 +448,12 @@ impl ExplorerApp {
             self.files
                 .link_dialogs(ctx, self.doc.desc.as_ref(), self.doc.folder()),
         );
-        // A lesson link: the panel starts on the lesson, and on its experiment once it opened.
+        // A lesson link: the panel opens the lesson, then puts its experiment in place.
         if let Some((name, k)) = self.files.links.take_lesson() {
-            self.lessons.start(&name);
-            self.lessons.then_experiment(k);
+            commands.push(
+                self.lessons
+                    .open_at(&name, k, self.doc.desc.as_ref(), dirty),
+            );
         }
         commands.extend(self.lessons.due());
         if self.files.close_requested(ctx, dirty) {

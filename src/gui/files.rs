@@ -311,7 +311,14 @@ impl Files {
         folder: &Path,
     ) -> Option<Command> {
         let ask = self.link_ask.take();
-        self.links.ui(ctx, ask, desc, folder)
+        match self.links.ui(ctx, ask, desc, folder) {
+            // A scene link opens as File > Open does: unsaved changes are asked about first.
+            Some(Command::Open(path)) => {
+                self.request_open(path);
+                None
+            }
+            other => other,
+        }
     }
 
     /// The menu bar. `edit` fills the Edit menu, `view` the View menu and `help` the Help

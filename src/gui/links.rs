@@ -25,6 +25,8 @@ pub struct LinkDialog {
     open: Option<(String, Option<String>)>,
     /// A lesson link opened: the lesson and its experiment, for the Lessons panel.
     lesson: Option<(String, Option<usize>)>,
+    /// A link to open at the next frame (in a page, one put in the address bar).
+    follow: Option<String>,
 }
 
 /// The page's address without its fragment (in a page), so a link is whole; elsewhere nothing:
@@ -64,6 +66,25 @@ impl LinkDialog {
         self.lesson.take()
     }
 
+    /// Opens `link` at the next frame (a refused link's reason shows in the status line): in a
+    /// page, a link put in the address bar.
+    #[cfg_attr(not(target_arch = "wasm32"), allow(dead_code))]
+    pub fn follow(&mut self, link: String) {
+        self.follow = Some(link);
+    }
+
+    /// The command that opens `link`'s scene file, or none for a lesson link (the lesson and
+    /// experiment then wait in [`LinkDialog::take_lesson`] for the Lessons panel to open).
+    fn command_for(&mut self, link: &str) -> Result<Option<Command>, String> {
+        match crate::link::resolve(link).map_err(|e| e.to_string())? {
+            crate::link::Target::Scene(path) => Ok(Some(Command::Open(path))),
+            crate::link::Target::Lesson(lesson, k) => {
+                self.lesson = Some((lesson.name.clone(), k));
+                Ok(None)
+            }
+        }
+    }
+
     /// Handles `ask` and draws the dialogs open; returns the command to run (a file to open,
     /// an error).
     pub fn ui(
@@ -74,6 +95,11 @@ impl LinkDialog {
         folder: &Path,
     ) -> Option<Command> {
         let mut out = None;
+        if let Some(link) = self.follow.take() {
+            out = self
+                .command_for(&link)
+                .unwrap_or_else(|e| Some(Command::Error(e)));
+        }
         match ask {
             Some(LinkAsk::Copy) => match desc.map(|d| crate::link::scene_fragment(d, folder)) {
                 Some(Ok((fragment, notices))) => {
@@ -94,11 +120,13 @@ impl LinkDialog {
                 ui.heading("Link to this scene");
                 ui.label("Copied. Anyone who opens it sees this scene (the page needs no server):");
                 let mut text = link.clone();
+                let label = ui.label("Link");
                 ui.add(
                     egui::TextEdit::multiline(&mut text)
                         .desired_rows(3)
                         .desired_width(480.0),
-                );
+                )
+                .labelled_by(label.id);
                 if link.starts_with('#') {
                     ui.weak("Put your page's address (where students open texplore) before the #.");
                 }
@@ -116,7 +144,12 @@ impl LinkDialog {
             egui::Modal::new(egui::Id::unique("texplore-link-open")).show(ctx, |ui| {
                 ui.heading("Open link");
                 ui.label("Paste a link to a scene (it ends in #texplore1-…):");
-                let field = ui.add(egui::TextEdit::singleline(text).desired_width(480.0));
+                let field = ui.horizontal(|ui| {
+                    let label = ui.label("Link");
+                    ui.add(egui::TextEdit::singleline(text).desired_width(440.0))
+                        .labelled_by(label.id)
+                });
+                let field = field.inner;
                 go = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
                 if let Some(e) = error.as_ref() {
                     ui.colored_label(egui::Color32::from_rgb(230, 90, 80), e);
@@ -126,24 +159,21 @@ impl LinkDialog {
                     close = ui.button("Cancel").clicked();
                 });
             });
+            let link = text.clone();
             if go {
-                if let Ok(f) = crate::link::fragment(text) {
+                if let Ok(f) = crate::link::fragment(&link) {
                     show_in_address(f);
                 }
-                match crate::link::resolve(text) {
-                    Ok(crate::link::Target::Scene(path)) => {
-                        out = Some(Command::Open(path));
+                match self.command_for(&link) {
+                    Ok(c) => {
+                        out = c;
                         close = true;
                     }
-                    Ok(crate::link::Target::Lesson(lesson, k)) => {
-                        out = Some(Command::OpenLesson {
-                            preset: lesson.preset.clone(),
-                            force: false,
-                        });
-                        self.lesson = Some((lesson.name.clone(), k));
-                        close = true;
+                    Err(e) => {
+                        if let Some((_, error)) = &mut self.open {
+                            *error = Some(e);
+                        }
                     }
-                    Err(e) => *error = Some(e.to_string()),
                 }
             }
             if close {

@@ -163,6 +163,32 @@ impl LessonsPanel {
         }
     }
 
+    /// Opens the panel on lesson `name` at its experiment `k` (a link to it): the command that
+    /// opens its preset, through the unsaved-changes prompt unless the scene is this lesson's
+    /// own (as the panel's own Next and Previous do).
+    pub fn open_at(
+        &mut self,
+        name: &str,
+        k: Option<usize>,
+        desc: Option<&SceneDesc>,
+        dirty: bool,
+    ) -> Command {
+        let force = !dirty || desc.is_some_and(|d| self.is_lessons_own(d));
+        self.start(name);
+        self.then_experiment(k);
+        let preset = self
+            .pending
+            .and_then(|i| self.loaded.as_ref()?.lessons.get(i))
+            .map(|l| l.preset.clone());
+        match preset {
+            Some(preset) => Command::OpenLesson { preset, force },
+            None => Command::Error(format!(
+                "the link opens lesson {name}, which is not among {}",
+                self.place()
+            )),
+        }
+    }
+
     /// Once the lesson [`LessonsPanel::start`] opens has opened, its experiment `k` (0-based)
     /// is put in place ([`LessonsPanel::due`]), as if pressed.
     pub fn then_experiment(&mut self, k: Option<usize>) {

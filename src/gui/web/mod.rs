@@ -19,7 +19,10 @@
 //!   the UI scale's Ctrl+=/-/0) is prevented: F5 would reload the page.
 //! - **Persistence.** eframe keeps the preferences and the panels in the browser's local
 //!   storage; they are also written when the page is hidden or left (`visibilitychange`,
-//!   `pagehide`), so a reload keeps the lesson and the panels.
+//!   `pagehide`), so a reload keeps the lesson (and its experiment) and the panels.
+//! - **Links.** A link in the address (`#texplore1-...`, [`crate::link`]) opens its scene or
+//!   lesson when the page opens from it, or when it is pasted in the address bar of the open
+//!   page (`hashchange`); a reload restores where the page was instead.
 
 pub mod widgets;
 pub mod workers;
@@ -43,7 +46,8 @@ pub const UPLOADS: &str = "uploads";
 /// The time each frame gives the background work (queued tasks, tiles no worker takes).
 pub const FRAME_BUDGET: Duration = Duration::from_millis(12);
 /// Shipped files at least this large are fetched when a scene needs them, not before the
-/// window starts (the lessons, presets and small assets are fetched at once).
+/// window starts (the lessons, presets and small assets, 0.2 MB in all, are fetched at once:
+/// checking a lesson builds its scenes, and a check stands in only for an image not yet here).
 pub const DEFER_FROM_BYTES: u64 = 100_000;
 
 thread_local! {
@@ -54,6 +58,8 @@ thread_local! {
     /// What eframe's storage would hold now (the preferences, the panels), written to local
     /// storage when the page is hidden or left.
     static SNAPSHOT: RefCell<Vec<(String, String)>> = const { RefCell::new(Vec::new()) };
+    /// Links put in the address bar of the open page (its fragment changed), to open.
+    static FOLLOW: RefCell<Vec<String>> = const { RefCell::new(Vec::new()) };
 }
 
 /// Asks the window for a frame (a file or a worker's answer arrived).
@@ -123,7 +129,7 @@ pub async fn mount_shipped_files() -> Result<(usize, usize), String> {
         .into_iter()
         .partition(|(_, size)| *size < DEFER_FROM_BYTES);
     loading(&format!(
-        "Loading texplore: the lessons and presets ({} files)…",
+        "Loading texplore: the lessons, presets and small images ({} files)…",
         now.len()
     ));
     // All at once: the slowest fetch, not their sum.
@@ -295,6 +301,8 @@ impl WebApp {
             set("finished", f64::from(u8::from(p.finished)));
             set("elapsed", p.elapsed.as_secs_f64());
         }
+        // Frames drawn so far: the browser test's frame rate while the workers render.
+        set("frames", f64::from(self.frames));
         let memory = crate::render::worker_memory();
         set(
             "workers",
@@ -360,6 +368,9 @@ impl eframe::App for WebApp {
     }
 
     fn logic(&mut self, ctx: &egui::Context, frame: &mut eframe::Frame) {
+        for link in FOLLOW.with(|f| std::mem::take(&mut *f.borrow_mut())) {
+            self.inner.files.links.follow(link);
+        }
         fetch_wanted();
         if crate::render::run_slices(FRAME_BUDGET) {
             ctx.request_repaint();
@@ -426,8 +437,8 @@ fn takes(event: &web_sys::KeyboardEvent) -> bool {
     })
 }
 
-/// Listens on the window: the app's keys lose their browser default, and the page's state is
-/// written when it is hidden or left.
+/// Listens on the window: the app's keys lose their browser default, the page's state is
+/// written when it is hidden or left, and a link put in the address bar opens.
 fn install_listeners() -> Result<(), String> {
     let window = web_sys::window().ok_or("no window")?;
     let keys = Closure::<dyn FnMut(web_sys::KeyboardEvent)>::new(|e: web_sys::KeyboardEvent| {
@@ -452,6 +463,20 @@ fn install_listeners() -> Result<(), String> {
             .map_err(|e| js_error(event, &e))?;
     }
     save.forget();
+    // A link pasted in the address bar of the open page changes only its fragment: no reload.
+    let follow = Closure::<dyn FnMut(web_sys::Event)>::new(|_: web_sys::Event| {
+        if let Some(hash) = web_sys::window()
+            .and_then(|w| w.location().hash().ok())
+            .filter(|h| h.contains("#texplore"))
+        {
+            FOLLOW.with(|f| f.borrow_mut().push(hash));
+            repaint();
+        }
+    });
+    window
+        .add_event_listener_with_callback("hashchange", follow.as_ref().unchecked_ref())
+        .map_err(|e| js_error("hashchange", &e))?;
+    follow.forget();
     Ok(())
 }
 

@@ -36,10 +36,11 @@ pub fn asked() -> bool {
 /// `texploreScrollTo`.
 pub fn install(ctx: &egui::Context) {
     ctx.enable_accesskit();
-    ctx.add_plugin(Publish);
+    ctx.add_plugin(Publish::default());
     let scroll = Closure::<dyn FnMut(JsValue)>::new(|id: JsValue| {
         if let Some(id) = id.as_string().and_then(|s| s.parse::<u64>().ok()) {
             SCROLL.with(|s| s.borrow_mut().push(accesskit::NodeId(id)));
+            super::repaint();
         }
     });
     let _ = js_sys::Reflect::set(
@@ -51,7 +52,12 @@ pub fn install(ctx: &egui::Context) {
 }
 
 /// Publishes the tree after each frame, and hands egui the scroll requests.
-struct Publish;
+#[derive(Default)]
+struct Publish {
+    /// Frames still to draw after a scroll request: the scroll lands at the end of the frame
+    /// that takes it, and the next one lays the widgets out where they went.
+    after_scroll: u8,
+}
 
 impl egui::Plugin for Publish {
     fn debug_name(&self) -> &'static str {
@@ -60,6 +66,7 @@ impl egui::Plugin for Publish {
 
     fn input_hook(&mut self, _ctx: &egui::Context, input: &mut egui::RawInput) {
         for target_node in SCROLL.with(|s| std::mem::take(&mut *s.borrow_mut())) {
+            self.after_scroll = 2;
             input.events.push(egui::Event::AccessKitActionRequest(
                 accesskit::ActionRequest {
                     action: accesskit::Action::ScrollIntoView,
@@ -72,6 +79,10 @@ impl egui::Plugin for Publish {
     }
 
     fn output_hook(&mut self, ctx: &egui::Context, output: &mut egui::FullOutput) {
+        if self.after_scroll > 0 {
+            self.after_scroll -= 1;
+            ctx.request_repaint();
+        }
         let Some(update) = &output.platform_output.accesskit_update else {
             return;
         };
@@ -80,7 +91,9 @@ impl egui::Plugin for Publish {
         let scale = f64::from(ctx.pixels_per_point()) / ratio.max(1e-3);
         let list = js_sys::Array::new();
         for (id, node) in &update.nodes {
-            let (Some(label), Some(b)) = (node.label(), node.bounds()) else {
+            // egui gives a button its text as its label, a text label its text as its value.
+            let (Some(label), Some(b)) = (node.label().or_else(|| node.value()), node.bounds())
+            else {
                 continue;
             };
             let o = js_sys::Object::new();

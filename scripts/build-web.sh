@@ -10,8 +10,9 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${1:-target/web}
 target_dir=${CARGO_TARGET_DIR:-target}
-# The cargo profile: release for the page you host; web-smoke (Cargo.toml) for CI's smoke test.
-profile=${WEB_PROFILE:-release}
+# The cargo profile: web (Cargo.toml: release, its dependencies optimised for size) for the page
+# you host; web-smoke for CI's browser test.
+profile=${WEB_PROFILE:-web}
 
 version=$(awk '/^name = "wasm-bindgen"$/ { getline; gsub(/[^0-9.]/, ""); print; exit }' Cargo.lock)
 if ! command -v wasm-bindgen >/dev/null 2>&1 || [ "$(wasm-bindgen --version | awk '{print $2}')" != "$version" ]; then

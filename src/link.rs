@@ -85,7 +85,7 @@ fn shipped_asset(file: &Path) -> Option<String> {
             return None;
         };
         let rel = format!("assets/{}", name.to_str()?);
-        return (top == "assets" && is_shipped_asset(&rel)).then_some(rel);
+        (top == "assets" && is_shipped_asset(&rel)).then_some(rel)
     }
     #[cfg(not(target_arch = "wasm32"))]
     {

@@ -58,6 +58,7 @@ pub fn count() -> usize {
 /// Starts `n` workers on the compiled module the page left in `globalThis.texploreModule`
 /// (`index.html`); returns how many started. Without the module (an old page) or without
 /// workers, renders stay on the page's thread.
+#[must_use]
 pub fn start(n: usize) -> usize {
     let module = js_sys::Reflect::get(&js_sys::global(), &"texploreModule".into())
         .ok()
@@ -124,7 +125,7 @@ fn memory() -> u64 {
         .dyn_into::<js_sys::WebAssembly::Memory>()
         .ok()
         .and_then(|m| m.buffer().dyn_into::<js_sys::ArrayBuffer>().ok())
-        .map_or(0, |b| b.byte_length() as u64)
+        .map_or(0, |b| u64::from(b.byte_length()))
 }
 
 fn post_to_page(scope: &web_sys::DedicatedWorkerGlobalScope, bytes: &[u8]) {
@@ -212,7 +213,7 @@ pub fn run_worker() -> Result<(), String> {
     let take_event = take.clone();
     let on_message =
         Closure::<dyn FnMut(web_sys::MessageEvent)>::new(move |e: web_sys::MessageEvent| {
-            take_event(&e.data())
+            take_event(&e.data());
         });
     scope.set_onmessage(Some(on_message.as_ref().unchecked_ref()));
     on_message.forget();

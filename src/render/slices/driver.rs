@@ -87,6 +87,7 @@ fn with_farm<T>(f: impl FnOnce(&mut Farm) -> T) -> T {
 }
 
 /// Adds a render worker (the page's glue made it); returns its number.
+#[must_use]
 pub fn add_worker(port: Box<dyn Port>) -> usize {
     with_farm(|f| f.add(port))
 }
@@ -115,6 +116,7 @@ pub fn worker_errors() -> Vec<String> {
 
 /// Each worker's memory in bytes, as it last said, the chunks it rendered, and whether it is
 /// alive.
+#[must_use]
 pub fn worker_memory() -> Vec<(u64, u64, bool)> {
     with_farm(|f| f.memory())
 }
@@ -135,6 +137,7 @@ fn pump() {
 /// answers taken in and tiles handed out, and the tiles no worker can take rendered here,
 /// the time left shared between them. Returns whether work remains for this thread (the
 /// caller asks for another frame).
+#[must_use]
 pub fn run_slices(budget: Duration) -> bool {
     let deadline = Instant::now() + budget;
     while Instant::now() < deadline && run_one(false) {}

@@ -16,7 +16,22 @@ use std::path::{Path, PathBuf};
 #[cfg(target_arch = "wasm32")]
 mod mounted;
 #[cfg(target_arch = "wasm32")]
-pub use mounted::{is_mounted, mount};
+pub use mounted::{
+    defer, downloading, fetched, is_mounted, is_ready, mount, normalise, stamp, take_wanted, want,
+};
+
+/// Whether `path` is a shipped file the page has not downloaded yet (it downloads when a scene
+/// needs it: `want`, in a page); never, outside a page.
+#[must_use]
+pub fn is_deferred(path: &Path) -> bool {
+    #[cfg(target_arch = "wasm32")]
+    return mounted::is_deferred(path);
+    #[cfg(not(target_arch = "wasm32"))]
+    {
+        let _ = path;
+        false
+    }
+}
 
 /// An opened input: a file; in a page (wasm32), a mounted file's bytes.
 #[cfg(not(target_arch = "wasm32"))]

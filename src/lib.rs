@@ -17,6 +17,7 @@ pub mod geometry;
 pub mod input;
 pub mod inspect;
 pub mod lesson;
+pub mod link;
 pub mod mapping;
 pub mod material;
 pub mod math;

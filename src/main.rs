@@ -25,6 +25,18 @@ fn main() -> std::process::ExitCode {
 
 #[cfg(feature = "gui")]
 fn open_window(open: Option<std::path::PathBuf>, simd: SimdMode) -> anyhow::Result<()> {
+    // A link to a scene (`texplore 'https://.../#texplore1-...'`) opens its scene, or its
+    // lesson at its experiment.
+    if let Some(link) = open.as_ref().map(|p| p.to_string_lossy().into_owned())
+        && link.contains("#texplore")
+    {
+        return match texplore::link::resolve(&link)? {
+            texplore::link::Target::Scene(path) => texplore::gui::run(Some(path), simd),
+            texplore::link::Target::Lesson(lesson, k) => {
+                texplore::gui::run_lesson_at(*lesson, k, simd)
+            }
+        };
+    }
     texplore::gui::run(open, simd)
 }
 

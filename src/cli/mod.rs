@@ -25,7 +25,8 @@ pub struct Cli {
     /// What to do (none: open the window).
     #[command(subcommand)]
     pub command: Option<Command>,
-    /// Preset or screenshot to open in the window (default: the Earth).
+    /// Preset or screenshot to open in the window (default: the Earth), or a link to a scene
+    /// (`'https://.../#texplore1-...'`, from *File > Copy link to this scene*).
     #[arg(value_name = "FILE")]
     pub open: Option<PathBuf>,
     /// How wide the render kernel runs: `auto` (packets of rays as wide as the CPU's SIMD

@@ -56,6 +56,11 @@ pub struct Prefs {
     pub camera_is_unsaved: bool,
     /// *View → UI scale* (Ctrl+= / Ctrl+- / Ctrl+0): egui's zoom factor.
     pub ui_scale: f32,
+    /// The lesson open when the window closed (its name), if its scene was open: the page
+    /// opens on it again after a reload.
+    pub lesson: Option<String>,
+    /// The lesson's experiment that scene showed (0-based), put back with it.
+    pub experiment: Option<usize>,
 }
 
 impl Default for Prefs {
@@ -64,6 +69,8 @@ impl Default for Prefs {
             last_scene: None,
             camera_is_unsaved: false,
             ui_scale: 1.0,
+            lesson: None,
+            experiment: None,
         }
     }
 }
@@ -216,6 +223,8 @@ impl ExplorerApp {
             last_scene: Some(std::path::absolute(path).unwrap_or_else(|_| path.clone())),
             camera_is_unsaved: self.camera_is_unsaved,
             ui_scale: self.ui_scale,
+            lesson: self.lessons.active_lesson(),
+            experiment: self.lessons.experiment_shown(self.doc.desc.as_ref()),
         }
     }
 
@@ -419,6 +428,12 @@ impl ExplorerApp {
         }
         let title = self.title();
         if title != self.title_sent {
+            // A page's title is its document's (eframe's web runner has no viewport title).
+            #[cfg(target_arch = "wasm32")]
+            if let Some(d) = web_sys::window().and_then(|w| w.document()) {
+                d.set_title(&title);
+            }
+            #[cfg(not(target_arch = "wasm32"))]
             ctx.send_viewport_cmd(egui::ViewportCommand::Title(title.clone()));
             self.title_sent = title;
         }
@@ -457,6 +472,18 @@ impl ExplorerApp {
             .map_or("", |d| d.description.as_str());
         let dirty = self.is_dirty();
         commands.extend(self.files.dialogs(ctx, dirty, description));
+        commands.extend(
+            self.files
+                .link_dialogs(ctx, self.doc.desc.as_ref(), self.doc.folder()),
+        );
+        // A lesson link: the panel opens the lesson, then puts its experiment in place.
+        if let Some((name, k)) = self.files.links.take_lesson() {
+            commands.push(
+                self.lessons
+                    .open_at(&name, k, self.doc.desc.as_ref(), dirty),
+            );
+        }
+        commands.extend(self.lessons.due());
         if self.files.close_requested(ctx, dirty) {
             ctx.send_viewport_cmd(egui::ViewportCommand::CancelClose);
         }

@@ -277,7 +277,7 @@ impl Document {
         };
         // Dropping the older task cancels it.
         self.pending = None;
-        match Task::spawn(work) {
+        match Task::spawn_reading(needs(&recipe, path), work) {
             Ok(task) => {
                 self.pending = Some(Pending {
                     purpose,
@@ -402,25 +402,44 @@ impl Document {
     }
 }
 
-/// Builds the scenes of `recipe` (on a pool thread).
+/// The files `recipe`'s scenes read: in a page, the build waits for their download.
+fn needs(recipe: &Recipe, path: &Path) -> Vec<PathBuf> {
+    if !cfg!(target_arch = "wasm32") {
+        return Vec::new();
+    }
+    let dir = path.parent().unwrap_or(Path::new(""));
+    let mut files = crate::scene::asset_paths(&recipe.render, dir);
+    for d in recipe.split.iter().flatten() {
+        files.extend(crate::scene::asset_paths(d, dir));
+    }
+    files
+}
+
+/// Builds the scenes of `recipe` (on a pool thread); in a page, each is described for the
+/// render workers, which rebuild it from its text (`render::describe_scene`).
 fn build(recipe: &Recipe, path: &Path, cache: &mut AssetCache) -> Result<Built, String> {
     let simd = recipe.simd;
     let with_simd = |mut s: Scene| {
         s.settings.simd = simd;
         s
     };
+    let described = |scene: Scene, desc: &SceneDesc| {
+        let scene = Arc::new(scene);
+        #[cfg(target_arch = "wasm32")]
+        crate::render::describe_scene(&scene, desc, path);
+        #[cfg(not(target_arch = "wasm32"))]
+        let _ = desc;
+        scene
+    };
     let scene = with_simd(build_scene(&recipe.render, path, cache).map_err(|e| e.to_string())?);
+    let scene = described(scene, &recipe.render);
     let split = recipe.split.as_ref().map(|descs| {
         let mut scenes = Vec::with_capacity(3);
         for d in descs {
-            scenes.push(Arc::new(with_simd(
-                build_scene(d, path, cache).map_err(|e| e.to_string())?,
-            )));
+            let built = with_simd(build_scene(d, path, cache).map_err(|e| e.to_string())?);
+            scenes.push(described(built, d));
         }
         <[Arc<Scene>; 3]>::try_from(scenes).map_err(|_| "three scenes".to_owned())
     });
-    Ok(Built {
-        scene: Arc::new(scene),
-        split,
-    })
+    Ok(Built { scene, split })
 }

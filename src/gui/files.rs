@@ -97,6 +97,10 @@ pub struct Files {
     protected: Vec<PathBuf>,
     /// Whether `current` is read-only, and why (worked out once per file).
     read_only: Option<(PathBuf, Option<String>)>,
+    /// *Copy link to this scene* or *Open link…*, asked this frame.
+    link_ask: Option<super::links::LinkAsk>,
+    /// The link dialogs.
+    pub(super) links: super::links::LinkDialog,
 }
 
 /// The user's config folder for texplore, from the `dirs` crate: `$XDG_CONFIG_HOME/texplore`
@@ -210,6 +214,8 @@ impl Files {
             current: PathBuf::new(),
             protected: Vec::new(),
             read_only: None,
+            link_ask: None,
+            links: super::links::LinkDialog::default(),
         }
     }
 
@@ -297,6 +303,46 @@ impl Files {
         }
     }
 
+    /// The File menu's links: *Copy link to this scene*, *Open link…*.
+    fn link_items(&mut self, ui: &mut egui::Ui) {
+        if ui
+            .button("Copy link to this scene")
+            .on_hover_text(
+                "A link that opens this scene: the scene travels inside it (no server); \
+                 only the shipped images and meshes go with it",
+            )
+            .clicked()
+        {
+            self.link_ask = Some(super::links::LinkAsk::Copy);
+        }
+        if ui
+            .button("Open link…")
+            .on_hover_text("Opens a link made by Copy link to this scene")
+            .clicked()
+        {
+            self.link_ask = Some(super::links::LinkAsk::Open);
+        }
+    }
+
+    /// The link dialogs, for the scene `desc` of the folder `folder`; returns the command to
+    /// run.
+    pub fn link_dialogs(
+        &mut self,
+        ctx: &egui::Context,
+        desc: Option<&crate::scene::SceneDesc>,
+        folder: &Path,
+    ) -> Option<Command> {
+        let ask = self.link_ask.take();
+        match self.links.ui(ctx, ask, desc, folder) {
+            // A scene link opens as File > Open does: unsaved changes are asked about first.
+            Some(Command::Open(path)) => {
+                self.request_open(path);
+                None
+            }
+            other => other,
+        }
+    }
+
     /// The menu bar. `edit` fills the Edit menu, `view` the View menu and `help` the Help
     /// menu.
     pub fn menu_bar(
@@ -326,6 +372,7 @@ impl Files {
                 if ui.button("Open…").clicked() {
                     self.open_dialog(DialogKind::Open, String::new());
                 }
+                self.link_items(ui);
                 let read_only = self.read_only(current);
                 if ui
                     .button("Save")
@@ -365,9 +412,13 @@ impl Files {
                         }
                     }
                 });
-                ui.separator();
-                if ui.button("Quit").clicked() {
-                    self.requested = Some(Pending::Quit);
+                // A page is closed with its tab: no Quit there.
+                #[cfg(not(target_arch = "wasm32"))]
+                {
+                    ui.separator();
+                    if ui.button("Quit").clicked() {
+                        self.requested = Some(Pending::Quit);
+                    }
                 }
             });
             ui.menu_button("Edit", edit);

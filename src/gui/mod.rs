@@ -14,6 +14,7 @@ mod inspector;
 mod layout;
 mod layout_check;
 mod lessons;
+mod links;
 mod live;
 mod overlay;
 mod panes;
@@ -64,7 +65,7 @@ pub fn default_preset() -> std::path::PathBuf {
 /// The window cannot be created (no display, no GPU adapter).
 #[cfg(not(target_arch = "wasm32"))]
 pub fn run(open: Option<PathBuf>, simd: crate::scene::SimdMode) -> anyhow::Result<()> {
-    run_app(open, None, simd)
+    run_app(open, None, None, simd)
 }
 
 /// Opens the window on `lesson`: its preset, with the Lessons panel open on it.
@@ -76,13 +77,28 @@ pub fn run_lesson(
     lesson: crate::lesson::Lesson,
     simd: crate::scene::SimdMode,
 ) -> anyhow::Result<()> {
-    run_app(Some(lesson.preset.clone()), Some(lesson), simd)
+    run_lesson_at(lesson, None, simd)
+}
+
+/// Opens the window on `lesson` (as [`run_lesson`]) with its experiment `experiment` (0-based)
+/// in place, as a link to it does.
+///
+/// # Errors
+/// The window cannot be created (no display, no GPU adapter).
+#[cfg(not(target_arch = "wasm32"))]
+pub fn run_lesson_at(
+    lesson: crate::lesson::Lesson,
+    experiment: Option<usize>,
+    simd: crate::scene::SimdMode,
+) -> anyhow::Result<()> {
+    run_app(Some(lesson.preset.clone()), Some(lesson), experiment, simd)
 }
 
 #[cfg(not(target_arch = "wasm32"))]
 fn run_app(
     open: Option<PathBuf>,
     lesson: Option<crate::lesson::Lesson>,
+    experiment: Option<usize>,
     simd: crate::scene::SimdMode,
 ) -> anyhow::Result<()> {
     // The window's memory is checked before eframe reads it (see `storage`); what was done is
@@ -131,11 +147,9 @@ fn run_app(
         "texplore",
         options,
         Box::new(move |cc| {
-            Ok(Box::new(ExplorerApp::restore(
-                cc.storage,
-                open,
-                app_options,
-            )))
+            let mut app = ExplorerApp::restore(cc.storage, open, app_options);
+            app.lessons.then_experiment(experiment);
+            Ok(Box::new(app))
         }),
     )
     .map_err(|e| anyhow::anyhow!("cannot open the window: {e}"))

@@ -100,6 +100,13 @@ impl Viewer {
         !p.finished && !p.cancelled
     }
 
+    /// The render's progress, once one has started (the page publishes it for scripts).
+    #[cfg_attr(not(target_arch = "wasm32"), allow(dead_code))]
+    #[must_use]
+    pub fn progress(&self) -> Option<crate::render::Progress> {
+        self.job.as_ref().map(RenderJob::progress)
+    }
+
     /// The latest image of the render (preview or accumulated).
     #[must_use]
     pub fn image(&self) -> Option<Arc<DisplayImage>> {

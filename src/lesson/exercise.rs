@@ -213,7 +213,8 @@ impl Exercise {
         }
     }
 
-    /// `desc` with `formulas` on the exercise's object: its colour texture's mapping becomes
+    /// The exercise's scene `desc` (the lesson's own, as its preset opened: not whatever an
+    /// experiment left showing) with `formulas` on the exercise's object: its colour texture's mapping becomes
     /// the formulas (a mapping), or the texture becomes the grey formula over the texture's
     /// mapping and (u, v) transform (a texture).
     ///

@@ -163,14 +163,20 @@ impl RenderJob {
                 Some(())
             })
         };
+        // On the page's workers when the window described how the scene was built
+        // (`render::describe_scene`), else on the page's thread alone.
         #[cfg(target_arch = "wasm32")]
-        let slices = slices::register(SlicedRender::new(
-            scene,
-            options,
-            task_generation,
-            started_at,
-            task_shared,
-        ));
+        let slices = {
+            let source = slices::source_of(&scene);
+            slices::register(SlicedRender::new(
+                scene,
+                options,
+                task_generation,
+                started_at,
+                task_shared,
+                source,
+            ))
+        };
         Ok(Self {
             shared,
             #[cfg(not(target_arch = "wasm32"))]

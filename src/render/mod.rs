@@ -23,7 +23,10 @@ pub use pool::{MAX_THREADS, PoolError, thread_pool};
 pub use task::Task;
 
 #[cfg(target_arch = "wasm32")]
-pub use slices::run_slices;
+pub use slices::{
+    Port as WorkerPort, Worker, add_worker, describe as describe_scene, run_slices, worker_errors,
+    worker_lost, worker_memory, worker_message,
+};
 
 use crate::math::{Ray, RayDifferential, Rgb, Vec2, hash3};
 use crate::sampler::{PixelFilter, permute};

@@ -62,6 +62,31 @@ impl<T: Send + 'static> Task<T> {
         }
     }
 
+    /// [`Task::spawn`] of work that reads `files`: in a page, where a shipped file may not be
+    /// downloaded yet (`input::want`), the work waits in the queue until they are (or their
+    /// download failed, which the work's read then reports); elsewhere the files are on disk and
+    /// this is [`Task::spawn`].
+    ///
+    /// # Errors
+    /// No worker pool could be had.
+    pub fn spawn_reading(
+        files: Vec<std::path::PathBuf>,
+        work: impl FnOnce(&AtomicBool) -> Option<T> + Send + 'static,
+    ) -> Result<Self, PoolError> {
+        #[cfg(not(target_arch = "wasm32"))]
+        {
+            drop(files);
+            Self::spawn(work)
+        }
+        #[cfg(target_arch = "wasm32")]
+        {
+            crate::input::want(&files);
+            let (task, run) = Self::new(work);
+            super::slices::queue_after(files, Box::new(run));
+            Ok(task)
+        }
+    }
+
     /// Runs `work` on `pool` (a pool of [`thread_pool`](super::thread_pool)).
     pub fn spawn_on(
         pool: &ThreadPool,
@@ -117,7 +142,7 @@ impl<T> Task<T> {
     pub fn wait(&self) {
         // Without threads, waiting is running the queued work up to this task's.
         #[cfg(target_arch = "wasm32")]
-        while self.is_running() && super::slices::run_one() {}
+        while self.is_running() && super::slices::run_one(true) {}
         let mut s = self.lock();
         while matches!(*s, State::Running) {
             s = self

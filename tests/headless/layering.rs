@@ -38,7 +38,8 @@ const LAYERS: &[&[&str]] = &[
     &["render", "lesson"],
     // Tools over the renderer: speed against error, golden images, light-probe conversion, the
     // fuzz entry points.
-    &["report", "snapshot", "probe", "robustness"],
+    // A link that opens a scene reads presets (`scene`) and names lessons.
+    &["report", "snapshot", "probe", "robustness", "link"],
     // What the renderer did at one pixel, with the report's RMSE for the A/B split; which texels
     // the pixels read and which pixels read a texel (one 1-spp pass on the render pool).
     &["inspect", "coverage"],

@@ -35,6 +35,7 @@ mod images;
 mod layering;
 mod lessons;
 mod lessons_claims;
+mod link;
 mod materials;
 mod memory;
 mod meshes;

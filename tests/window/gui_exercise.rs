@@ -180,3 +180,43 @@ fn the_checker_exercise_checks_a_texture_and_writes_no_shipped_file() {
         "no shipped file changed on disk"
     );
 }
+
+#[test]
+fn check_applies_to_the_exercise_s_own_scene_after_an_experiment() {
+    // Issue 36 §4: after the UV-grid experiment, Check put the formulas on the UV grid, not on
+    // the Earth the task names.
+    let dir = tempfile::tempdir().unwrap();
+    let preset = small_earth(dir.path());
+    let shipped =
+        std::fs::read_to_string(root().join("lessons/06-spherical-mapping.toml")).unwrap();
+    let exercise = &shipped[shipped.find("[[exercise]]").unwrap()..];
+    let text = format!(
+        "title = \"The spherical exercise\"\npreset = {:?}\ntext = \"Write it.\"\n\n\
+         [[experiment]]\nlabel = \"The UV grid\"\nlook_for = \"The grid.\"\n\
+         set = {{ \"objects[0].material.cd\" = \"UvGrid(mapping: Spherical)\" }}\n\n{exercise}",
+        preset.file_name().unwrap().to_str().unwrap()
+    );
+    let file = dir.path().join("06-exercise.toml");
+    std::fs::write(&file, text).unwrap();
+    let lesson = texplore::lesson::load_lesson(&file).unwrap();
+    let mut h = crate::gui_lessons::start(lesson);
+    settle(&mut h);
+    let base = load_preset(&preset).unwrap();
+    press(&mut h, "The UV grid");
+    settle(&mut h);
+    assert_ne!(
+        desc(&h).objects[0].material.texture(),
+        base.objects[0].material.texture()
+    );
+    press(&mut h, "Show solution");
+    press(&mut h, "Check");
+    settle(&mut h);
+    wait_for_label(&mut h, "Correct: ");
+    let d = desc(&h);
+    let tex = d.objects[0].material.texture();
+    assert!(
+        matches!(tex, texplore::scene::TextureDesc::Image { .. }),
+        "Check put the formulas on the Earth's image, not on the UV grid: {tex:?}"
+    );
+    assert!(matches!(tex.mapping(), Some(MappingDesc::Formula { .. })));
+}

@@ -25,6 +25,7 @@ mod gui_labels;
 mod gui_layout;
 mod gui_lessons;
 mod gui_lessons_class;
+mod gui_links;
 mod gui_materials;
 mod gui_save;
 mod gui_texture_panel;

@@ -54,10 +54,13 @@ impl LessonsPanel {
         ui.separator();
         ui.strong("Exercise");
         let enabled = self.active;
+        // Check puts the formulas on the exercise's own scene (the lesson's, as it opened),
+        // whatever experiment is showing.
+        let own = self.base.clone();
         for (k, x) in lesson.exercises.iter().enumerate() {
             let attempt = &mut self.attempts.1[k];
             ui.push_id(("exercise", k), |ui| {
-                if let Some(a) = exercise_ui(ui, x, attempt, desc, enabled) {
+                if let Some(a) = exercise_ui(ui, x, attempt, desc, own.as_ref(), enabled) {
                     *action = Some(a);
                 }
             });
@@ -72,6 +75,7 @@ fn exercise_ui(
     x: &Exercise,
     attempt: &mut Attempt,
     desc: Option<&SceneDesc>,
+    own: Option<&SceneDesc>,
     enabled: bool,
 ) -> Option<Command> {
     let mut action = None;
@@ -90,20 +94,20 @@ fn exercise_ui(
     }
     ui.horizontal(|ui| {
         let check = ui
-            .add_enabled(enabled && desc.is_some(), egui::Button::new("Check"))
+            .add_enabled(enabled && own.is_some(), egui::Button::new("Check"))
             .on_hover_text(
                 "Puts your formulas on the scene (Ctrl+Z takes them off) and compares them \
                  with the built-in one",
             );
         if check.clicked()
-            && let Some(desc) = desc
+            && let Some(own) = own
         {
             let verdict = x.check(&attempt.formulas).map_err(|e| {
                 e.pointer()
                     .map_or_else(|| e.to_string(), |p| format!("{e}\n{p}"))
             });
             if verdict.is_ok() {
-                match x.apply(desc, &attempt.formulas) {
+                match x.apply(own, &attempt.formulas) {
                     Ok(new) => action = Some(Command::Apply(new)),
                     Err(e) => action = Some(Command::Error(e)),
                 }

@@ -52,6 +52,11 @@ pub struct LessonsPanel {
     markdown: egui_commonmark::CommonMarkCache,
     /// The lesson whose exercises are being written, and each exercise's fields and verdict.
     attempts: (Option<usize>, Vec<exercise::Attempt>),
+    /// The experiment whose link was copied last, and the link.
+    link: Option<(usize, String)>,
+    /// The experiment to put in place once the pending lesson's scene has opened (a link to
+    /// it, or a reload of the page on it).
+    then: Option<usize>,
 }
 
 impl Default for LessonsPanel {
@@ -89,6 +94,8 @@ impl LessonsPanel {
             drawn: None,
             markdown: egui_commonmark::CommonMarkCache::default(),
             attempts: (None, Vec::new()),
+            link: None,
+            then: None,
         }
     }
 
@@ -144,6 +151,7 @@ impl LessonsPanel {
 
     /// Opens the panel on the lesson named `name`, whose preset the app is opening.
     pub fn start(&mut self, name: &str) {
+        self.then = None;
         self.open = true;
         let _ = self.lessons();
         if let Some(i) = self
@@ -156,11 +164,74 @@ impl LessonsPanel {
         }
     }
 
+    /// Opens the panel on lesson `name` at its experiment `k` (a link to it): the command that
+    /// opens its preset, through the unsaved-changes prompt unless the scene is this lesson's
+    /// own (as the panel's own Next and Previous do).
+    pub fn open_at(
+        &mut self,
+        name: &str,
+        k: Option<usize>,
+        desc: Option<&SceneDesc>,
+        dirty: bool,
+    ) -> Command {
+        let force = !dirty || desc.is_some_and(|d| self.is_lessons_own(d));
+        self.start(name);
+        self.then_experiment(k);
+        let preset = self
+            .pending
+            .and_then(|i| self.loaded.as_ref()?.lessons.get(i))
+            .map(|l| l.preset.clone());
+        match preset {
+            Some(preset) => Command::OpenLesson { preset, force },
+            None => Command::Error(format!(
+                "the link opens lesson {name}, which is not among {}",
+                self.place()
+            )),
+        }
+    }
+
+    /// Once the lesson [`LessonsPanel::start`] opens has opened, its experiment `k` (0-based)
+    /// is put in place ([`LessonsPanel::due`]), as if pressed.
+    pub fn then_experiment(&mut self, k: Option<usize>) {
+        self.then = k;
+    }
+
+    /// The experiment asked for by [`LessonsPanel::then_experiment`], once its lesson is the
+    /// scene: the command that puts it in place.
+    pub fn due(&mut self) -> Option<Command> {
+        if self.pending.is_some() || !self.active {
+            return None;
+        }
+        let k = self.then.take()?;
+        let (lesson, base) = (self.lesson()?.clone(), self.base.clone()?);
+        match lesson.scene(k, &base) {
+            Ok(new) => {
+                self.last = Some(k);
+                Some(Command::Apply(new))
+            }
+            Err(e) => Some(Command::Error(format!("{}: {e}", lesson.file.display()))),
+        }
+    }
+
+    /// The experiment the scene `desc` shows (the one pressed last if several), when it is the
+    /// active lesson's: what a reload of the page puts back.
+    #[must_use]
+    pub fn experiment_shown(&self, desc: Option<&SceneDesc>) -> Option<usize> {
+        if !self.active {
+            return None;
+        }
+        let applied = self.applied_now(desc);
+        self.last
+            .filter(|&k| applied.get(k) == Some(&true))
+            .or_else(|| applied.iter().position(|&a| a))
+    }
+
     /// The app opened `path` (`ok`: successfully) with description `desc`: if it was the
     /// pending lesson's preset, that lesson becomes active; any other file ends the lesson.
     pub fn opened(&mut self, path: &Path, ok: bool, desc: Option<&SceneDesc>) {
         let pending = self.pending.take();
         if !ok {
+            self.then = None;
             return;
         }
         let preset = |i: usize| {
@@ -174,11 +245,20 @@ impl LessonsPanel {
             self.active = true;
         } else {
             self.active = false;
+            self.then = None;
         }
         self.base = desc.cloned();
         self.last = None;
         self.shown = None;
         self.show_answer = false;
+    }
+
+    /// The name of the lesson under way (its scene open from the panel), if any.
+    #[must_use]
+    pub fn active_lesson(&self) -> Option<String> {
+        self.active
+            .then(|| self.lesson().map(|l| l.name.clone()))
+            .flatten()
     }
 
     /// Whether `desc` is the lesson's scene or one of its experiments' (not the learner's
@@ -204,9 +284,24 @@ impl LessonsPanel {
     /// Which experiments `desc` shows: those whose scene it matches on every path the lesson's
     /// experiments set (read from the scene, so *Edit → Undo* and the panel agree).
     fn applied(&mut self, desc: Option<&SceneDesc>) -> Vec<bool> {
+        let applied = self.applied_now(desc);
+        if let Some(desc) = desc
+            && self.active
+        {
+            self.shown = Some(Shown {
+                lesson: self.selected,
+                desc: desc.clone(),
+                applied: applied.clone(),
+            });
+        }
+        applied
+    }
+
+    /// [`LessonsPanel::applied`] without keeping the answer.
+    fn applied_now(&self, desc: Option<&SceneDesc>) -> Vec<bool> {
         let count = self.lesson().map_or(0, |l| l.experiments.len());
         let (Some(desc), Some(base), Some(lesson), true) =
-            (desc, self.base.clone(), self.lesson().cloned(), self.active)
+            (desc, self.base.as_ref(), self.lesson(), self.active)
         else {
             return vec![false; count];
         };
@@ -229,7 +324,7 @@ impl LessonsPanel {
         let now: Vec<_> = paths.iter().map(|p| value_at(desc, p)).collect();
         let holds: Vec<bool> = (0..count)
             .map(|k| {
-                lesson.scene(k, &base).is_ok_and(|scene| {
+                lesson.scene(k, base).is_ok_and(|scene| {
                     paths
                         .iter()
                         .zip(&now)
@@ -238,16 +333,10 @@ impl LessonsPanel {
             })
             .collect();
         // Two experiments with the same scene: the one pressed last.
-        let applied: Vec<bool> = match self.last.filter(|&k| holds.get(k) == Some(&true)) {
+        match self.last.filter(|&k| holds.get(k) == Some(&true)) {
             Some(last) => (0..count).map(|k| k == last).collect(),
             None => holds,
-        };
-        self.shown = Some(Shown {
-            lesson: self.selected,
-            desc: desc.clone(),
-            applied: applied.clone(),
-        });
-        applied
+        }
     }
 
     /// The panel. `desc` is the app's scene, `dirty` whether it has unsaved changes.
@@ -421,6 +510,17 @@ impl LessonsPanel {
                         }
                     }
                 }
+                if ui
+                    .small_button("Link")
+                    .on_hover_text("Copies a link that opens this lesson at this experiment")
+                    .clicked()
+                {
+                    let fragment = crate::link::lesson_fragment(&lesson.name, Some(k));
+                    super::links::show_in_address(&fragment);
+                    let link = format!("{}#{fragment}", super::links::page_address());
+                    ui.ctx().copy_text(link.clone());
+                    self.link = Some((k, link));
+                }
                 if on
                     && let Some(base) = &self.base
                     && ui
@@ -441,6 +541,9 @@ impl LessonsPanel {
                     *action = Some(Command::Apply(back));
                 }
             });
+            if let Some((_, link)) = self.link.as_ref().filter(|(j, _)| *j == k) {
+                ui.weak(format!("Link copied: {link}"));
+            }
             if let Some(a) = x.after {
                 ui.weak(format!(
                     "Builds on \"{}\": its edits come first.",
@@ -474,12 +577,9 @@ impl LessonsPanel {
         if !self.active {
             return None;
         }
-        let applied = self.applied(desc);
+        let _ = self.applied(desc);
+        let shown = self.experiment_shown(desc);
         let lesson = self.lesson()?;
-        let shown = self
-            .last
-            .filter(|&k| applied.get(k) == Some(&true))
-            .or_else(|| applied.iter().position(|&a| a));
         let experiment = shown
             .and_then(|k| lesson.experiments.get(k))
             .map(|x| (x.label.clone(), x.look_for.clone()));

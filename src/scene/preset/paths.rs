@@ -70,6 +70,12 @@ pub fn relative_asset_path(asset: &Path, preset_dir: &Path) -> String {
 }
 
 fn absolute(p: &Path) -> PathBuf {
+    // A page has no file system (wasm32): its files are mounted under paths relative to the
+    // page, so they are made absolute lexically from there (`uploads/x.png` seen from
+    // `presets/` is `../uploads/x.png`).
+    #[cfg(target_arch = "wasm32")]
+    return Path::new("/").join(crate::input::normalise(p));
+    #[cfg(not(target_arch = "wasm32"))]
     std::fs::canonicalize(p)
         .unwrap_or_else(|_| std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf()))
 }

@@ -9,10 +9,10 @@
 //!
 //! Each mapping is one file (`rectangular.rs`, `cylindrical.rs`, `spherical.rs`,
 //! `light_probe.rs`, `panoramic.rs`, `mirror_ball.rs`, `uv.rs`; a student's formulas in
-//! `formula/`) implementing [`Map`]: its (u, v) with gradients, written once over pulp's `Simd`
+//! `formula/`) implementing `Map`: its (u, v) with gradients, written once over pulp's `Simd`
 //! so the renderer runs it at every width (1 lane on the scalar path, 16 on AVX-512), its worked
 //! f64 formulas, the lecture's formula text, its diagram's angles, its family for the exercises'
-//! hints and its seam and pole properties. [`with_map!`] is the one match from [`Mapping`] to
+//! hints and its seam and pole properties. `with_map!` is the one match from [`Mapping`] to
 //! those files: a new mapping is a new file, a variant, and the arm the compiler asks for there.
 
 mod cylindrical;

@@ -64,7 +64,7 @@ pub struct Traced<S: Simd> {
 }
 
 impl Scene {
-    /// Radiance and edge keys along a packet of camera rays: [`Scene::radiance_lanes`] at
+    /// Radiance and edge keys along a packet of camera rays: `Scene::radiance_lanes` at
     /// depth 0, black wherever it is not finite (what the film gets).
     #[must_use]
     #[inline(always)]

@@ -120,7 +120,7 @@ impl Layout {
 }
 
 /// `bytes` to one decimal, as a person reads it: `1.0 GiB`, `3.0 GiB`, `768.0 MiB`.
-fn approx_bytes(bytes: u64) -> String {
+pub fn approx_bytes(bytes: u64) -> String {
     let b = bytes as f64;
     if bytes >= 1 << 30 {
         format!("{:.1} GiB", b / f64::from(1u32 << 30))
@@ -228,6 +228,15 @@ impl ImageData {
         match self.texels {
             Texels::Srgb8(_) => 4,
             Texels::Linear(_) => 12,
+        }
+    }
+
+    /// Bytes the texel storage takes (whole tiles).
+    #[must_use]
+    pub fn storage_bytes(&self) -> usize {
+        match &self.texels {
+            Texels::Srgb8(v) => v.len() * 4,
+            Texels::Linear(v) => v.len() * 12,
         }
     }
 

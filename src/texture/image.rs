@@ -120,6 +120,7 @@ impl Layout {
 }
 
 /// `bytes` to one decimal, as a person reads it: `1.0 GiB`, `3.0 GiB`, `768.0 MiB`.
+#[must_use]
 pub fn approx_bytes(bytes: u64) -> String {
     let b = bytes as f64;
     if bytes >= 1 << 30 {

@@ -337,6 +337,7 @@ impl<T: FixedSum> Level<T> {
     /// The nearest image's antiderivative is the table interpolated bilinearly between its
     /// corners: 2 x 2 reads at each of the box's four corners, 16 in all.
     #[inline(always)]
+    #[allow(clippy::needless_range_loop)] // the channels of lanes and sums, side by side
     fn nearest_box_sum(&self, x0: f64, x1: f64, y0: f64, y1: f64, wu: Wrap, wv: Wrap) -> [f32; 3] {
         let lin = |x: f64| {
             let k = floor_fast_f64(x);
@@ -399,6 +400,7 @@ impl<T: FixedSum> Level<T> {
     /// table of the image extended by the wraps: at most four reads, combined in wrapping
     /// arithmetic (the extended sums are integer combinations of the table's).
     #[inline(never)]
+    #[allow(clippy::needless_range_loop)] // the channels of lanes and sums, side by side
     fn corners_wrapped(&self, e: &mut Corners<T>, kx: [i64; 2], ky: [i64; 2], wu: Wrap, wv: Wrap) {
         let stride = self.width as usize + 1;
         let (w, h) = (i64::from(self.width), i64::from(self.height));
@@ -494,6 +496,7 @@ impl<T: FixedSum> Table<T> {
     /// The integral of mip level `level`'s bilinear image over the box [x0, x1] x [y0, y1]
     /// (see [`Level::box_sum`]), in texel units.
     #[inline(always)]
+    #[allow(clippy::too_many_arguments)] // a box's four edges and two wraps, at a level
     pub(crate) fn box_sum(
         &self,
         level: usize,
@@ -511,6 +514,7 @@ impl<T: FixedSum> Table<T> {
     /// The integral of mip level `level`'s nearest-texel image over the box [x0, x1] x
     /// [y0, y1] (see [`Level::nearest_box_sum`]), in texel units.
     #[inline(always)]
+    #[allow(clippy::too_many_arguments)] // a box's four edges and two wraps, at a level
     pub(crate) fn nearest_box_sum(
         &self,
         level: usize,

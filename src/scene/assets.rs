@@ -142,10 +142,9 @@ impl AssetCache {
     fn reserve_tables(&self, used: &mut SceneUse) -> Vec<String> {
         let mut notices = Vec::new();
         for (mip, field) in std::mem::take(&mut used.tables) {
-            let name = &mip.level(0).name;
             let fallback = "the footprint filter reads it with EWA instead";
             if let Some(why) = mip.summed_area_refusal() {
-                notices.push(format!("{field}: {name}: {why}; {fallback}"));
+                notices.push(format!("{field}: {why}; {fallback}"));
                 continue;
             }
             if mip.has_summed_area() {
@@ -155,7 +154,7 @@ impl AssetCache {
             let left = MAX_SCENE_TEXEL_BYTES.saturating_sub(used.texel_bytes);
             if bytes > left {
                 notices.push(format!(
-                    "{field}: {name}: its summed-area tables need {}, above the {} left of the \
+                    "{field}: its summed-area tables need {}, above the {} left of the \
                      scene's {} texture budget (its images, mip pyramids and other tables take \
                      {}); {fallback}",
                     approx_bytes(bytes),
@@ -171,7 +170,7 @@ impl AssetCache {
             }
             match mip.build_summed_area() {
                 Ok(t) => used.texel_bytes += t.bytes() as u64,
-                Err(why) => notices.push(format!("{field}: {name}: {why}; {fallback}")),
+                Err(why) => notices.push(format!("{field}: {why}; {fallback}")),
             }
         }
         notices

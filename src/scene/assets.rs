@@ -347,7 +347,7 @@ impl AssetCache {
     /// The mip pyramid of `image` for a texture read with `filter`, built once and counted
     /// once against the scene's budget; for [`Filter::Footprint`], its summed-area tables are
     /// asked for too (for the texture at `field`): reserved and built once the scene is built,
-    /// if they fit ([`AssetCache::scene`]).
+    /// if they fit (the scene build, `AssetCache::scene`).
     ///
     /// # Errors
     /// The pyramid (or tables built for an earlier scene, which it keeps) does not fit what is

@@ -111,6 +111,7 @@ fn filters(c: &mut Criterion) {
         .collect();
     let mut g = c.benchmark_group("filter");
     let mip = Arc::new(MipPyramid::build(image.clone()));
+    let _ = mip.build_summed_area();
     for &filter in Filter::VARIANTS {
         let tex = ImageTexture {
             image: image.clone(),
@@ -143,7 +144,7 @@ fn footprint_sizes(c: &mut Criterion) {
         load_image(&root.join("assets/tex_checker_2048x1024.png"), false).expect("the checker"),
     );
     let mip = MipPyramid::build(image.clone());
-    let _ = mip.summed_area();
+    let _ = mip.build_summed_area();
     let mut rng = SampleRng::new(3, 5, 7);
     let uvs: Vec<Vec2> = (0..4096)
         .map(|_| Vec2::new(rng.next_f32(), rng.next_f32()))
@@ -166,6 +167,7 @@ fn footprint_sizes(c: &mut Criterion) {
                     dy,
                     r,
                     r,
+                    DEFAULT_MAX_ANISOTROPY,
                 ))
             });
         });
@@ -186,7 +188,7 @@ fn footprint_sizes(c: &mut Criterion) {
     }
     g.sample_size(10);
     g.bench_function("table-build-2048x1024", |b| {
-        b.iter(|| black_box(SummedArea::build(&image, 0).expect("memory")));
+        b.iter(|| black_box(SummedArea::for_pyramid(&mip, mip.table_plan()).expect("memory")));
     });
     g.finish();
 }

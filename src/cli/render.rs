@@ -100,6 +100,10 @@ pub fn run(a: &RenderArgs, simd: crate::scene::SimdMode) -> Result<()> {
     );
     let mut cache = AssetCache::new();
     let mut scene = build_scene(&desc, &a.preset, &mut cache)?;
+    // Textures whose footprint filter reads EWA (no summed-area tables): say why.
+    for n in cache.notices() {
+        eprintln!("warning: {}: {n}", a.preset.display());
+    }
     scene.settings.simd = simd;
     let s = scene.settings;
     let bar = if a.quiet {

@@ -1,13 +1,15 @@
 //! The asset cache: images, meshes, mip pyramids and displaced meshes loaded once and shared
 //! between builds, each file known by its identity (not the path that spelled it), and the
-//! scene's budget: the texels of all its images, and the triangles of all its displaced meshes.
+//! scene's budget: the texels of all its images with their mip pyramids and summed-area
+//! tables, and the triangles of all its displaced meshes.
 
 use crate::error::{Error, Result};
 use crate::geometry::Mesh;
 use crate::geometry::displace::MAX_DISPLACED_TRIANGLES;
 use crate::input::{FileId, file_id, open_input};
 use crate::texture::{
-    ImageData, ImageRequest, MAX_IMAGE_BYTES, MipPyramid, load_opened, uv_grid_image,
+    Filter, ImageData, ImageRequest, MAX_IMAGE_BYTES, MipPyramid, approx_bytes, load_opened,
+    uv_grid_image,
 };
 use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
@@ -16,9 +18,15 @@ use std::sync::Arc;
 /// Side of the generated UV test grid image.
 pub const UV_GRID_SIZE: u32 = 1024;
 
-/// The texture budget of a whole scene: the texel storage of every image it reads (colours,
-/// coefficients, clip, bump, normal and displacement maps; one file read twice counts once)
-/// together, [`MAX_IMAGE_BYTES`] (1 GiB). Mip pyramids add up to a third on top.
+/// The texture budget of a whole scene, [`MAX_IMAGE_BYTES`] (1 GiB): the texel storage of
+/// every image it reads (colours, coefficients, clip, bump, normal and displacement maps; one
+/// file read twice counts once), the mip pyramids its trilinear, EWA and footprint filters read
+/// (a third of an image's bytes), and the summed-area tables of its footprint filters (12 bytes
+/// a texel for images within [0, 1], 24 for brighter ones, a third more for the coarser levels:
+/// [`crate::texture::TablePlan`]), together. Images and pyramids must fit, or the scene is
+/// refused naming the field; the tables are reserved after them, in the order the scene names
+/// their textures, and a texture whose tables no longer fit is read with EWA, with a notice
+/// ([`AssetCache::notices`]).
 pub const MAX_SCENE_TEXEL_BYTES: u64 = MAX_IMAGE_BYTES;
 
 /// The most triangles the displaced meshes of one scene may hold together (a displaced mesh
@@ -36,8 +44,11 @@ pub struct AssetCache {
     uv_grid: Option<Arc<ImageData>>,
     meshes: HashMap<FileId, Arc<Mesh>>,
     /// Mip pyramids, built on first use by a mip filter and keyed by their base image (the
-    /// cache holds every base image, so an `Arc` pointer stays a unique key).
+    /// cache holds every base image, so an `Arc` pointer stays a unique key), with their
+    /// summed-area tables once a footprint filter's budget allowed them.
     mips: Vec<(Arc<ImageData>, Arc<MipPyramid>)>,
+    /// What the last scene built said about its textures (tables it could not have).
+    notices: Vec<String>,
     /// The latest displaced meshes (at most [`DISPLACED_KEPT`]), by mesh file, the folder the
     /// height texture's path is relative to, and the displacement.
     displaced: Vec<(DisplacedKey, Arc<Mesh>)>,
@@ -50,8 +61,14 @@ pub struct AssetCache {
 /// What one scene's build has taken of the budgets, each asset counted once.
 #[derive(Debug, Default)]
 struct SceneUse {
+    /// Images, pyramids and tables built, together.
     texel_bytes: u64,
     images: HashSet<ImageKey>,
+    /// The pyramids counted (each once).
+    pyramids: Vec<Arc<MipPyramid>>,
+    /// The pyramids whose tables a footprint filter asked for and that are not built yet, in
+    /// order, with the field that asked first: reserved once the scene is built.
+    tables: Vec<(Arc<MipPyramid>, String)>,
     triangles: usize,
     displaced: HashSet<DisplacedKey>,
 }
@@ -91,25 +108,79 @@ impl AssetCache {
         self.checking
     }
 
-    /// Runs `build` as the build of one scene: every image and displaced mesh it asks for is
-    /// counted once against [`MAX_SCENE_TEXEL_BYTES`] and [`MAX_SCENE_DISPLACED_TRIANGLES`].
-    /// Afterwards the cache keeps the images this scene read and, of the others, no more than
-    /// fit in [`MAX_SCENE_TEXEL_BYTES`] with them: a window or a command going through many
-    /// scenes (lessons' experiments, `snapshot update`) does not keep every image it met.
-    pub(super) fn scene<T>(&mut self, build: impl FnOnce(&mut Self) -> T) -> T {
+    /// Runs `build` as the build of one scene: every image, mip pyramid and displaced mesh it
+    /// asks for is counted once against [`MAX_SCENE_TEXEL_BYTES`] and
+    /// [`MAX_SCENE_DISPLACED_TRIANGLES`]; once it is built, the summed-area tables its
+    /// footprint filters asked for are reserved in what is left and built, or refused with a
+    /// notice ([`AssetCache::notices`]). Afterwards the cache keeps the images this scene read
+    /// and, of the others, no more than fit in [`MAX_SCENE_TEXEL_BYTES`] with them: a window or
+    /// a command going through many scenes (lessons' experiments, `snapshot update`) does not
+    /// keep every image it met.
+    pub(super) fn scene<T>(&mut self, build: impl FnOnce(&mut Self) -> Result<T>) -> Result<T> {
         let outer = self.scene.replace(SceneUse::default());
         let out = build(self);
-        if let Some(used) = self.scene.take() {
+        if let Some(mut used) = self.scene.take() {
+            if out.is_ok() {
+                self.notices = self.reserve_tables(&mut used);
+            }
             self.trim(&used.images);
         }
         self.scene = outer;
         out
     }
 
-    /// Forgets images not in `keep` (and their mip pyramids) while the cache's images take
-    /// more than [`MAX_SCENE_TEXEL_BYTES`].
+    /// What the last scene built said about its textures: each texture whose footprint filter
+    /// reads EWA because its image has no summed-area tables, and why (they did not fit the
+    /// budget, or a texel is too large to sum exactly). Empty for most scenes.
+    #[must_use]
+    pub fn notices(&self) -> &[String] {
+        &self.notices
+    }
+
+    /// Reserves and builds, in order, the tables `used` asked for, while they fit what is left
+    /// of the budget; the notices for those that did not.
+    fn reserve_tables(&self, used: &mut SceneUse) -> Vec<String> {
+        let mut notices = Vec::new();
+        for (mip, field) in std::mem::take(&mut used.tables) {
+            let fallback = "the footprint filter reads it with EWA instead";
+            if let Some(why) = mip.summed_area_refusal() {
+                notices.push(format!("{field}: {why}; {fallback}"));
+                continue;
+            }
+            if mip.has_summed_area() {
+                continue; // built for an earlier scene, counted when asked for
+            }
+            let bytes = mip.table_bytes();
+            let left = MAX_SCENE_TEXEL_BYTES.saturating_sub(used.texel_bytes);
+            if bytes > left {
+                notices.push(format!(
+                    "{field}: its summed-area tables need {}, above the {} left of the \
+                     scene's {} texture budget (its images, mip pyramids and other tables take \
+                     {}); {fallback}",
+                    approx_bytes(bytes),
+                    approx_bytes(left),
+                    approx_bytes(MAX_SCENE_TEXEL_BYTES),
+                    approx_bytes(used.texel_bytes)
+                ));
+                continue;
+            }
+            if self.checking {
+                used.texel_bytes += bytes;
+                continue;
+            }
+            match mip.build_summed_area() {
+                Ok(t) => used.texel_bytes += t.bytes() as u64,
+                Err(why) => notices.push(format!("{field}: {why}; {fallback}")),
+            }
+        }
+        notices
+    }
+
+    /// Forgets images not in `keep` (and their mip pyramids and tables) while the cache's
+    /// images, pyramids and tables take more than [`MAX_SCENE_TEXEL_BYTES`].
     fn trim(&mut self, keep: &HashSet<ImageKey>) {
-        let mut total: u64 = self.images.values().map(|(_, bytes)| bytes).sum();
+        let mut total: u64 = self.images.values().map(|(_, bytes)| bytes).sum::<u64>()
+            + self.mips.iter().map(|(_, m)| m.extra_bytes()).sum::<u64>();
         let others: Vec<ImageKey> = self
             .images
             .keys()
@@ -121,8 +192,14 @@ impl AssetCache {
                 break;
             }
             if let Some((image, bytes)) = self.images.remove(&key) {
-                total -= bytes;
-                self.mips.retain(|(base, _)| !Arc::ptr_eq(base, &image));
+                total = total.saturating_sub(bytes);
+                self.mips.retain(|(base, m)| {
+                    let keep = !Arc::ptr_eq(base, &image);
+                    if !keep {
+                        total = total.saturating_sub(m.extra_bytes());
+                    }
+                    keep
+                });
             }
         }
     }
@@ -278,14 +355,77 @@ impl AssetCache {
             .clone()
     }
 
-    /// The mip pyramid of `image`, built once.
-    pub fn mip(&mut self, image: &Arc<ImageData>) -> Arc<MipPyramid> {
-        if let Some((_, m)) = self.mips.iter().find(|(i, _)| Arc::ptr_eq(i, image)) {
-            return m.clone();
+    /// The mip pyramid of `image` for a texture read with `filter`, built once and counted
+    /// once against the scene's budget; for [`Filter::Footprint`], its summed-area tables are
+    /// asked for too (for the texture at `field`): reserved and built once the scene is built,
+    /// if they fit (the scene build, `AssetCache::scene`).
+    ///
+    /// # Errors
+    /// The pyramid (or tables built for an earlier scene, which it keeps) does not fit what is
+    /// left of the scene's budget: the message says how much it needs and what is left.
+    pub fn mip(
+        &mut self,
+        image: &Arc<ImageData>,
+        filter: Filter,
+        field: &str,
+    ) -> std::result::Result<Arc<MipPyramid>, String> {
+        let found = self
+            .mips
+            .iter()
+            .find(|(i, _)| Arc::ptr_eq(i, image))
+            .map(|(_, m)| m.clone());
+        let counted = self.scene.as_ref().is_some_and(|s| {
+            found
+                .as_ref()
+                .is_some_and(|m| s.pyramids.iter().any(|p| Arc::ptr_eq(p, m)))
+        });
+        if !counted && let Some(s) = &self.scene {
+            // A stand-in (a checking cache) is 1 x 1: its pyramid is a third of the image's bytes.
+            let bytes = match &found {
+                Some(m) => m.extra_bytes(),
+                None if self.checking => self.image_bytes(image).div_ceil(3),
+                None => MipPyramid::planned_bytes(image),
+            };
+            let left = MAX_SCENE_TEXEL_BYTES.saturating_sub(s.texel_bytes);
+            if bytes > left {
+                return Err(format!(
+                    "{filter:?} reads a mip pyramid of {}: {} (with any summed-area tables already \
+                     built), above the {} left of the scene's {} texture budget (its images, mip \
+                     pyramids and tables take {}); use Bilinear, or fewer or smaller images",
+                    image.name,
+                    approx_bytes(bytes),
+                    approx_bytes(left),
+                    approx_bytes(MAX_SCENE_TEXEL_BYTES),
+                    approx_bytes(s.texel_bytes)
+                ));
+            }
         }
-        let m = Arc::new(MipPyramid::build(image.clone()));
-        self.mips.push((image.clone(), m.clone()));
-        m
+        let m = found.unwrap_or_else(|| {
+            let m = Arc::new(MipPyramid::build(image.clone()));
+            self.mips.push((image.clone(), m.clone()));
+            m
+        });
+        if let Some(s) = &mut self.scene {
+            if !counted {
+                s.texel_bytes += m.extra_bytes();
+                s.pyramids.push(m.clone());
+            }
+            if filter == Filter::Footprint && !s.tables.iter().any(|(p, _)| Arc::ptr_eq(p, &m)) {
+                s.tables.push((m.clone(), field.to_owned()));
+            }
+        } else if filter == Filter::Footprint {
+            // Outside a scene's build (a tool's own texture): no budget to reserve in.
+            let _ = m.build_summed_area();
+        }
+        Ok(m)
+    }
+
+    /// The bytes `image` was counted with (its decoded storage; a stand-in's full image's).
+    fn image_bytes(&self, image: &Arc<ImageData>) -> u64 {
+        self.images
+            .values()
+            .find(|(i, _)| Arc::ptr_eq(i, image))
+            .map_or(image.storage_bytes() as u64, |(_, b)| *b)
     }
 
     /// How many mip pyramids have been built (each at most once).

@@ -388,8 +388,9 @@ pub(super) fn alpha_texture(
     let transform = uv_transform(uv).map_err(refused)?;
     check_path(path).map_err(refused)?;
     let mapping = build_mapping(mapping).map_err(refused)?;
-    let image = cache.alpha(&base.join(path))?;
-    let mip = filter.needs_mip().then(|| cache.mip(&image));
+    let file = base.join(path);
+    let image = cache.alpha(&file)?;
+    let mip = pyramid(cache, &image, *filter, &file.display().to_string()).map_err(refused)?;
     Ok(Texture::Image(ImageTexture {
         image,
         mapping,
@@ -423,6 +424,23 @@ pub fn check_checker(squares: (f32, f32), colors: &(Rgb, Rgb)) -> std::result::R
     )
 }
 
+/// The mip pyramid a texture read with `filter` needs (none unless [`Filter::needs_mip`]),
+/// counted against the scene's budget; `what` names the image in notices.
+fn pyramid(
+    cache: &mut AssetCache,
+    image: &Arc<crate::texture::ImageData>,
+    filter: Filter,
+    what: &str,
+) -> std::result::Result<Option<Arc<crate::texture::MipPyramid>>, Refusal> {
+    if !filter.needs_mip() {
+        return Ok(None);
+    }
+    cache
+        .mip(image, filter, what)
+        .map(Some)
+        .map_err(|m| Refusal::new("filter".into(), m))
+}
+
 /// The runtime texture; errors name their fields relative to the texture's (`scale`,
 /// `mapping.u`), or no field for the texture's own.
 pub(super) fn texture(t: &TextureDesc, base: &Path, cache: &mut AssetCache) -> Result<Texture> {
@@ -448,8 +466,10 @@ pub(super) fn texture(t: &TextureDesc, base: &Path, cache: &mut AssetCache) -> R
             check_anisotropy(*max_anisotropy).map_err(invalid)?;
             check_path(path).map_err(invalid)?;
             let mapping = build_mapping(mapping).map_err(invalid)?;
-            let image = cache.image(&base.join(path), *srgb)?;
-            let mip = filter.needs_mip().then(|| cache.mip(&image));
+            let file = base.join(path);
+            let image = cache.image(&file, *srgb)?;
+            let mip =
+                pyramid(cache, &image, *filter, &file.display().to_string()).map_err(invalid)?;
             Texture::Image(ImageTexture {
                 image,
                 mapping,
@@ -496,7 +516,7 @@ pub(super) fn texture(t: &TextureDesc, base: &Path, cache: &mut AssetCache) -> R
             let transform = uv_transform(uv).map_err(invalid)?;
             let mapping = build_mapping(mapping).map_err(invalid)?;
             let image = cache.uv_grid();
-            let mip = filter.needs_mip().then(|| cache.mip(&image));
+            let mip = pyramid(cache, &image, *filter, "the UV grid").map_err(invalid)?;
             Texture::Image(ImageTexture {
                 image,
                 mapping,

@@ -123,7 +123,8 @@ impl Layout {
 }
 
 /// `bytes` to one decimal, as a person reads it: `1.0 GiB`, `3.0 GiB`, `768.0 MiB`.
-fn approx_bytes(bytes: u64) -> String {
+#[must_use]
+pub fn approx_bytes(bytes: u64) -> String {
     let b = bytes as f64;
     if bytes >= 1 << 30 {
         format!("{:.1} GiB", b / f64::from(1u32 << 30))
@@ -242,6 +243,12 @@ impl ImageData {
             Texels::Linear(v) => v.len(),
         };
         n as u64 * self.bytes_per_texel() as u64
+    }
+
+    /// Bytes the texel storage takes (whole tiles): [`ImageData::texels_bytes`] as a `usize`.
+    #[must_use]
+    pub fn storage_bytes(&self) -> usize {
+        usize::try_from(self.texels_bytes()).unwrap_or(usize::MAX)
     }
 
     /// Whether the image holds linear (HDR or 16-bit) values.

@@ -26,8 +26,12 @@ pub const MAX_ANISOTROPY_LIMIT: f32 = 64.0;
 #[derive(Clone, Debug)]
 pub struct MipPyramid {
     levels: Vec<Arc<ImageData>>,
-    /// The summed-area table the footprint filter reads, built on first use
-    /// ([`MipPyramid::summed_area`]); the error when its memory could not be had.
+    /// How the summed-area tables store their sums (from the largest texel), decided on first
+    /// use ([`MipPyramid::table_plan`]).
+    plan: OnceLock<super::TablePlan>,
+    /// The summed-area tables the footprint filter reads, built on first use
+    /// ([`MipPyramid::summed_area`]); why there are none (the plan refused the image, or their
+    /// memory could not be had).
     table: OnceLock<Result<super::SummedArea, String>>,
 }
 
@@ -46,25 +50,83 @@ impl MipPyramid {
         }
         Self {
             levels,
+            plan: OnceLock::new(),
             table: OnceLock::new(),
         }
     }
 
-    /// The summed-area table of the image (of its finest level within
-    /// [`super::MAX_TABLE_TEXELS`]), built on the first call and kept; `None` when its memory
-    /// could not be had (the footprint filter then takes its taps).
+    /// The summed-area tables of the image's levels (from its finest within
+    /// [`super::MAX_TABLE_TEXELS`]) once [`MipPyramid::build_summed_area`] has built them;
+    /// `None` before, when the plan refuses the image, or when their memory could not be had
+    /// (the footprint filter then reads EWA). A lookup never builds them: the scene's budget
+    /// decides whether they are built ([`crate::scene::AssetCache`]).
     #[must_use]
+    #[inline(always)]
     pub fn summed_area(&self) -> Option<&super::SummedArea> {
-        self.table
-            .get_or_init(|| super::SummedArea::for_pyramid(self))
-            .as_ref()
-            .ok()
+        self.table.get().and_then(|t| t.as_ref().ok())
     }
 
-    /// Whether the summed-area table has been built.
+    /// Builds the summed-area tables (once; later calls return the first outcome).
+    ///
+    /// # Errors
+    /// Why there are none: the plan refuses the image (a texel too large to sum exactly), or
+    /// their memory could not be had.
+    pub fn build_summed_area(&self) -> Result<&super::SummedArea, &str> {
+        self.table
+            .get_or_init(|| super::SummedArea::for_pyramid(self, self.table_plan()))
+            .as_ref()
+            .map_err(String::as_str)
+    }
+
+    /// How the summed-area tables store their sums, from the image's largest texel (decided on
+    /// the first call, without building them).
+    #[must_use]
+    pub fn table_plan(&self) -> &super::TablePlan {
+        self.plan
+            .get_or_init(|| super::TablePlan::for_image(self.level(0)))
+    }
+
+    /// Bytes the summed-area tables take once built, or would take under
+    /// [`MipPyramid::table_plan`] (0 when it refuses them): what a scene's budget reserves.
+    #[must_use]
+    pub fn table_bytes(&self) -> u64 {
+        match self.table.get() {
+            Some(Ok(t)) => t.bytes() as u64,
+            Some(Err(_)) => 0,
+            None => {
+                let base = self.level(0);
+                self.table_plan().table_bytes(base.width(), base.height())
+            }
+        }
+    }
+
+    /// Why the image has no summed-area tables, once their build was tried (or the plan
+    /// refused them).
+    #[must_use]
+    pub fn summed_area_refusal(&self) -> Option<&str> {
+        if let Some(super::TablePlan::Refused(why)) = self.plan.get() {
+            return Some(why);
+        }
+        self.table
+            .get()
+            .and_then(|t| t.as_ref().err())
+            .map(String::as_str)
+    }
+
+    /// Whether the summed-area tables have been built.
     #[must_use]
     pub fn has_summed_area(&self) -> bool {
         self.table.get().is_some_and(Result::is_ok)
+    }
+
+    /// Bytes the levels above the base take (the base belongs to the texture), without the
+    /// tables.
+    #[must_use]
+    pub fn level_bytes(&self) -> u64 {
+        self.levels[1..]
+            .iter()
+            .map(|l| l.storage_bytes() as u64)
+            .sum()
     }
 
     /// Number of levels (1 for a 1 x 1 image).
@@ -86,18 +148,29 @@ impl MipPyramid {
     }
 
     /// Bytes taken by the levels above the base (the base belongs to the texture) and by the
-    /// summed-area table once built.
+    /// summed-area tables once built.
     #[must_use]
-    pub fn extra_bytes(&self) -> usize {
+    pub fn extra_bytes(&self) -> u64 {
         let table = match self.table.get() {
-            Some(Ok(t)) => t.bytes(),
+            Some(Ok(t)) => t.bytes() as u64,
             _ => 0,
         };
-        self.levels[1..]
-            .iter()
-            .map(|l| l.width() as usize * l.height() as usize * l.bytes_per_texel())
-            .sum::<usize>()
-            + table
+        self.level_bytes() + table
+    }
+
+    /// Bytes the levels above the base of `image` will take once built (each stored in whole
+    /// tiles, as [`MipPyramid::level_bytes`] counts them): what a scene's budget checks before
+    /// building a pyramid.
+    #[must_use]
+    pub fn planned_bytes(image: &ImageData) -> u64 {
+        let tile = u64::from(super::TILE);
+        let (mut w, mut h) = (image.width(), image.height());
+        let mut bytes = 0;
+        while w > 1 || h > 1 {
+            (w, h) = (half(w), half(h));
+            bytes += u64::from(w).div_ceil(tile) * u64::from(h).div_ceil(tile) * tile * tile;
+        }
+        bytes * image.bytes_per_texel() as u64
     }
 
     /// The continuous level whose texels are `texels` base texels wide (0 when magnified).

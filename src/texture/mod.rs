@@ -22,12 +22,14 @@ pub use explain::{explain_lookup, explain_wrap};
 pub use formula::{FormulaColour, FormulaTexture, mark};
 pub(crate) use image::tiled_index;
 pub use image::{
-    ImageData, ImageRequest, MAX_IMAGE_BYTES, MAX_IMAGE_DIMENSION, TILE, Texels, load_alpha,
-    load_image, load_opened, save_png, save_png_checked,
+    ImageData, ImageRequest, MAX_IMAGE_BYTES, MAX_IMAGE_DIMENSION, TILE, Texels, approx_bytes,
+    load_alpha, load_image, load_opened, save_png, save_png_checked,
 };
 pub use mip::{DEFAULT_MAX_ANISOTROPY, EWA_FOOTPRINT_SCALE, MAX_ANISOTROPY_LIMIT, MipPyramid};
 pub use procedural::{Checker, uv_grid_image};
-pub use summed::{MAX_TABLE_TEXELS, SummedArea};
+pub use summed::{
+    MAX_HULL_TEXELS, MAX_TABLE_TEXELS, MAX_WIDE_TEXEL, MIN_WIDE_BITS, SummedArea, TablePlan,
+};
 
 use crate::mapping::{AnyMapping, Mapping, TexCoord, UvAffine};
 use crate::math::{Rgb, Vec2, Vec3A};
@@ -537,9 +539,16 @@ impl ImageTexture {
             (Filter::Bicubic, _) => self.image.bicubic(tc.uv, wu, wv),
             (Filter::Trilinear, Some(m)) => m.trilinear(tc.uv, tc.duvdx, tc.duvdy, wu, wv),
             (Filter::Ewa, Some(m)) => m.ewa(tc.uv, tc.duvdx, tc.duvdy, self.max_anisotropy, wu, wv),
-            (Filter::Footprint, m) => {
-                footprint::footprint(m.as_deref(), &self.image, tc.uv, tc.duvdx, tc.duvdy, wu, wv)
-            }
+            (Filter::Footprint, m) => footprint::footprint(
+                m.as_deref(),
+                &self.image,
+                tc.uv,
+                tc.duvdx,
+                tc.duvdy,
+                wu,
+                wv,
+                self.max_anisotropy,
+            ),
         }
     }
 

@@ -300,6 +300,7 @@ fn huge_coordinates_wrap_exactly_under_every_filter() {
     });
     let image = std::sync::Arc::new(img);
     let mip = std::sync::Arc::new(MipPyramid::build(image.clone()));
+    let _ = mip.build_summed_area();
     let d = (Vec2::new(0.05, 0.01), Vec2::new(-0.01, 0.03));
     let huge = [
         1e16_f32,

@@ -4,10 +4,11 @@
 usage: side_by_side_table.py WORK ROUNDS
 
 Per configuration: the median over rounds of each round's best time (the fastest of its timed
-renders, as the peers' harness reports it), the RMSE against Mitsuba's 16384-spp reference
-(linear, over all W x H x 3 values), samples per second; then the time to reach RMSE 0.009 and
-0.003 (the fastest configuration at or below it, over every sampler of each renderer) and the
-ratios texplore / Mitsuba; the per-spp ratio is against Mitsuba's fastest sampler at that spp.
+renders, as the peers' harness reports it), the RMSE against Mitsuba's reference (16384 spp for
+the sphere, 8192 for the mesh; linear, over all W x H x 3 values), samples per second; then the
+time to reach RMSE 0.009 and 0.003 (the fastest configuration at or below it, over every
+sampler of each renderer) and the ratios texplore / Mitsuba; the per-spp ratio is against
+Mitsuba's fastest sampler at that spp.
 Standard library only.
 """
 import csv

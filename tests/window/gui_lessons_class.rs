@@ -166,6 +166,9 @@ fn shipped_scenes_are_saved_only_under_another_name() {
     let _ = h.get_by_role_and_label(Role::TextInput, "Path");
     h.key_press(egui::Key::Escape);
     h.run_steps(3);
+    // The dialog's closing resizes the viewport, which restarts the render: the image shows
+    // once its first preview lands.
+    crate::gui_common::settle(&mut h);
     // A learner's own change, then the next lesson: the prompt offers Save as, not Save.
     let image = h.get_by_label(IMAGE).rect();
     drag(

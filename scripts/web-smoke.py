@@ -689,6 +689,9 @@ def main():
     ap.add_argument("--update-reference", action="store_true",
                     help="write Chromium's settled screenshot as web/smoke-earth.png")
     a = ap.parse_args()
+    # WebDriver takes only absolute paths for a file input, and the checkout's own target/ is
+    # relative when CARGO_TARGET_DIR is unset (as on CI).
+    a.site, a.out = os.path.abspath(a.site), os.path.abspath(a.out)
     failures = {}
 
     handler = functools.partial(Counting, directory=a.site)

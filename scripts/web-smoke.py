@@ -673,6 +673,10 @@ def run_checks(p, url, name, update_reference):
         p.settled()
         if p.press("Show solution") and p.press("Check"):
             verdict = p.wait("the exercise's verdict", lambda: p.widget("Correct", prefix=True), 60)
+            # The formulas' scene restarts the render (unless it has already): then it settles.
+            until = time.time() + 10
+            while time.time() < until and p.status().get("finished") == 1:
+                time.sleep(0.2)
             p.settled()
             img = p.shot("exercise.png")
             if verdict:

@@ -365,7 +365,7 @@ impl WebApp {
                     ui.label(format!(
                         "Downloading {} ({}) for this scene: grey until it is in…",
                         names.join(", "),
-                        crate::input::human_bytes(bytes)
+                        download_size(bytes)
                     ));
                 });
             });
@@ -420,6 +420,15 @@ impl eframe::App for WebApp {
 
     fn save(&mut self, storage: &mut dyn eframe::Storage) {
         self.inner.save(storage);
+    }
+}
+
+/// `bytes` as the page's loading message says sizes: megabytes to a tenth, or kilobytes.
+fn download_size(bytes: u64) -> String {
+    if bytes >= 1_000_000 {
+        format!("{:.1} MB", bytes as f64 / 1e6)
+    } else {
+        format!("{} KB", bytes.div_ceil(1000))
     }
 }
 

@@ -108,7 +108,7 @@ impl AssetCache {
     }
 
     /// In a page (wasm32), where a shipped image or mesh may not be downloaded yet: with `on`,
-    /// the builds stand such a file in ([`super::stand_in`]: a grey texel, a grey octahedron)
+    /// the builds stand such a file in (`scene::stand_in`: a grey texel, a grey octahedron)
     /// instead of failing, and note it for [`AssetCache::take_stood_in`]; the stand-in is not
     /// kept, so the next build once the file is in reads it. A checking cache always stands
     /// them in, unnoted.

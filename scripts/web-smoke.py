@@ -658,9 +658,20 @@ def run_checks(p, url, name, update_reference):
     #    experiment without an error, the mesh stood in until it is in.
     p.follow(f"#texplore1-l-{LESSON_9}~1")
     if p.wait("the link opens lesson 9", lambda: p.status().get("lesson") == LESSON_9, 60):
-        p.settled()
-        img = p.shot("mesh-lesson.png")
-        c, s = colours(img, image_box(img)), p.status()
+        # Its scene, built with the mesh in, at the experiment, rendered.
+        def shown():
+            s = p.status()
+            if not (s.get("scene", "").endswith("two-triangles.ron") and s.get("standIns") == 0
+                    and s.get("finished") == 1):
+                return None
+            img = p.shot()
+            c = colours(img, image_box(img))
+            return (img, c) if c["red"] >= 100 and c["green"] >= 100 else None
+
+        img, c = p.wait("lesson 9's two triangles in (u, v)", shown, 120) or (p.shot(), None)
+        with open(os.path.join(p.out, "mesh-lesson.png"), "wb") as f:
+            f.write(img.png)
+        c, s = c or colours(img, image_box(img)), p.status()
         fetched = any(path == "/" + MESH for _, path, _ in Counting.sent)
         print(f"  lesson 9's mesh fetched when the lesson opened: {fetched}; (u, v) shown: {c}")
         if s.get("error") or not fetched or c["red"] < 100 or c["green"] < 100:

@@ -339,6 +339,9 @@ impl WebApp {
         set("presenting", f64::from(u8::from(self.inner.presenting())));
         // The files the scene shown stands in (not downloaded when it built).
         set("standIns", self.inner.doc.stand_ins().len() as f64);
+        // The scene's file (it changes when an opened scene has built).
+        let scene = self.inner.doc.path.to_string_lossy().into_owned();
+        let _ = js_sys::Reflect::set(&status, &"scene".into(), &scene.into());
         // The error the window shows, if any.
         let error = self.inner.error.clone().unwrap_or_default();
         let _ = js_sys::Reflect::set(&status, &"error".into(), &error.into());

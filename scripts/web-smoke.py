@@ -7,21 +7,26 @@ Serves the folder scripts/build-web.sh made (default target/web) as `python3 -m 
 does (the same handler, counting the bytes it sends), opens the page with two render workers
 (`?workers=2`) and its widgets listed for scripts (`?widgets`: each button found by its label,
 clicked with the browser's own pointer), and checks, in each browser:
-  1. the first image: the window starts and shows the Earth; what the first visit fetched
-     before it (at most 6 MB); the settled Earth against web/smoke-earth.png;
+  1. the first image: the window starts; while the Earth's image downloads (held back by the
+     server until then) the sphere stands grey, then the Earth shows; what the first visit
+     fetched before it (at most 6 MB); the settled Earth against web/smoke-earth.png;
   2. two workers rendered it (each rendered chunks; their memory is printed);
-  3. the app's keys lose the browser's default (F5, F1, Ctrl+S, Ctrl+O, Ctrl+Z), a plain
+  3. presentation mode (P): the film follows the image drawn (the canvas's height), and the
+     preset's resolution comes back after it;
+  4. the app's keys lose the browser's default (F5, F1, Ctrl+S, Ctrl+O, Ctrl+Z), a plain
      letter keeps it;
-  4. a link opening a lesson's experiment (#texplore1-l-01-constant-vs-image~1, put in the
+  5. a link opening a lesson's experiment (#texplore1-l-01-constant-vs-image~1, put in the
      address bar of the open page): the Lessons panel on lesson 1, the Earth turned blue;
-  5. a lesson experiment pressed ("A different image: the cat") changes the image;
-  6. a reload keeps the lesson, its experiment and the panel;
-  7. an exercise's Check (lesson 6: Show solution, then Check) says "Correct" and puts the
+  6. a lesson experiment pressed ("A different image: the cat") changes the image;
+  7. a reload keeps the lesson, its experiment and the panel;
+  8. a lesson whose mesh downloads when it opens (lesson 9's two triangles, at "Show (u, v)"):
+     no error, the (u, v) in red and green;
+  9. an exercise's Check (lesson 6: Show solution, then Check) says "Correct" and puts the
      formulas on the Earth;
-  8. a link opening a scene (the Earth's preset in a #texplore1-s- link), then a student's own
+  10. a link opening a scene (the Earth's preset in a #texplore1-s- link), then a student's own
      image reaching the sphere, chosen with Browse… (the page's file input) and dropped on
      the page;
-  9. no error or warning in the console from the page.
+  11. no error or warning in the console from the page.
 Prints the times, the bytes and the render's rays per second, and writes screenshots to --out
 (one folder per browser).
 
@@ -61,6 +66,9 @@ MAX_MEAN_DIFF = 6.0
 MAX_FIRST_LOAD = 6_000_000
 LESSON_1 = "01-constant-vs-image"
 LESSON_6 = "06-spherical-mapping"
+LESSON_9 = "09-triangle-meshes"
+MESH = "assets/two-triangles.ply"
+EARTH_IMAGE = "assets/earth_2048x1024.jpg"
 
 
 def free_port():
@@ -150,8 +158,13 @@ class Image:
 
 class Counting(http.server.SimpleHTTPRequestHandler):
     sent = []  # (time, path, bytes of the body)
+    # Files whose body waits until the test lets it go (path: threading.Event): a slow download.
+    held = {}
 
     def copyfile(self, source, outputfile):
+        held = Counting.held.get(self.path.split("?")[0])
+        if held:
+            held.wait(120)
         n = 0
         while True:
             buf = source.read(1 << 16)
@@ -233,6 +246,13 @@ class Driver:
         self.call("POST", self.s("/actions"), {"actions": [pointer]})
         self.call("DELETE", self.s("/actions"))
 
+    def key(self, key):
+        """Presses and lets go of `key` (a character) where the focus is."""
+        keys = {"type": "key", "id": "keyboard",
+                "actions": [{"type": "keyDown", "value": key}, {"type": "keyUp", "value": key}]}
+        self.call("POST", self.s("/actions"), {"actions": [keys]})
+        self.call("DELETE", self.s("/actions"))
+
     def find_css(self, selector):
         value = self.call("POST", self.s("/element"), {"using": "css selector", "value": selector})
         return next(iter(value.values()))
@@ -310,9 +330,9 @@ def viewport_box(img):
 
 
 def colours(img, box=None):
-    """(ocean-blue, land, red, green pixels, distinct colours) in `box`, sampled."""
+    """(ocean-blue, land, red, green, mid-grey pixels, distinct colours) in `box`, sampled."""
     x0, y0, x1, y1 = box or viewport_box(img)
-    blue = land = red = green = 0
+    blue = land = red = green = grey = 0
     seen = set()
     for y in range(y0, y1, 4):
         for x in range(x0, x1, 4):
@@ -327,7 +347,9 @@ def colours(img, box=None):
                 red += 1
             if g > 100 and g > r + 50 and g > b + 50:
                 green += 1
-    return {"blue": blue, "land": land, "red": red, "green": green, "colours": len(seen)}
+            if 40 < r < 220 and max(r, g, b) - min(r, g, b) < 8:
+                grey += 1
+    return {"blue": blue, "land": land, "red": red, "green": green, "grey": grey, "colours": len(seen)}
 
 
 def looks_like_earth(img):
@@ -376,8 +398,11 @@ class Page:
                                            "&& !!globalThis.texploreStatus"), timeout)
 
     def settled(self, timeout=180):
-        """Waits for the render to finish (every pass of the scene's samples)."""
-        return self.wait("the render finishes", lambda: self.status().get("finished") == 1, timeout)
+        """Waits for the render to finish (every pass of the scene's samples), with every file
+        in (no stand-in)."""
+        return self.wait("the render finishes",
+                         lambda: (lambda s: s.get("finished") == 1 and s.get("standIns") == 0)(self.status()),
+                         timeout)
 
     def widgets(self):
         return self.d.js("return globalThis.texploreWidgets || []") or []
@@ -465,11 +490,49 @@ for (const kind of ['dragenter', 'dragover', 'drop']) {
 """
 
 
+def presentation(p):
+    """Presentation mode, entered and left with P: in it the film is the image's size in
+    screen pixels (the image fills the canvas's height), out of it the preset's resolution."""
+    before = p.status()
+    preset = (before.get("filmWidth"), before.get("filmHeight"))
+    # The window takes keys once its canvas has the focus: a click on the status line.
+    p.d.click(WIDTH * 0.6, HEIGHT - 8)
+    p.d.key("p")
+
+    def follows():
+        s = p.status()
+        w, h = s.get("filmWidth", 0), s.get("filmHeight", 0)
+        iw, ih = s.get("imageWidth", 0), s.get("imageHeight", 0)
+        return s if s.get("presenting") == 1 and abs(w - iw) <= 1.5 and abs(h - ih) <= 1.5 else None
+
+    s = p.wait("presentation mode's film follows the image", follows, 30)
+    if not s:
+        p.fail(f"in presentation mode the film should be the image's size: {p.status()}")
+    else:
+        film = (s["filmWidth"], s["filmHeight"])
+        print(f"  presentation mode (P): film {film[0]:.0f}x{film[1]:.0f} for an image of "
+              f"{s['imageWidth']:.0f}x{s['imageHeight']:.0f} pixels on a {WIDTH}x{HEIGHT} canvas "
+              f"(the preset's {preset[0]:.0f}x{preset[1]:.0f} before it)")
+        if film[1] < HEIGHT * 0.75 or film[0] <= preset[0]:
+            p.fail(f"presentation mode's film {film} should fill the canvas's height {HEIGHT}")
+        p.wait("a pass in presentation mode", lambda: (p.status().get("spp") or 0) >= 1, 60)
+        p.shot("presentation.png")
+    p.d.key("p")
+    if not p.wait("the preset's resolution after presentation mode",
+                  lambda: p.status().get("presenting") == 0
+                  and (p.status().get("filmWidth"), p.status().get("filmHeight")) == preset, 30):
+        p.fail(f"after presentation mode the film should be the preset's {preset}: {p.status()}")
+    p.settled()
+
+
 def run_checks(p, url, name, update_reference):
     """The checks in one browser; returns the figures it printed."""
     d = p.d
     figures = {}
     Counting.sent.clear()
+    # The Earth's image is held back: the sphere stands grey until it is in.
+    earth = threading.Event()
+    Counting.held = {"/" + EARTH_IMAGE: earth}
     t0 = time.time()
     d.go(url + "?workers=2&widgets")
 
@@ -479,6 +542,16 @@ def run_checks(p, url, name, update_reference):
         p.fail(f"the page says {text!r}")
         return figures
     print(f"  window started after {time.time() - t0:.1f} s")
+    # 1a. A scene whose image is downloading stands it in (a grey sphere), then shows it.
+    grey = p.wait("a grey stand-in while the Earth's image downloads",
+                  lambda: (lambda s, i: i if s.get("standIns") == 1 and colours(i, image_box(i))["grey"] > 2000
+                           else None)(p.status(), p.shot()), 120)
+    if grey:
+        p.shot("stand-in.png")
+        print(f"  a grey stand-in after {time.time() - t0:.1f} s while {EARTH_IMAGE} downloads: "
+              f"{colours(grey, image_box(grey))}")
+    earth.set()
+    t_let_go = time.time()
     first = p.wait("an Earth on the canvas", lambda: (lambda i: i if looks_like_earth(i) else None)(p.shot()), 180)
     if not first:
         return figures
@@ -487,7 +560,8 @@ def run_checks(p, url, name, update_reference):
     fetched = [(t, path, n) for t, path, n in Counting.sent if t <= t_first]
     total = sum(n for _, _, n in fetched)
     figures["first_load"] = total
-    print(f"  first image of the Earth after {t_first - t0:.1f} s; the visit fetched "
+    print(f"  first image of the Earth after {t_first - t0:.1f} s ({t_first - t_let_go:.1f} s after its "
+          f"image was let go); the visit fetched "
           f"{total / 1e6:.2f} MB in {len(fetched)} requests before it:")
     for path, n in sorted({(path, n) for _, path, n in fetched}, key=lambda e: -e[1])[:6]:
         print(f"    {n / 1e6:8.3f} MB  {path}")
@@ -525,7 +599,11 @@ def run_checks(p, url, name, update_reference):
     if s.get("workers", 0) < 2 or len(chunks) < 2 or min(chunks) == 0:
         p.fail(f"two workers should have rendered the Earth: {s}")
 
-    # 3. The app's keys lose the browser's default; copying and the browser's own keys keep it.
+    # 3. Presentation mode (P): the film follows the image drawn, as on the desktop, and goes
+    #    back to the preset's resolution after it.
+    presentation(p)
+
+    # 4. The app's keys lose the browser's default; copying and the browser's own keys keep it.
     taken = [["F5", {"key": "F5", "code": "F5"}], ["F1", {"key": "F1", "code": "F1"}],
              ["Ctrl+S", {"key": "s", "code": "KeyS", "ctrlKey": True}],
              ["Ctrl+O", {"key": "o", "code": "KeyO", "ctrlKey": True}],
@@ -540,7 +618,7 @@ def run_checks(p, url, name, update_reference):
     if not all(prevented[k] for k, _ in taken) or any(prevented[k] for k, _ in kept):
         p.fail(f"the app's keys should lose their browser default, the others keep it: {prevented}")
 
-    # 4. A link opening a lesson's experiment, in the open page.
+    # 5. A link opening a lesson's experiment, in the open page.
     p.follow(f"#texplore1-l-{LESSON_1}~1")
     if p.wait("the link opens lesson 1", lambda: p.status().get("lesson") == LESSON_1, 60):
         p.settled()
@@ -553,7 +631,7 @@ def run_checks(p, url, name, update_reference):
             p.fail("the Lessons panel does not show lesson 1's experiments")
         before = img
 
-        # 5. A lesson experiment, pressed.
+        # 6. A lesson experiment, pressed.
         if p.press("A different image: the cat"):
             p.wait("the experiment changes the render", lambda: p.status().get("finished") == 0, 20)
             p.settled()
@@ -563,7 +641,7 @@ def run_checks(p, url, name, update_reference):
             if worst < 30:
                 p.fail("pressing \"A different image: the cat\" did not change the image")
 
-            # 6. A reload keeps the lesson, its experiment and the panel.
+            # 7. A reload keeps the lesson, its experiment and the panel.
             time.sleep(1)
             d.refresh()
             if p.started() and p.wait("the reload reopens lesson 1", lambda: p.status().get("lesson") == LESSON_1, 60):
@@ -576,12 +654,40 @@ def run_checks(p, url, name, update_reference):
                 if mean > MAX_MEAN_DIFF:
                     p.fail(f"the reload did not put the cat back: mean block difference {mean:.2f}")
 
-    # 7. An exercise's Check, on the exercise's own scene.
+    # 8. A lesson whose mesh downloads when it opens (lesson 9's two triangles): it opens at its
+    #    experiment without an error, the mesh stood in until it is in.
+    p.follow(f"#texplore1-l-{LESSON_9}~1")
+    if p.wait("the link opens lesson 9", lambda: p.status().get("lesson") == LESSON_9, 60):
+        # Its scene, built with the mesh in, at the experiment, rendered.
+        def shown():
+            s = p.status()
+            if not (s.get("scene", "").endswith("two-triangles.ron") and s.get("standIns") == 0
+                    and s.get("finished") == 1):
+                return None
+            img = p.shot()
+            c = colours(img, image_box(img))
+            return (img, c) if c["red"] >= 100 and c["green"] >= 100 else None
+
+        img, c = p.wait("lesson 9's two triangles in (u, v)", shown, 120) or (p.shot(), None)
+        with open(os.path.join(p.out, "mesh-lesson.png"), "wb") as f:
+            f.write(img.png)
+        c, s = c or colours(img, image_box(img)), p.status()
+        fetched = any(path == "/" + MESH for _, path, _ in Counting.sent)
+        print(f"  lesson 9's mesh fetched when the lesson opened: {fetched}; (u, v) shown: {c}")
+        if s.get("error") or not fetched or c["red"] < 100 or c["green"] < 100:
+            p.fail(f"lesson 9 should show its two triangles' (u, v) in red and green: {c}, "
+                   f"{MESH} fetched: {fetched}, the window's error: {s.get('error')!r}")
+
+    # 9. An exercise's Check, on the exercise's own scene.
     p.follow(f"#texplore1-l-{LESSON_6}")
     if p.wait("the link opens lesson 6", lambda: p.status().get("lesson") == LESSON_6, 60):
         p.settled()
         if p.press("Show solution") and p.press("Check"):
             verdict = p.wait("the exercise's verdict", lambda: p.widget("Correct", prefix=True), 60)
+            # The formulas' scene restarts the render (unless it has already): then it settles.
+            until = time.time() + 10
+            while time.time() < until and p.status().get("finished") == 1:
+                time.sleep(0.2)
             p.settled()
             img = p.shot("exercise.png")
             if verdict:
@@ -589,7 +695,7 @@ def run_checks(p, url, name, update_reference):
             if not looks_like_earth(img):
                 p.fail(f"Check should put the formulas on the Earth: {colours(img)}")
 
-    # 8. A link opening a scene, then a student's own image on the sphere: Browse…, and a drop.
+    # 10. A link opening a scene, then a student's own image on the sphere: Browse…, and a drop.
     p.follow("#" + scene_link("earth.ron"))
     # Check's formulas are the student's own change: the page asks before it drops them.
     if p.wait("the scene link asks before dropping Check's formulas",
@@ -627,7 +733,7 @@ def run_checks(p, url, name, update_reference):
         if not got:
             p.fail("the image dropped on the page did not reach the sphere")
 
-    # 9. No error or warning from the page.
+    # 11. No error or warning from the page.
     logged = d.js("return globalThis.texploreConsole || []") or []
     entries = d.chromium_console()
     if entries is not None:

@@ -89,6 +89,8 @@ pub struct Built {
     pub scene: Arc<Scene>,
     /// The split's scenes, or why they do not build.
     pub split: Option<Result<[Arc<Scene>; 3], String>>,
+    /// In a page: the shipped files not downloaded yet that the scenes stand in (see [`build`]).
+    pub stood_in: Vec<PathBuf>,
 }
 
 /// A build that landed: what it was for and its scenes, or why it failed.
@@ -133,6 +135,8 @@ pub struct Document {
     /// What the last build that landed was asked for (asked again after a failure).
     built: Option<Recipe>,
     pending: Option<Pending>,
+    /// In a page: the files the scene shown stands in (not downloaded yet when it built).
+    stand_ins: Vec<PathBuf>,
 }
 
 impl Document {
@@ -151,7 +155,16 @@ impl Document {
             asked: None,
             built: None,
             pending: None,
+            stand_ins: Vec::new(),
         }
+    }
+
+    /// In a page: the shipped files the scene shown stands in, not downloaded when it built (a
+    /// build with them follows once they are in).
+    #[cfg(target_arch = "wasm32")]
+    #[must_use]
+    pub fn stand_ins(&self) -> &[PathBuf] {
+        &self.stand_ins
     }
 
     /// The asset paths' folder: the preset's.
@@ -260,6 +273,21 @@ impl Document {
         recipe: Recipe,
         gesture: Option<Gesture>,
     ) {
+        self.start_after(purpose, version, path, recipe, gesture, Vec::new());
+    }
+
+    /// [`Document::start`] once the shipped files `wait_for` are downloaded (in a page; the
+    /// build that follows one that stood them in). Any other build starts at once: in a page
+    /// the files it reads download meanwhile, and it stands in those not in yet ([`build`]).
+    fn start_after(
+        &mut self,
+        purpose: Purpose,
+        version: Version,
+        path: &Path,
+        recipe: Recipe,
+        gesture: Option<Gesture>,
+        wait_for: Vec<PathBuf>,
+    ) {
         self.asked = Some(recipe.clone());
         let (cache, task_path, asked) = (self.cache.clone(), path.to_path_buf(), recipe.clone());
         let work = move |cancel: &std::sync::atomic::AtomicBool| {
@@ -277,7 +305,14 @@ impl Document {
         };
         // Dropping the older task cancels it.
         self.pending = None;
-        match Task::spawn_reading(needs(&recipe, path), work) {
+        let task = if wait_for.is_empty() {
+            #[cfg(target_arch = "wasm32")]
+            crate::input::want(&needs(&recipe, path));
+            Task::spawn(work)
+        } else {
+            Task::spawn_reading(wait_for, work)
+        };
+        match task {
             Ok(task) => {
                 self.pending = Some(Pending {
                     purpose,
@@ -323,7 +358,21 @@ impl Document {
             recipe,
             ..
         } = self.pending.take()?;
+        // A scene that stood in files not downloaded yet is shown, and built again once they
+        // are in (an edit of nothing: the history does not change).
+        let again = match &outcome {
+            Ok(built) if !built.stood_in.is_empty() => {
+                Some((built.stood_in.clone(), version.clone(), recipe.clone()))
+            }
+            _ => None,
+        };
+        if let Ok(built) = &outcome {
+            self.stand_ins.clone_from(&built.stood_in);
+        }
         let purpose = self.settle(purpose, version, &path, gesture, recipe, &outcome);
+        if let Some((files, version, recipe)) = again {
+            self.start_after(Purpose::Edit, version, &path, recipe, None, files);
+        }
         Some(Landed { purpose, outcome })
     }
 
@@ -402,11 +451,9 @@ impl Document {
     }
 }
 
-/// The files `recipe`'s scenes read: in a page, the build waits for their download.
+/// The files `recipe`'s scenes read: in a page, their download starts with the build.
+#[cfg(target_arch = "wasm32")]
 fn needs(recipe: &Recipe, path: &Path) -> Vec<PathBuf> {
-    if !cfg!(target_arch = "wasm32") {
-        return Vec::new();
-    }
     let dir = path.parent().unwrap_or(Path::new(""));
     let mut files = crate::scene::asset_paths(&recipe.render, dir);
     for d in recipe.split.iter().flatten() {
@@ -417,29 +464,42 @@ fn needs(recipe: &Recipe, path: &Path) -> Vec<PathBuf> {
 
 /// Builds the scenes of `recipe` (on a pool thread); in a page, each is described for the
 /// render workers, which rebuild it from its text (`render::describe_scene`).
+///
+/// In a page, a shipped file not downloaded yet is stood in (`AssetCache::stand_in`; its
+/// download is under way): such a scene renders on the page's thread alone (the workers have
+/// not got the file) and is followed by a build with the file once it is in ([`Document::poll`]).
 fn build(recipe: &Recipe, path: &Path, cache: &mut AssetCache) -> Result<Built, String> {
     let simd = recipe.simd;
-    let with_simd = |mut s: Scene| {
-        s.settings.simd = simd;
-        s
-    };
-    let described = |scene: Scene, desc: &SceneDesc| {
+    cache.stand_in(cfg!(target_arch = "wasm32"));
+    let _ = cache.take_stood_in();
+    let mut stood_in: Vec<PathBuf> = Vec::new();
+    let mut one = |desc: &SceneDesc, cache: &mut AssetCache| -> Result<Arc<Scene>, String> {
+        let mut scene = build_scene(desc, path, cache).map_err(|e| e.to_string())?;
+        scene.settings.simd = simd;
         let scene = Arc::new(scene);
+        let missing = cache.take_stood_in();
         #[cfg(target_arch = "wasm32")]
-        crate::render::describe_scene(&scene, desc, path);
-        #[cfg(not(target_arch = "wasm32"))]
-        let _ = desc;
-        scene
+        if missing.is_empty() {
+            crate::render::describe_scene(&scene, desc, path);
+        }
+        for m in missing {
+            if !stood_in.contains(&m) {
+                stood_in.push(m);
+            }
+        }
+        Ok(scene)
     };
-    let scene = with_simd(build_scene(&recipe.render, path, cache).map_err(|e| e.to_string())?);
-    let scene = described(scene, &recipe.render);
+    let scene = one(&recipe.render, cache)?;
     let split = recipe.split.as_ref().map(|descs| {
         let mut scenes = Vec::with_capacity(3);
         for d in descs {
-            let built = with_simd(build_scene(d, path, cache).map_err(|e| e.to_string())?);
-            scenes.push(described(built, d));
+            scenes.push(one(d, cache)?);
         }
         <[Arc<Scene>; 3]>::try_from(scenes).map_err(|_| "three scenes".to_owned())
     });
-    Ok(Built { scene, split })
+    Ok(Built {
+        scene,
+        split,
+        stood_in,
+    })
 }

@@ -56,6 +56,11 @@ pub struct AssetCache {
     scene: Option<SceneUse>,
     /// Read images' headers only and do not subdivide (see [`AssetCache::checking`]).
     checking: bool,
+    /// In a page: stand in for a shipped file not downloaded yet (see
+    /// [`AssetCache::stand_in`]).
+    stand_in: bool,
+    /// The files stood in since [`AssetCache::take_stood_in`].
+    stood_in: Vec<PathBuf>,
 }
 
 /// What one scene's build has taken of the budgets, each asset counted once.
@@ -100,6 +105,32 @@ impl AssetCache {
             checking: true,
             ..Self::default()
         }
+    }
+
+    /// In a page (wasm32), where a shipped image or mesh may not be downloaded yet: with `on`,
+    /// the builds stand such a file in (`scene::stand_in`: a grey texel, a grey octahedron)
+    /// instead of failing, and note it for [`AssetCache::take_stood_in`]; the stand-in is not
+    /// kept, so the next build once the file is in reads it. A checking cache always stands
+    /// them in, unnoted.
+    pub fn stand_in(&mut self, on: bool) {
+        self.stand_in = on;
+    }
+
+    /// The files stood in since the last call (the scene built is a stand-in's until a build
+    /// without them).
+    pub fn take_stood_in(&mut self) -> Vec<PathBuf> {
+        std::mem::take(&mut self.stood_in)
+    }
+
+    /// Whether `path` is stood in (a shipped file not downloaded yet, with stand-ins on).
+    fn stands_in(&mut self, path: &Path) -> bool {
+        if !(self.checking || self.stand_in) || !crate::input::is_deferred(path) {
+            return false;
+        }
+        if !self.checking && !self.stood_in.iter().any(|p| p == path) {
+            self.stood_in.push(path.to_path_buf());
+        }
+        true
     }
 
     /// Whether this cache only checks (see [`AssetCache::checking`]).
@@ -224,16 +255,12 @@ impl AssetCache {
 
     /// The image of `path` as `req` asks, from the cache or decoded, counted against the scene.
     fn load(&mut self, path: &Path, req: ImageRequest) -> Result<Arc<ImageData>> {
-        if self.checking && crate::input::is_deferred(path) {
-            // In a page, a shipped image not downloaded yet (it is, when a scene renders it):
-            // a check stands it in unread. The shipped lessons' scenes are checked in full by
-            // the test suite (`tests/headless/lessons.rs`), and a page has no lessons of its own.
-            return Ok(Arc::new(ImageData::from_fn(
-                1,
-                1,
-                "not downloaded",
-                |_, _| crate::math::Rgb(0.5, 0.5, 0.5),
-            )));
+        if self.stands_in(path) {
+            // In a page, a shipped image not downloaded yet. A check stands it in unread (the
+            // shipped lessons' scenes are checked in full by the test suite,
+            // `tests/headless/lessons.rs`, and a page has no lessons of its own); a scene shows
+            // the stand-in until the image is in.
+            return Ok(Arc::new(super::stand_in::image(path)));
         }
         let file = open_input(path)?;
         let key = (file_id(&file, path), req.srgb, req.alpha);
@@ -286,6 +313,10 @@ impl AssetCache {
     pub fn mesh(&mut self, path: &Path) -> Result<Arc<Mesh>> {
         if let Some(m) = self.meshes.get(&FileId::Path(path.to_path_buf())) {
             return Ok(m.clone());
+        }
+        if self.stands_in(path) {
+            // In a page, a shipped mesh not downloaded yet: as an image, above.
+            return Ok(Arc::new(super::stand_in::mesh(path)?));
         }
         let id = file_id(&open_input(path)?, path);
         if let Some(m) = self.meshes.get(&id) {
@@ -342,6 +373,11 @@ impl AssetCache {
     /// Keeps `mesh` as the displaced mesh of `key`, forgetting the oldest beyond
     /// [`DISPLACED_KEPT`].
     pub(super) fn keep_displaced(&mut self, key: DisplacedKey, mesh: Arc<Mesh>) {
+        // A build that stood a file in may have displaced a stand-in (its mesh, or by its
+        // height image): not kept, so the build once the file is in makes it again.
+        if !self.stood_in.is_empty() {
+            return;
+        }
         if self.displaced.len() >= DISPLACED_KEPT {
             self.displaced.remove(0);
         }

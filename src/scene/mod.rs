@@ -16,6 +16,7 @@ mod non_finite;
 mod object;
 mod preset;
 mod settings;
+mod stand_in;
 mod texture;
 mod trace;
 mod values;

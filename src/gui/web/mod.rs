@@ -3,9 +3,10 @@
 //!
 //! - **Files.** The page has no file system. Before the window starts, the list of shipped
 //!   files beside the page (`files.txt`, written by `scripts/build-web.sh`: each path and its
-//!   size) is fetched; the lessons, presets and small assets are fetched and mounted in memory
-//!   ([`crate::input::mount`]), and the larger assets are listed (*deferred*) and fetched when a
-//!   scene needs them (a build waits for them: `render::Task::spawn_reading`). A file dropped on
+//!   size) is fetched; the lessons and presets are fetched and mounted in memory
+//!   ([`crate::input::mount`]), and the images and meshes are listed (*deferred*) and fetched
+//!   when a scene needs them ([`fetched_later`]: the scene stands them in until they are in,
+//!   then builds again, `gui::document`). A file dropped on
 //!   the page or chosen in the browser's dialog is read, mounted under `uploads/`, and handed
 //!   to the window as a drop: presets and texplore PNGs open, images and meshes go on the
 //!   selected object, as on the desktop.
@@ -45,10 +46,18 @@ pub const MANIFEST: &str = "files.txt";
 pub const UPLOADS: &str = "uploads";
 /// The time each frame gives the background work (queued tasks, tiles no worker takes).
 pub const FRAME_BUDGET: Duration = Duration::from_millis(12);
-/// Shipped files at least this large are fetched when a scene needs them, not before the
-/// window starts (the lessons, presets and small assets, 0.2 MB in all, are fetched at once:
-/// checking a lesson builds its scenes, and a check stands in only for an image not yet here).
-pub const DEFER_FROM_BYTES: u64 = 100_000;
+/// The shipped files fetched when a scene needs them, not before the window starts: the images
+/// and meshes, whatever their size (a scene stands them in until they are in, and a lesson's
+/// check stands them in unread: `scene::stand_in`). The lessons, presets and material
+/// libraries, 60 KB in all, are fetched at once: the window opens on them.
+#[must_use]
+pub fn fetched_later(path: &Path) -> bool {
+    path.extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase())
+        .is_some_and(|e| {
+            super::files::IMAGE_EXTENSIONS.contains(&e.as_str()) || e == "ply" || e == "obj"
+        })
+}
 
 thread_local! {
     /// Files mounted since the last frame, to hand to the window as drops.
@@ -116,8 +125,8 @@ fn loading(text: &str) {
     }
 }
 
-/// Fetches [`MANIFEST`], mounts the files under [`DEFER_FROM_BYTES`] and defers the others;
-/// returns how many were mounted and deferred.
+/// Fetches [`MANIFEST`], mounts the files not [`fetched_later`] and defers the others; returns
+/// how many were mounted and deferred.
 ///
 /// # Errors
 /// The list or one of the files mounted cannot be fetched.
@@ -127,9 +136,9 @@ pub async fn mount_shipped_files() -> Result<(usize, usize), String> {
     let entries = manifest_entries(&list);
     let (now, later): (Vec<_>, Vec<_>) = entries
         .into_iter()
-        .partition(|(_, size)| *size < DEFER_FROM_BYTES);
+        .partition(|(path, _)| !fetched_later(path));
     loading(&format!(
-        "Loading texplore: the lessons, presets and small images ({} files)…",
+        "Loading texplore: the lessons and presets ({} files)…",
         now.len()
     ));
     // All at once: the slowest fetch, not their sum.
@@ -288,8 +297,9 @@ struct WebApp {
 
 impl WebApp {
     /// The render's state for scripts (`globalThis.texploreStatus`: the browser test reads the
-    /// passes, the rays per second and the workers from it).
-    fn publish_status(&self) {
+    /// passes, the rays per second, the workers and the film's size against the image's from
+    /// it); `ppp` is the screen pixels per point.
+    fn publish_status(&self, ppp: f32) {
         let status = js_sys::Object::new();
         let set = |k: &str, v: f64| {
             let _ = js_sys::Reflect::set(&status, &k.into(), &v.into());
@@ -315,6 +325,26 @@ impl WebApp {
         }
         let _ = js_sys::Reflect::set(&status, &"workerMemory".into(), &bytes);
         let _ = js_sys::Reflect::set(&status, &"workerChunks".into(), &chunks);
+        // The film rendered and the image as drawn, in screen pixels: in presentation mode
+        // the film follows the image (the browser test checks it).
+        if let Some(scene) = self.inner.viewer.scene() {
+            set("filmWidth", f64::from(scene.settings.width));
+            set("filmHeight", f64::from(scene.settings.height));
+        }
+        if let Some(rect) = self.inner.image_rect() {
+            let ppp = f64::from(ppp);
+            set("imageWidth", f64::from(rect.width()) * ppp);
+            set("imageHeight", f64::from(rect.height()) * ppp);
+        }
+        set("presenting", f64::from(u8::from(self.inner.presenting())));
+        // The files the scene shown stands in (not downloaded when it built).
+        set("standIns", self.inner.doc.stand_ins().len() as f64);
+        // The scene's file (it changes when an opened scene has built).
+        let scene = self.inner.doc.path.to_string_lossy().into_owned();
+        let _ = js_sys::Reflect::set(&status, &"scene".into(), &scene.into());
+        // The error the window shows, if any.
+        let error = self.inner.error.clone().unwrap_or_default();
+        let _ = js_sys::Reflect::set(&status, &"error".into(), &error.into());
         let lesson = self.inner.lessons.active_lesson().unwrap_or_default();
         let _ = js_sys::Reflect::set(&status, &"lesson".into(), &lesson.into());
         let _ = js_sys::Reflect::set(&js_sys::global(), &"texploreStatus".into(), &status);
@@ -336,9 +366,9 @@ impl WebApp {
             .show(ctx, |ui| {
                 egui::Frame::popup(ui.style()).show(ui, |ui| {
                     ui.label(format!(
-                        "Downloading {} ({}) for this scene…",
+                        "Downloading {} ({}) for this scene: grey until it is in…",
                         names.join(", "),
-                        crate::input::human_bytes(bytes)
+                        download_size(bytes)
                     ));
                 });
             });
@@ -383,7 +413,7 @@ impl eframe::App for WebApp {
             self.inner.save(&mut snapshot);
             SNAPSHOT.with(|s| *s.borrow_mut() = snapshot.0);
         }
-        self.publish_status();
+        self.publish_status(ctx.pixels_per_point());
     }
 
     fn ui(&mut self, ui: &mut egui::Ui, frame: &mut eframe::Frame) {
@@ -393,6 +423,15 @@ impl eframe::App for WebApp {
 
     fn save(&mut self, storage: &mut dyn eframe::Storage) {
         self.inner.save(storage);
+    }
+}
+
+/// `bytes` as the page's loading message says sizes: megabytes to a tenth, or kilobytes.
+fn download_size(bytes: u64) -> String {
+    if bytes >= 1_000_000 {
+        format!("{:.1} MB", bytes as f64 / 1e6)
+    } else {
+        format!("{} KB", bytes.div_ceil(1000))
     }
 }
 

@@ -27,6 +27,7 @@
 // Lane loops index several arrays by the lane, the form the vectoriser reads best.
 #![allow(clippy::needless_range_loop)]
 
+mod filtered;
 mod light;
 mod nearest;
 mod shade;

@@ -238,6 +238,11 @@ impl Scene {
         let view = self.settings.view;
         let mut r = Self::resolve_lanes(s, obj, hits, &rays.d);
         let filtered = diffs.is_some() && texture.needs_differentials();
+        // A filtered image under a built-in mapping is read in lanes, without per-lane records.
+        let in_lanes = match diffs {
+            Some(d) if filtered => Self::filtered_in_lanes(obj, texture).map(|(t, m)| (t, m, d)),
+            _ => None,
+        };
         let clip = surface.clip.as_ref().filter(|_| self.has_clips);
         let perturbation = surface
             .perturbation
@@ -245,7 +250,7 @@ impl Scene {
             .filter(|_| self.has_perturbations);
         let textured = material.has_textured_params();
         let reflective = matches!(material, crate::material::Material::Reflective { .. });
-        let needs_lanes = filtered
+        let needs_lanes = (filtered && in_lanes.is_none())
             || clip.is_some()
             || perturbation.is_some()
             || textured
@@ -297,7 +302,9 @@ impl Scene {
                 }
             })
         } else {
-            let cd = if let (Some(p), true) = (&per, filtered) {
+            let cd = if let Some((t, m, d)) = in_lanes {
+                self.filtered_lanes(s, obj, t, m, hits, d, shade_on)
+            } else if let (Some(p), true) = (&per, filtered) {
                 each(&|i| texture.eval(&p.ctx[i]))
             } else {
                 let q = Self::mapping_point(s, obj, &hits.p);

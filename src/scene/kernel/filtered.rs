@@ -1,0 +1,109 @@
+//! The kernel's texture stage for an image filtered over the pixel's footprint (trilinear, EWA,
+//! the footprint filter) under a built-in mapping of a generic shape: (u, v) and their
+//! gradients by the mapping's own lanes, then per lane the footprint on the tangent plane, the
+//! screen-space derivatives, the (u, v) transform and the filter.
+//!
+//! The same steps as `Scene::texture_context` then `ImageTexture::eval`, in the same order and
+//! with the same functions (the mapping at width 1 is `Mapping::map_point`), so a lane's colour
+//! is the scalar code's bit for bit; what it saves is the per-lane hit record, the texture
+//! context and the mapping's per-lane call.
+
+use super::Diffs;
+use super::nearest::Hits;
+use crate::geometry::{Object, Shape};
+use crate::mapping::{AnyMapping, Mapping, TexCoord};
+use crate::material::C3;
+use crate::math::lanes::{M, MAX_LANES, from_array, mask_to_array, to_array};
+use crate::math::{Vec2, Vec3A};
+use crate::scene::Scene;
+use crate::texture::{ImageTexture, Texture, mark};
+use pulp::Simd;
+
+impl Scene {
+    /// The image texture and its built-in mapping, where [`Scene::filtered_lanes`] serves
+    /// `texture` on `obj`: an image under a built-in mapping of the point (not a mesh's own
+    /// (u, v), not a formula) on a generic shape (a mesh's mapping point and dp/du need its
+    /// triangle).
+    #[inline(always)]
+    pub(super) fn filtered_in_lanes<'a>(
+        obj: &Object,
+        texture: &'a Texture,
+    ) -> Option<(&'a ImageTexture, Mapping)> {
+        match (texture, &obj.shape) {
+            (_, Shape::Mesh(_)) => None,
+            (Texture::Image(t), _) => match t.mapping {
+                AnyMapping::Builtin(Mapping::Uv) | AnyMapping::Formula(_) => None,
+                AnyMapping::Builtin(m) => Some((t, m)),
+            },
+            _ => None,
+        }
+    }
+
+    /// The filtered colour of `t` (mapped by `mapping`, see [`Scene::filtered_in_lanes`]) at
+    /// the lanes in `on` of object `obj`, with each lane's ray differentials from `diffs`.
+    #[inline(always)]
+    pub(super) fn filtered_lanes<S: Simd>(
+        &self,
+        s: S,
+        obj: &Object,
+        t: &ImageTexture,
+        mapping: Mapping,
+        hits: &Hits<S>,
+        diffs: &Diffs,
+        on: M<S>,
+    ) -> C3<S> {
+        let flags = mask_to_array(s, on);
+        let (lp, ln) = (hits.p.to_arrays(), hits.n.to_arrays());
+        let m = mapping.map_lanes::<S, true>(s, &hits.p);
+        let (u, v) = (to_array::<S>(m.u), to_array::<S>(m.v));
+        let (gu, gv) = (m.grad_u.to_arrays(), m.grad_v.to_arrays());
+        let vec = |a: &[[f32; MAX_LANES]; 3], i: usize| Vec3A::new(a[0][i], a[1][i], a[2][i]);
+        let mut c = [[0.0; MAX_LANES]; 3];
+        for i in 0..S::F32_LANES {
+            if !flags[i] {
+                continue;
+            }
+            // `Scene::texture_context`: the differentials in object space, the footprint on
+            // the hit's tangent plane.
+            let d = if obj.identity {
+                diffs[i]
+            } else {
+                diffs[i].transformed(&obj.object_from_world)
+            };
+            let (dpdx, dpdy) = if self.needs_differentials {
+                d.footprint_on_plane(vec(&lp, i), vec(&ln, i))
+            } else {
+                (Vec3A::ZERO, Vec3A::ZERO)
+            };
+            // `Mapping::map_with_differentials` for a built-in mapping of the point.
+            let uv = Vec2::new(u[i], v[i]);
+            let tc = if dpdx == Vec3A::ZERO && dpdy == Vec3A::ZERO {
+                TexCoord {
+                    uv,
+                    duvdx: Vec2::ZERO,
+                    duvdy: Vec2::ZERO,
+                }
+            } else {
+                let (grad_u, grad_v) = (vec(&gu, i), vec(&gv, i));
+                TexCoord {
+                    uv,
+                    duvdx: Vec2::new(grad_u.dot(dpdx), grad_v.dot(dpdx)),
+                    duvdy: Vec2::new(grad_u.dot(dpdy), grad_v.dot(dpdy)),
+                }
+                .bounded()
+            };
+            // `TextureContext::transformed_tex_coord`, then `ImageTexture::eval`.
+            let tc = match &t.transform {
+                Some(a) if tc.uv.is_finite() => a.apply(tc),
+                _ => tc,
+            };
+            let rgb = if tc.uv.is_finite() {
+                t.sample(tc) * t.scale
+            } else {
+                mark()
+            };
+            (c[0][i], c[1][i], c[2][i]) = (rgb.0, rgb.1, rgb.2);
+        }
+        c.map(|a| from_array::<S>(&a))
+    }
+}

@@ -225,6 +225,76 @@ impl Camera {
         };
         Some((ray, diff))
     }
+
+    /// The rays through film positions (`px`, `py`) per lane with their ray differentials,
+    /// for samples standing for cells `cx` x `cy` pixels: [`Camera::ray`] at the cell's shorter
+    /// side, its offsets then stretched to `cx` and `cy` (each at least `min_scale`). The same
+    /// operations in the same order as the scalar code, lane by lane (the render's
+    /// `footprint_ray` is its width-1 instance).
+    #[must_use]
+    #[inline(always)]
+    #[allow(clippy::similar_names)] // rx_ and ry_, as in `RayDifferential`
+    pub fn footprint_rays_lanes<S: Simd>(
+        &self,
+        s: S,
+        px: F<S>,
+        py: F<S>,
+        cx: F<S>,
+        cy: F<S>,
+        min_scale: f32,
+    ) -> FootprintRays<S> {
+        let spacing = s.min_f32s(cx, cy);
+        let zero = s.splat_f32s(0.0);
+        let (o, d, seen) = self.rays_lanes(s, px, py);
+        let (_, dx, seen_x) = self.rays_lanes(s, s.add_f32s(px, spacing), s.add_f32s(py, zero));
+        let (_, dy, seen_y) = self.rays_lanes(s, s.add_f32s(px, zero), s.add_f32s(py, spacing));
+        let dx = V3::select(s, seen_x, &dx, &d);
+        let dy = V3::select(s, seen_y, &dy, &d);
+        // Differentials are expressed per whole pixel.
+        let inv = s.div_f32s(s.splat_f32s(1.0), spacing);
+        let (ox, oy) = if matches!(self.projection, Projection::Orthographic { .. }) {
+            let [u, v, _] = self.frame;
+            (
+                o.add(s, &V3::splat(s, u * self.pixel_scale)),
+                o.sub(s, &V3::splat(s, v * self.pixel_scale)),
+            )
+        } else {
+            (o, o)
+        };
+        let rx_dir = d.add(s, &dx.sub(s, &d).scale(s, inv));
+        let ry_dir = d.add(s, &dy.sub(s, &d).scale(s, inv));
+        // Stretched to the cell's sides.
+        let min = s.splat_f32s(min_scale);
+        let (sx, sy) = (s.max_f32s(cx, min), s.max_f32s(cy, min));
+        FootprintRays {
+            rx_origin: o.add(s, &ox.sub(s, &o).scale(s, sx)),
+            rx_dir: d.add(s, &rx_dir.sub(s, &d).scale(s, sx)),
+            ry_origin: o.add(s, &oy.sub(s, &o).scale(s, sy)),
+            ry_dir: d.add(s, &ry_dir.sub(s, &d).scale(s, sy)),
+            o,
+            d,
+            seen,
+        }
+    }
+}
+
+/// Rays with their ray differentials per lane ([`Camera::footprint_rays_lanes`]).
+#[derive(Clone, Copy, Debug)]
+pub struct FootprintRays<S: Simd> {
+    /// Origins.
+    pub o: V3<S>,
+    /// Directions (not normalised).
+    pub d: V3<S>,
+    /// The lanes the projection sees.
+    pub seen: M<S>,
+    /// The neighbour one cell to the right: origin and direction.
+    pub rx_origin: V3<S>,
+    /// See `rx_origin`.
+    pub rx_dir: V3<S>,
+    /// The neighbour one cell down: origin and direction.
+    pub ry_origin: V3<S>,
+    /// See `ry_origin`.
+    pub ry_dir: V3<S>,
 }
 
 /// Orbits `eye` about `look_at`: `yaw` radians about `up`, then `pitch` radians up or down,

@@ -431,25 +431,25 @@ pub fn radiance_keyed_cell(scene: &Scene, pos: Vec2, cell: Vec2) -> (Rgb, u32) {
 #[must_use]
 #[inline]
 pub fn footprint_ray(scene: &Scene, pos: Vec2, cell: Vec2) -> Option<(Ray, RayDifferential)> {
-    if cell.x == cell.y {
-        let (ray, diff) = scene.camera.ray(pos, cell.x)?;
-        return Some((
-            ray,
-            diff.scaled_about(&ray, cell.x.max(MIN_FOOTPRINT_SCALE)),
-        ));
-    }
-    let (ray, d) = scene.camera.ray(pos, cell.x.min(cell.y))?;
-    let (sx, sy) = (
-        cell.x.max(MIN_FOOTPRINT_SCALE),
-        cell.y.max(MIN_FOOTPRINT_SCALE),
+    let r = scene.camera.footprint_rays_lanes(
+        pulp::Scalar,
+        pos.x,
+        pos.y,
+        cell.x,
+        cell.y,
+        MIN_FOOTPRINT_SCALE,
     );
-    let diff = RayDifferential {
-        rx_origin: ray.origin + (d.rx_origin - ray.origin) * sx,
-        rx_dir: ray.dir + (d.rx_dir - ray.dir) * sx,
-        ry_origin: ray.origin + (d.ry_origin - ray.origin) * sy,
-        ry_dir: ray.dir + (d.ry_dir - ray.dir) * sy,
-    };
-    Some((ray, diff))
+    r.seen.then(|| {
+        (
+            Ray::new(r.o.vec(), r.d.vec()),
+            RayDifferential {
+                rx_origin: r.rx_origin.vec(),
+                rx_dir: r.rx_dir.vec(),
+                ry_origin: r.ry_origin.vec(),
+                ry_dir: r.ry_dir.vec(),
+            },
+        )
+    })
 }
 
 /// A preview at one ray per `block` x `block` pixels, drawn as blocks: linear RGB, row-major.

@@ -6,9 +6,9 @@
 //! the same whichever runs it.
 
 use super::{
-    Row, footprint_ray, sample_cell, sample_position, sample_positions_lanes, uniform_cell,
+    MIN_FOOTPRINT_SCALE, Row, sample_cell, sample_position, sample_positions_lanes, uniform_cell,
 };
-use crate::math::lanes::{MAX_LANES, V3, mask_from_array, mask_to_array, to_array};
+use crate::math::lanes::{MAX_LANES, from_array, mask_from_array, mask_to_array, to_array};
 use crate::math::{RayDifferential, Vec2, Vec3A};
 use crate::scene::{Diffs, Rays, Scene, SimdMode};
 use pulp::{Simd, WithSimd};
@@ -171,26 +171,43 @@ fn kernel_row<S: Simd>(
                     ry_origin: Vec3A::ZERO,
                     ry_dir: Vec3A::Z,
                 };
-                let mut d = [blank; MAX_LANES];
-                let (mut oa, mut da) = ([[0.0; MAX_LANES]; 3], [[0.0; MAX_LANES]; 3]);
-                let mut seen = [false; MAX_LANES];
-                for i in 0..w {
-                    if !on[i] {
-                        continue;
+                let (cx, cy): ([f32; MAX_LANES], [f32; MAX_LANES]) = (
+                    std::array::from_fn(|i| cells.get(sub + i).map_or(1.0, |c| c.x)),
+                    std::array::from_fn(|i| cells.get(sub + i).map_or(1.0, |c| c.y)),
+                );
+                let r = scene.camera.footprint_rays_lanes(
+                    s,
+                    load_at::<S>(&px, sub),
+                    load_at::<S>(&py, sub),
+                    from_array::<S>(&cx),
+                    from_array::<S>(&cy),
+                    MIN_FOOTPRINT_SCALE,
+                );
+                let (rxo, rxd, ryo, ryd) = (
+                    r.rx_origin.to_arrays(),
+                    r.rx_dir.to_arrays(),
+                    r.ry_origin.to_arrays(),
+                    r.ry_dir.to_arrays(),
+                );
+                let v = |a: &[[f32; MAX_LANES]; 3], i: usize| Vec3A::new(a[0][i], a[1][i], a[2][i]);
+                let d: Diffs = std::array::from_fn(|i| {
+                    if i < w && on[i] {
+                        RayDifferential {
+                            rx_origin: v(&rxo, i),
+                            rx_dir: v(&rxd, i),
+                            ry_origin: v(&ryo, i),
+                            ry_dir: v(&ryd, i),
+                        }
+                    } else {
+                        blank
                     }
-                    let pos = Vec2::new(px[sub + i], py[sub + i]);
-                    if let Some((ray, diff)) = footprint_ray(scene, pos, cells[sub + i]) {
-                        seen[i] = true;
-                        d[i] = diff;
-                        (oa[0][i], oa[1][i], oa[2][i]) = (ray.origin.x, ray.origin.y, ray.origin.z);
-                        (da[0][i], da[1][i], da[2][i]) = (ray.dir.x, ray.dir.y, ray.dir.z);
-                    }
-                }
+                });
+                let seen = s.and_m32s(r.seen, mask_from_array(s, &on));
                 diffs_buf = Some(d);
                 Rays {
-                    o: V3::from_arrays(&oa),
-                    d: V3::from_arrays(&da),
-                    active: mask_from_array(s, &seen),
+                    o: r.o,
+                    d: r.d,
+                    active: seen,
                 }
             } else {
                 let (o, d, seen) =

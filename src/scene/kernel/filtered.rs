@@ -41,6 +41,7 @@ impl Scene {
 
     /// The filtered colour of `t` (mapped by `mapping`, see [`Scene::filtered_in_lanes`]) at
     /// the lanes in `on` of object `obj`, with each lane's ray differentials from `diffs`.
+    #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     pub(super) fn filtered_lanes<S: Simd>(
         &self,

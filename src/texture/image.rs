@@ -14,6 +14,7 @@ mod openexr;
 mod png_decode;
 mod storage;
 mod tiff;
+mod tiff_old;
 
 pub use storage::ImageRequest;
 use storage::Storage;

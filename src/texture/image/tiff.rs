@@ -23,6 +23,9 @@ enum Colour {
     Palette,
     /// Cyan, magenta, yellow, black (naive: no colour profile), then maybe alpha.
     Cmyk,
+    /// Luma and chroma as a JPEG stores them: the `tiff` crate hands JPEG-compressed data over
+    /// in the JPEG's own colour space, unconverted.
+    YCbCr,
 }
 
 /// How one sample is stored.
@@ -169,12 +172,13 @@ fn tiff_err(e: &tiff::TiffError) -> String {
 pub(super) fn decode_tiff<R: Read + Seek>(r: R, req: ImageRequest) -> Result<Storage, String> {
     let mut limits = Limits::default();
     limits.decoding_buffer_size = usize::try_from(MAX_IMAGE_BYTES).unwrap_or(usize::MAX);
+    let r = super::tiff_old::Patched::new(r).map_err(|e| e.to_string())?;
     let mut d = Decoder::new(r)
         .map_err(|e| tiff_err(&e))?
         .with_limits(limits);
     let (w, h) = d.dimensions().map_err(|e| tiff_err(&e))?;
     let color = d.colortype().map_err(|e| tiff_err(&e))?;
-    let tag = |d: &mut Decoder<R>, t: Tag| d.find_tag_unsigned_vec::<u16>(t).ok().flatten();
+    let tag = |d: &mut Decoder<_>, t: Tag| d.find_tag_unsigned_vec::<u16>(t).ok().flatten();
     let format = match tag(&mut d, Tag::SampleFormat).and_then(|v| v.first().copied()) {
         None => Format::Uint,
         Some(f) if f == SampleFormat::Uint.to_u16() => Format::Uint,
@@ -197,8 +201,8 @@ pub(super) fn decode_tiff<R: Read + Seek>(r: R, req: ImageRequest) -> Result<Sto
         ColorType::Palette(b) => (Colour::Palette, 1, b),
         ColorType::CMYK(b) => (Colour::Cmyk, 4, b),
         ColorType::CMYKA(b) => (Colour::Cmyk, 5, b),
-        // JPEG-compressed YCbCr is decoded to RGB by the JPEG decoder.
-        ColorType::YCbCr(b) if jpeg => (Colour::Rgb, 3, b),
+        // JPEG-compressed YCbCr comes as the JPEG stores it (converted to RGB below).
+        ColorType::YCbCr(b) if jpeg => (Colour::YCbCr, 3, b),
         ColorType::YCbCr(_) => return Err("uncompressed YCbCr TIFF is not supported".into()),
         ColorType::Lab(_) => return Err("CIE L*a*b* TIFF is not supported".into()),
         ColorType::Multiband {
@@ -219,7 +223,7 @@ pub(super) fn decode_tiff<R: Read + Seek>(r: R, req: ImageRequest) -> Result<Sto
         Colour::Grey => spp >= 2,
         Colour::Rgb => spp >= 4,
         Colour::Cmyk => spp >= 5,
-        Colour::Palette => false,
+        Colour::Palette | Colour::YCbCr => false,
     };
     let cmap = if colour == Colour::Palette {
         let map = d
@@ -251,30 +255,60 @@ pub(super) fn decode_tiff<R: Read + Seek>(r: R, req: ImageRequest) -> Result<Sto
         return Storage::stand_in(w, h, layout, req);
     };
     let mut buf = DecodingResult::U8(Vec::new());
-    let pref = d.read_image_to_buffer(&mut buf).map_err(|e| tiff_err(&e))?;
-    let order = d.byte_order();
-    let mut view = buf.as_buffer(0);
-    let bytes = view.as_bytes_mut();
-    if bytes.len() < pref.complete_len {
-        return Err("the TIFF's planes do not fit in the decoder's buffer".into());
-    }
-    let row_stride = pref.row_stride.map_or(0, std::num::NonZeroUsize::get);
-    // Packed 9-31-bit samples come byte-swapped in groups of 2 or 4 when the file's byte order
-    // is not the machine's: undo that to read the bit stream as the file wrote it.
-    if bits > 8 && ![16, 32].contains(&bits) && order != tiff::tags::ByteOrder::native() {
-        let group = if bits <= 16 { 2 } else { 4 };
-        for g in bytes.chunks_exact_mut(group) {
-            g.reverse();
-        }
-    }
+    let mut view;
+    let mut own: Vec<u8>;
+    let (bytes, spp_stored, row_stride, plane_stride): (&mut [u8], usize, usize, usize) =
+        if let Some(codec) = super::tiff_old::own_codec(&mut d, bits, h)? {
+            // Decompressed here (see `tiff_old`), in the crate's layout.
+            let file_spp = tag(&mut d, Tag::SamplesPerPixel)
+                .and_then(|v| v.first().copied())
+                .map_or(1, usize::from)
+                .max(spp);
+            let (chunk_spp, planes) = if planar { (1, file_spp) } else { (file_spp, 1) };
+            let row_stride = (w as usize * chunk_spp * bits as usize).div_ceil(8);
+            let plane_stride = row_stride * h as usize;
+            let dims = (w, h);
+            let s = (chunk_spp, planes);
+            own = super::tiff_old::decode_strips(&mut d, codec, dims, s, row_stride, plane_stride)?;
+            if photometric == Some(PhotometricInterpretation::WhiteIsZero.to_u16()) {
+                // As the crate does with its own buffer (samples of at most 8 bits here).
+                own.iter_mut().for_each(|b| *b = !*b);
+            }
+            (&mut own[..], chunk_spp, row_stride, plane_stride)
+        } else {
+            let pref = d.read_image_to_buffer(&mut buf).map_err(|e| tiff_err(&e))?;
+            let order = d.byte_order();
+            view = buf.as_buffer(0);
+            let bytes = view.as_bytes_mut();
+            if bytes.len() < pref.complete_len {
+                return Err("the TIFF's planes do not fit in the decoder's buffer".into());
+            }
+            // Packed 9-31-bit samples come byte-swapped in groups of 2 or 4 when the file's byte
+            // order is not the machine's: undo that to read the bit stream as the file wrote it.
+            if bits > 8 && ![16, 32].contains(&bits) && order != tiff::tags::ByteOrder::native() {
+                let group = if bits <= 16 { 2 } else { 4 };
+                for g in bytes.chunks_exact_mut(group) {
+                    g.reverse();
+                }
+            }
+            let stride =
+                |s: Option<std::num::NonZeroUsize>| s.map_or(0, std::num::NonZeroUsize::get);
+            let chunk_spp = if planar { 1 } else { spp };
+            (
+                bytes,
+                chunk_spp,
+                stride(pref.row_stride),
+                stride(pref.plane_stride),
+            )
+        };
     let samples = Samples {
         bytes: &*bytes,
         bits,
         format,
-        spp: if planar { 1 } else { spp },
+        spp: spp_stored,
         planar,
         row_stride,
-        plane_stride: pref.plane_stride.map_or(0, std::num::NonZeroUsize::get),
+        plane_stride,
     };
     let n = cmap.len() / 3;
     let mut row_bytes = Vec::with_capacity(w as usize * layout.bytes_per_pixel());
@@ -289,6 +323,18 @@ pub(super) fn decode_tiff<R: Read + Seek>(r: R, req: ImageRequest) -> Result<Sto
                     let i = (samples.raw(x, y, 0) as usize).min(n - 1);
                     let c = |k: usize| f64::from(cmap[k * n + i]) / 65_535.0;
                     ([c(0), c(1), c(2)], None)
+                }
+                Colour::YCbCr => {
+                    // JFIF's full-range conversion (what libjpeg does, and so libtiff).
+                    let (y, cb, cr) = (v(0), v(1) - 128.0 / 255.0, v(2) - 128.0 / 255.0);
+                    (
+                        [
+                            y + 1.402 * cr,
+                            y - 0.344_136 * cb - 0.714_136 * cr,
+                            y + 1.772 * cb,
+                        ],
+                        None,
+                    )
                 }
                 Colour::Cmyk => {
                     let k = 1.0 - v(3);

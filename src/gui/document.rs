@@ -89,6 +89,10 @@ pub struct Built {
     pub scene: Arc<Scene>,
     /// The split's scenes, or why they do not build.
     pub split: Option<Result<[Arc<Scene>; 3], String>>,
+    /// What the builds said about their textures ([`AssetCache::notices`]: a footprint filter
+    /// reading EWA because its image's summed-area tables did not fit the budget, or cannot
+    /// sum its texels), each once.
+    pub notices: Vec<String>,
 }
 
 /// A build that landed: what it was for and its scenes, or why it failed.
@@ -152,6 +156,15 @@ impl Document {
             built: None,
             pending: None,
         }
+    }
+
+    /// A fresh asset cache under a texture budget of `bytes` for the builds from now on
+    /// ([`AssetCache::set_texture_budget`]: tests reach its limits with small images). Fresh,
+    /// so no summed-area table built under the old budget is kept.
+    pub fn set_texture_budget(&mut self, bytes: u64) {
+        let mut cache = AssetCache::new();
+        cache.set_texture_budget(bytes);
+        self.cache = Arc::new(Mutex::new(cache));
     }
 
     /// The asset paths' folder: the preset's.
@@ -432,14 +445,24 @@ fn build(recipe: &Recipe, path: &Path, cache: &mut AssetCache) -> Result<Built, 
         scene
     };
     let scene = with_simd(build_scene(&recipe.render, path, cache).map_err(|e| e.to_string())?);
+    let mut notices = cache.notices().to_vec();
     let scene = described(scene, &recipe.render);
     let split = recipe.split.as_ref().map(|descs| {
         let mut scenes = Vec::with_capacity(3);
         for d in descs {
             let built = with_simd(build_scene(d, path, cache).map_err(|e| e.to_string())?);
+            for n in cache.notices() {
+                if !notices.contains(n) {
+                    notices.push(n.clone());
+                }
+            }
             scenes.push(described(built, d));
         }
         <[Arc<Scene>; 3]>::try_from(scenes).map_err(|_| "three scenes".to_owned())
     });
-    Ok(Built { scene, split })
+    Ok(Built {
+        scene,
+        split,
+        notices,
+    })
 }

@@ -56,6 +56,9 @@ pub struct AssetCache {
     scene: Option<SceneUse>,
     /// Read images' headers only and do not subdivide (see [`AssetCache::checking`]).
     checking: bool,
+    /// The scene's texture budget when not [`MAX_SCENE_TEXEL_BYTES`] (tests lower it:
+    /// [`AssetCache::set_texture_budget`]).
+    budget: Option<u64>,
 }
 
 /// What one scene's build has taken of the budgets, each asset counted once.
@@ -100,6 +103,19 @@ impl AssetCache {
             checking: true,
             ..Self::default()
         }
+    }
+
+    /// Lowers (or raises) the scene's texture budget from [`MAX_SCENE_TEXEL_BYTES`] for the
+    /// scenes built from now on: tests reach its limits with small images (the window's test of
+    /// the summed-area tables' warning, say).
+    pub fn set_texture_budget(&mut self, bytes: u64) {
+        self.budget = Some(bytes);
+    }
+
+    /// The scene's texture budget: [`MAX_SCENE_TEXEL_BYTES`] unless set otherwise.
+    #[must_use]
+    pub fn texture_budget(&self) -> u64 {
+        self.budget.unwrap_or(MAX_SCENE_TEXEL_BYTES)
     }
 
     /// Whether this cache only checks (see [`AssetCache::checking`]).
@@ -151,7 +167,7 @@ impl AssetCache {
                 continue; // built for an earlier scene, counted when asked for
             }
             let bytes = mip.table_bytes();
-            let left = MAX_SCENE_TEXEL_BYTES.saturating_sub(used.texel_bytes);
+            let left = self.texture_budget().saturating_sub(used.texel_bytes);
             if bytes > left {
                 notices.push(format!(
                     "{field}: its summed-area tables need {}, above the {} left of the \
@@ -159,7 +175,7 @@ impl AssetCache {
                      {}); {fallback}",
                     approx_bytes(bytes),
                     approx_bytes(left),
-                    approx_bytes(MAX_SCENE_TEXEL_BYTES),
+                    approx_bytes(self.texture_budget()),
                     approx_bytes(used.texel_bytes)
                 ));
                 continue;
@@ -188,7 +204,7 @@ impl AssetCache {
             .cloned()
             .collect();
         for key in others {
-            if total <= MAX_SCENE_TEXEL_BYTES {
+            if total <= self.texture_budget() {
                 break;
             }
             if let Some((image, bytes)) = self.images.remove(&key) {
@@ -239,7 +255,7 @@ impl AssetCache {
         let key = (file_id(&file, path), req.srgb, req.alpha);
         let counted = self.scene.as_ref().is_some_and(|s| s.images.contains(&key));
         let left = match &self.scene {
-            Some(s) if !counted => MAX_SCENE_TEXEL_BYTES.saturating_sub(s.texel_bytes),
+            Some(s) if !counted => self.texture_budget().saturating_sub(s.texel_bytes),
             _ => MAX_IMAGE_BYTES,
         };
         let (image, bytes) = if let Some((image, bytes)) = self.images.get(&key) {
@@ -386,7 +402,7 @@ impl AssetCache {
                 None if self.checking => self.image_bytes(image).div_ceil(3),
                 None => MipPyramid::planned_bytes(image),
             };
-            let left = MAX_SCENE_TEXEL_BYTES.saturating_sub(s.texel_bytes);
+            let left = self.texture_budget().saturating_sub(s.texel_bytes);
             if bytes > left {
                 return Err(format!(
                     "{filter:?} reads a mip pyramid of {}: {} (with any summed-area tables already \
@@ -395,7 +411,7 @@ impl AssetCache {
                     image.name,
                     approx_bytes(bytes),
                     approx_bytes(left),
-                    approx_bytes(MAX_SCENE_TEXEL_BYTES),
+                    approx_bytes(self.texture_budget()),
                     approx_bytes(s.texel_bytes)
                 ));
             }

@@ -64,6 +64,10 @@ pub struct Lesson {
     pub question: String,
     /// Its answer, shown on request.
     pub answer: String,
+    /// What the check of its scenes said about their textures (a footprint filter whose
+    /// summed-area tables would not fit the texture budget, read with EWA instead), each once,
+    /// with the scene it came from: `lesson --list` prints them.
+    pub warnings: Vec<String>,
 }
 
 /// A *Try this* experiment: named edits of the scene, and what to look for once applied.
@@ -246,6 +250,18 @@ fn parse_with(text: &str, file: &Path, cache: &mut AssetCache) -> Result<Lesson>
             format!("preset {:?} does not build: {e}", raw.preset.get_ref()),
         )
     })?;
+    // The notices of each scene checked, each once (the experiments repeat the preset's).
+    let mut seen: Vec<String> = Vec::new();
+    let mut warnings = Vec::new();
+    let mut notice = |cache: &AssetCache, scene: &str| {
+        for n in cache.notices() {
+            if !seen.contains(n) {
+                seen.push(n.clone());
+                warnings.push(format!("{scene}: {n}"));
+            }
+        }
+    };
+    notice(cache, &format!("preset {:?}", raw.preset.get_ref()));
     let mut experiments: Vec<Experiment> = Vec::new();
     // Each experiment's scene, for those that build on it.
     let mut scenes: Vec<SceneDesc> = Vec::new();
@@ -320,6 +336,7 @@ fn parse_with(text: &str, file: &Path, cache: &mut AssetCache) -> Result<Lesson>
                 format!("experiment \"{}\": the scene does not build: {e}", x.label),
             )
         })?;
+        notice(cache, &format!("experiment \"{}\"", x.label));
         scenes.push(desc);
         experiments.push(Experiment {
             label: x.label,
@@ -347,6 +364,7 @@ fn parse_with(text: &str, file: &Path, cache: &mut AssetCache) -> Result<Lesson>
                 ),
             )
         })?;
+        notice(cache, &format!("exercise {}", k + 1));
         exercises.push(built);
     }
     Ok(Lesson {
@@ -364,6 +382,7 @@ fn parse_with(text: &str, file: &Path, cache: &mut AssetCache) -> Result<Lesson>
         exercises,
         question: raw.question.ask.trim().to_owned(),
         answer: raw.question.answer.trim().to_owned(),
+        warnings,
     })
 }
 

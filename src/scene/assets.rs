@@ -8,8 +8,8 @@ use crate::geometry::Mesh;
 use crate::geometry::displace::MAX_DISPLACED_TRIANGLES;
 use crate::input::{FileId, file_id, open_input};
 use crate::texture::{
-    Filter, ImageData, ImageRequest, MAX_IMAGE_BYTES, MipPyramid, approx_bytes, load_opened,
-    uv_grid_image,
+    Filter, ImageData, ImageRequest, MAX_IMAGE_BYTES, MipPyramid, TablePlan, approx_bytes,
+    load_opened, uv_grid_image,
 };
 use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
@@ -166,7 +166,15 @@ impl AssetCache {
             if mip.has_summed_area() {
                 continue; // built for an earlier scene, counted when asked for
             }
-            let bytes = mip.table_bytes();
+            let bytes = if self.checking {
+                // A checked scene's images are 1 x 1 stand-ins: count the tables of the image
+                // each stands for, under the plan of every 8- and 16-bit image (a float image's
+                // texels are not read: above 1 they take twice this, or have no table).
+                let (w, h) = mip.level(0).full_size();
+                TablePlan::Narrow.table_bytes(w, h)
+            } else {
+                mip.table_bytes()
+            };
             let left = self.texture_budget().saturating_sub(used.texel_bytes);
             if bytes > left {
                 notices.push(format!(
@@ -395,12 +403,14 @@ impl AssetCache {
                 .as_ref()
                 .is_some_and(|m| s.pyramids.iter().any(|p| Arc::ptr_eq(p, m)))
         });
+        // A stand-in (a checking cache) is 1 x 1: the pyramid it stands for is a third of the
+        // image's bytes.
+        let stood_for = self.checking.then(|| self.image_bytes(image).div_ceil(3));
         if !counted && let Some(s) = &self.scene {
-            // A stand-in (a checking cache) is 1 x 1: its pyramid is a third of the image's bytes.
-            let bytes = match &found {
-                Some(m) => m.extra_bytes(),
-                None if self.checking => self.image_bytes(image).div_ceil(3),
-                None => MipPyramid::planned_bytes(image),
+            let bytes = match (&found, stood_for) {
+                (_, Some(bytes)) => bytes,
+                (Some(m), None) => m.extra_bytes(),
+                (None, None) => MipPyramid::planned_bytes(image),
             };
             let left = self.texture_budget().saturating_sub(s.texel_bytes);
             if bytes > left {
@@ -423,7 +433,7 @@ impl AssetCache {
         });
         if let Some(s) = &mut self.scene {
             if !counted {
-                s.texel_bytes += m.extra_bytes();
+                s.texel_bytes += stood_for.unwrap_or_else(|| m.extra_bytes());
                 s.pyramids.push(m.clone());
             }
             if filter == Filter::Footprint && !s.tables.iter().any(|(p, _)| Arc::ptr_eq(p, &m)) {

@@ -575,3 +575,41 @@ fn a_png_with_image_data_split_by_a_chunk_is_refused() {
     let e = load_image(&p, false).unwrap_err().to_string();
     assert!(e.contains("split.png"), "{e}");
 }
+
+/// jpeg-decoder's jpg-size-3x3.jpg and jpg-size-4x4.jpg (Mozilla's): libjpeg replicates chroma
+/// subsampled to at most 2 samples across, where both Rust decoders interpolated it (a 3 x 3
+/// corner came out (52, 51, 95), libjpeg-turbo gives (41, 40, 176)). Blocks of 2 x 2 pixels of
+/// one colour each keep their colour when replicated; interpolated, their neighbours bleed in.
+#[test]
+fn tiny_jpegs_replicate_their_chroma_as_libjpeg_does() {
+    use jpeg_encoder::{ColorType, Encoder, SamplingFactor};
+    let dir = tempfile::tempdir().unwrap();
+    let colours = [[230, 20, 20], [20, 20, 230], [20, 200, 20], [230, 220, 30]];
+    for (w, h, sampling) in [
+        (3u16, 3u16, SamplingFactor::R_4_2_0),
+        (4, 4, SamplingFactor::R_4_2_0),
+        (4, 7, SamplingFactor::R_4_2_2),
+    ] {
+        let colour = |x: u16, y: u16| colours[usize::from(x / 2 + 2 * (y / 2 % 2))];
+        let rgb: Vec<u8> = (0..h)
+            .flat_map(|y| (0..w).flat_map(move |x| colour(x, y)))
+            .collect();
+        let mut jpeg = Vec::new();
+        let mut enc = Encoder::new(&mut jpeg, 100);
+        enc.set_sampling_factor(sampling);
+        enc.encode(&rgb, w, h, ColorType::Rgb).unwrap();
+        let p = dir.path().join(format!("{w}x{h}.jpg"));
+        std::fs::write(&p, &jpeg).unwrap();
+        let img = load_image(&p, false).unwrap();
+        for y in 0..h {
+            for x in 0..w {
+                let (got, want) = (bytes8(&img, x.into(), y.into()), colour(x, y));
+                let worst = (0..3).map(|c| got[c].abs_diff(want[c])).max().unwrap();
+                assert!(
+                    worst <= 8,
+                    "{w} x {h}, ({x}, {y}): {got:?}, expected {want:?}"
+                );
+            }
+        }
+    }
+}

@@ -251,16 +251,8 @@ fn parse_with(text: &str, file: &Path, cache: &mut AssetCache) -> Result<Lesson>
         )
     })?;
     // The notices of each scene checked, each once (the experiments repeat the preset's).
-    let mut seen: Vec<String> = Vec::new();
-    let mut warnings = Vec::new();
-    let mut notice = |cache: &AssetCache, scene: &str| {
-        for n in cache.notices() {
-            if !seen.contains(n) {
-                seen.push(n.clone());
-                warnings.push(format!("{scene}: {n}"));
-            }
-        }
-    };
+    let (mut seen, mut warnings) = (Vec::new(), Vec::new());
+    let mut notice = |c: &AssetCache, scene: &str| notice_once(c, scene, &mut seen, &mut warnings);
     notice(cache, &format!("preset {:?}", raw.preset.get_ref()));
     let mut experiments: Vec<Experiment> = Vec::new();
     // Each experiment's scene, for those that build on it.
@@ -384,6 +376,17 @@ fn parse_with(text: &str, file: &Path, cache: &mut AssetCache) -> Result<Lesson>
         answer: raw.question.answer.trim().to_owned(),
         warnings,
     })
+}
+
+/// Adds to `warnings` the notices of the scene `cache` checked last that are not in `seen`,
+/// each prefixed with `scene`.
+fn notice_once(cache: &AssetCache, scene: &str, seen: &mut Vec<String>, out: &mut Vec<String>) {
+    for n in cache.notices() {
+        if !seen.contains(n) {
+            seen.push(n.clone());
+            out.push(format!("{scene}: {n}"));
+        }
+    }
 }
 
 /// Reads (at most [`MAX_LESSON_BYTES`], through [`crate::input`]) and parses one lesson.

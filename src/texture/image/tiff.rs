@@ -126,6 +126,16 @@ fn packed(row: &[u8], at: u64, bits: u32) -> u64 {
     v
 }
 
+/// JFIF's full-range YCbCr to RGB (what libjpeg does, and so libtiff), in [0, 1].
+fn ycbcr_to_rgb(y: f64, cb: f64, cr: f64) -> [f64; 3] {
+    let (cb, cr) = (cb - 128.0 / 255.0, cr - 128.0 / 255.0);
+    [
+        y + 1.402 * cr,
+        y - 0.344_136 * cb - 0.714_136 * cr,
+        y + 1.772 * cb,
+    ]
+}
+
 /// An IEEE half-precision float's value (a 16-bit float TIFF's samples).
 fn f16_to_f32(h: u16) -> f32 {
     let sign = if h & 0x8000 == 0 { 1.0 } else { -1.0 };
@@ -162,6 +172,32 @@ fn tiff_err(e: &tiff::TiffError) -> String {
         U::UnknownInterpretation => "white-is-zero TIFF at this bit depth is not supported".into(),
         other => format!("TIFF: {other} (not supported)"),
     }
+}
+
+/// Reads the image into `buf` as the `tiff` crate decodes it, packed samples of 9 to 31 bits put
+/// back in the file's bit order; its rows' and planes' strides in bytes.
+fn read_image<R: Read + Seek>(
+    d: &mut Decoder<R>,
+    buf: &mut DecodingResult,
+    bits: u32,
+) -> Result<(usize, usize), String> {
+    let pref = d.read_image_to_buffer(buf).map_err(|e| tiff_err(&e))?;
+    let order = d.byte_order();
+    let mut view = buf.as_buffer(0);
+    let bytes = view.as_bytes_mut();
+    if bytes.len() < pref.complete_len {
+        return Err("the TIFF's planes do not fit in the decoder's buffer".into());
+    }
+    // Packed 9-31-bit samples come byte-swapped in groups of 2 or 4 when the file's byte order
+    // is not the machine's: undo that to read the bit stream as the file wrote it.
+    if bits > 8 && ![16, 32].contains(&bits) && order != tiff::tags::ByteOrder::native() {
+        let group = if bits <= 16 { 2 } else { 4 };
+        for g in bytes.chunks_exact_mut(group) {
+            g.reverse();
+        }
+    }
+    let stride = |s: Option<std::num::NonZeroUsize>| s.map_or(0, std::num::NonZeroUsize::get);
+    Ok((stride(pref.row_stride), stride(pref.plane_stride)))
 }
 
 /// Decodes a TIFF (its first image) into its texel storage, the budget checked from the header
@@ -260,46 +296,21 @@ pub(super) fn decode_tiff<R: Read + Seek>(r: R, req: ImageRequest) -> Result<Sto
     let (bytes, spp_stored, row_stride, plane_stride): (&mut [u8], usize, usize, usize) =
         if let Some(codec) = super::tiff_old::own_codec(&mut d, bits, h)? {
             // Decompressed here (see `tiff_old`), in the crate's layout.
-            let file_spp = tag(&mut d, Tag::SamplesPerPixel)
-                .and_then(|v| v.first().copied())
-                .map_or(1, usize::from)
-                .max(spp);
-            let (chunk_spp, planes) = if planar { (1, file_spp) } else { (file_spp, 1) };
-            let row_stride = (w as usize * chunk_spp * bits as usize).div_ceil(8);
-            let plane_stride = row_stride * h as usize;
-            let dims = (w, h);
-            let s = (chunk_spp, planes);
-            own = super::tiff_old::decode_strips(&mut d, codec, dims, s, row_stride, plane_stride)?;
-            if photometric == Some(PhotometricInterpretation::WhiteIsZero.to_u16()) {
-                // As the crate does with its own buffer (samples of at most 8 bits here).
-                own.iter_mut().for_each(|b| *b = !*b);
-            }
-            (&mut own[..], chunk_spp, row_stride, plane_stride)
-        } else {
-            let pref = d.read_image_to_buffer(&mut buf).map_err(|e| tiff_err(&e))?;
-            let order = d.byte_order();
-            view = buf.as_buffer(0);
-            let bytes = view.as_bytes_mut();
-            if bytes.len() < pref.complete_len {
-                return Err("the TIFF's planes do not fit in the decoder's buffer".into());
-            }
-            // Packed 9-31-bit samples come byte-swapped in groups of 2 or 4 when the file's byte
-            // order is not the machine's: undo that to read the bit stream as the file wrote it.
-            if bits > 8 && ![16, 32].contains(&bits) && order != tiff::tags::ByteOrder::native() {
-                let group = if bits <= 16 { 2 } else { 4 };
-                for g in bytes.chunks_exact_mut(group) {
-                    g.reverse();
-                }
-            }
-            let stride =
-                |s: Option<std::num::NonZeroUsize>| s.map_or(0, std::num::NonZeroUsize::get);
-            let chunk_spp = if planar { 1 } else { spp };
+            let white = photometric == Some(PhotometricInterpretation::WhiteIsZero.to_u16());
+            let strips =
+                super::tiff_old::decode_strips(&mut d, codec, (w, h), (spp, planar), bits, white)?;
+            own = strips.bytes;
             (
-                bytes,
-                chunk_spp,
-                stride(pref.row_stride),
-                stride(pref.plane_stride),
+                &mut own[..],
+                strips.spp,
+                strips.row_stride,
+                strips.plane_stride,
             )
+        } else {
+            let (row_stride, plane_stride) = read_image(&mut d, &mut buf, bits)?;
+            view = buf.as_buffer(0);
+            let chunk_spp = if planar { 1 } else { spp };
+            (view.as_bytes_mut(), chunk_spp, row_stride, plane_stride)
         };
     let samples = Samples {
         bytes: &*bytes,
@@ -324,18 +335,7 @@ pub(super) fn decode_tiff<R: Read + Seek>(r: R, req: ImageRequest) -> Result<Sto
                     let c = |k: usize| f64::from(cmap[k * n + i]) / 65_535.0;
                     ([c(0), c(1), c(2)], None)
                 }
-                Colour::YCbCr => {
-                    // JFIF's full-range conversion (what libjpeg does, and so libtiff).
-                    let (y, cb, cr) = (v(0), v(1) - 128.0 / 255.0, v(2) - 128.0 / 255.0);
-                    (
-                        [
-                            y + 1.402 * cr,
-                            y - 0.344_136 * cb - 0.714_136 * cr,
-                            y + 1.772 * cb,
-                        ],
-                        None,
-                    )
-                }
+                Colour::YCbCr => (ycbcr_to_rgb(v(0), v(1), v(2)), None),
                 Colour::Cmyk => {
                     let k = 1.0 - v(3);
                     (

@@ -189,8 +189,20 @@ pub(super) fn own_codec<R: Read + Seek>(
     Ok(Some(OwnCodec::OldLzw))
 }
 
-/// The image's strips decompressed with `codec` into a buffer of `len` bytes laid out as the
-/// crate lays out its own: rows of `row_stride` bytes, planes `plane_stride` apart.
+/// An image's samples decompressed here, laid out as the crate lays out its own.
+pub(super) struct Strips {
+    pub(super) bytes: Vec<u8>,
+    /// Samples per pixel in a plane (1 when each sample has its plane).
+    pub(super) spp: usize,
+    /// Bytes from one row to the next (within a plane).
+    pub(super) row_stride: usize,
+    /// Bytes from one plane to the next.
+    pub(super) plane_stride: usize,
+}
+
+/// The image's strips decompressed with `codec`, in the crate's layout (at least `spp` samples
+/// a pixel, or the file's `SamplesPerPixel`; `planar`: each sample in its plane), inverted when
+/// `white_is_zero` as the crate inverts its own (samples of at most 8 bits here).
 ///
 /// # Errors
 /// Unreadable strips, a compressed stream that is not what `codec` reads, or a predictor other
@@ -199,10 +211,19 @@ pub(super) fn decode_strips<R: Read + Seek>(
     d: &mut Decoder<R>,
     codec: OwnCodec,
     (width, height): (u32, u32),
-    (spp, planes): (usize, usize),
-    row_stride: usize,
-    plane_stride: usize,
-) -> Result<Vec<u8>, String> {
+    (spp, planar): (usize, bool),
+    bits: u32,
+    white_is_zero: bool,
+) -> Result<Strips, String> {
+    let file_spp = d
+        .find_tag_unsigned::<u16>(Tag::SamplesPerPixel)
+        .ok()
+        .flatten()
+        .map_or(1, usize::from)
+        .max(spp);
+    let (spp, planes) = if planar { (1, file_spp) } else { (file_spp, 1) };
+    let row_stride = (width as usize * spp * bits as usize).div_ceil(8);
+    let plane_stride = row_stride * height as usize;
     let tag = |d: &mut Decoder<R>, t: Tag| d.get_tag_u64_vec(t).map_err(|e| format!("{t:?}: {e}"));
     let offsets = tag(d, Tag::StripOffsets)?;
     let counts = tag(d, Tag::StripByteCounts)?;
@@ -252,7 +273,7 @@ pub(super) fn decode_strips<R: Read + Seek>(
         match codec {
             OwnCodec::OldLzw => old_lzw(&data, target).map_err(|e| format!("strip {i}: {e}"))?,
             OwnCodec::Fax4 => {
-                fax4(&data, width, target, row_stride).map_err(|e| format!("strip {i}: {e}"))?
+                fax4(&data, width, target, row_stride).map_err(|e| format!("strip {i}: {e}"))?;
             }
         }
         if horizontal {
@@ -263,7 +284,17 @@ pub(super) fn decode_strips<R: Read + Seek>(
             }
         }
     }
-    Ok(out)
+    if white_is_zero {
+        for b in &mut out {
+            *b = !*b;
+        }
+    }
+    Ok(Strips {
+        bytes: out,
+        spp,
+        row_stride,
+        plane_stride,
+    })
 }
 
 /// Old-style LZW `data` decompressed into `out` (a short strip leaves the rest zero, as libtiff

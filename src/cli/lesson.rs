@@ -60,6 +60,12 @@ pub fn run(a: &LessonArgs) -> Result<Option<Lesson>> {
         for (name, title) in &lessons {
             println!("{name:width$}  {title}");
         }
+        // What the check of each lesson's scenes said about their textures.
+        for l in &loaded.lessons {
+            for w in &l.warnings {
+                eprintln!("warning: {}: {}", l.file.display(), printable(w));
+            }
+        }
         if loaded.lessons.is_empty() && loaded.errors.is_empty() {
             eprintln!("{place}: no lessons (*.toml) here");
         }

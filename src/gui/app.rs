@@ -112,6 +112,9 @@ pub struct ExplorerApp {
     pub(super) error: Option<String>,
     /// A confirmation shown for a few seconds ("Screenshot saved to ...") and when it came.
     notice: Option<(String, web_time::Instant)>,
+    /// What the last build said about its textures, shown until the next
+    /// ([`super::scene_notices`]).
+    pub(super) scene_notices: Vec<String>,
     pub(super) scene_panel: ScenePanel,
     pub(super) inspector: Inspector,
     pub(super) texture_panel: TexturePanel,
@@ -157,6 +160,7 @@ impl ExplorerApp {
             image_rect: None,
             error: None,
             notice: None,
+            scene_notices: Vec::new(),
             scene_panel: ScenePanel::with_browser(options.browser.clone()),
             inspector: Inspector::default(),
             texture_panel: TexturePanel::default(),
@@ -623,6 +627,7 @@ impl ExplorerApp {
             } else {
                 self.viewer.status(ui, self.frame_time, self.layout_time);
             }
+            super::scene_notices::status(ui, &self.scene_notices);
             false
         })
         .inner

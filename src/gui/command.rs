@@ -228,6 +228,7 @@ impl ExplorerApp {
                     self.files.protect(self.lessons.scenes());
                 }
                 self.error = None;
+                self.scene_notices = built.notices;
                 if let Some(split) = built.split {
                     self.viewer.stop();
                     self.ab.start_built(split, self.viewer.generation());

@@ -91,6 +91,10 @@ pub struct Built {
     pub split: Option<Result<[Arc<Scene>; 3], String>>,
     /// In a page: the shipped files not downloaded yet that the scenes stand in (see [`build`]).
     pub stood_in: Vec<PathBuf>,
+    /// What the builds said about their textures ([`AssetCache::notices`]: a footprint filter
+    /// reading EWA because its image's summed-area tables did not fit the budget, or cannot
+    /// sum its texels), each once.
+    pub notices: Vec<String>,
 }
 
 /// A build that landed: what it was for and its scenes, or why it failed.
@@ -165,6 +169,15 @@ impl Document {
     #[must_use]
     pub fn stand_ins(&self) -> &[PathBuf] {
         &self.stand_ins
+    }
+
+    /// A fresh asset cache under a texture budget of `bytes` for the builds from now on
+    /// ([`AssetCache::set_texture_budget`]: tests reach its limits with small images). Fresh,
+    /// so no summed-area table built under the old budget is kept.
+    pub fn set_texture_budget(&mut self, bytes: u64) {
+        let mut cache = AssetCache::new();
+        cache.set_texture_budget(bytes);
+        self.cache = Arc::new(Mutex::new(cache));
     }
 
     /// The asset paths' folder: the preset's.
@@ -473,8 +486,14 @@ fn build(recipe: &Recipe, path: &Path, cache: &mut AssetCache) -> Result<Built, 
     cache.stand_in(cfg!(target_arch = "wasm32"));
     let _ = cache.take_stood_in();
     let mut stood_in: Vec<PathBuf> = Vec::new();
+    let mut notices: Vec<String> = Vec::new();
     let mut one = |desc: &SceneDesc, cache: &mut AssetCache| -> Result<Arc<Scene>, String> {
         let mut scene = build_scene(desc, path, cache).map_err(|e| e.to_string())?;
+        for n in cache.notices() {
+            if !notices.contains(n) {
+                notices.push(n.clone());
+            }
+        }
         scene.settings.simd = simd;
         let scene = Arc::new(scene);
         let missing = cache.take_stood_in();
@@ -501,5 +520,6 @@ fn build(recipe: &Recipe, path: &Path, cache: &mut AssetCache) -> Result<Built, 
         scene,
         split,
         stood_in,
+        notices,
     })
 }

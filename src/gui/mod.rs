@@ -19,6 +19,7 @@ mod live;
 mod overlay;
 mod panes;
 mod resolution;
+mod scene_notices;
 mod scene_panel;
 #[cfg(not(target_arch = "wasm32"))]
 mod storage;

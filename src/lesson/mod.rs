@@ -64,6 +64,10 @@ pub struct Lesson {
     pub question: String,
     /// Its answer, shown on request.
     pub answer: String,
+    /// What the check of its scenes said about their textures (a footprint filter whose
+    /// summed-area tables would not fit the texture budget, read with EWA instead), each once,
+    /// with the scene it came from: `lesson --list` prints them.
+    pub warnings: Vec<String>,
 }
 
 /// A *Try this* experiment: named edits of the scene, and what to look for once applied.
@@ -246,6 +250,10 @@ fn parse_with(text: &str, file: &Path, cache: &mut AssetCache) -> Result<Lesson>
             format!("preset {:?} does not build: {e}", raw.preset.get_ref()),
         )
     })?;
+    // The notices of each scene checked, each once (the experiments repeat the preset's).
+    let (mut seen, mut warnings) = (Vec::new(), Vec::new());
+    let mut notice = |c: &AssetCache, scene: &str| notice_once(c, scene, &mut seen, &mut warnings);
+    notice(cache, &format!("preset {:?}", raw.preset.get_ref()));
     let mut experiments: Vec<Experiment> = Vec::new();
     // Each experiment's scene, for those that build on it.
     let mut scenes: Vec<SceneDesc> = Vec::new();
@@ -320,6 +328,7 @@ fn parse_with(text: &str, file: &Path, cache: &mut AssetCache) -> Result<Lesson>
                 format!("experiment \"{}\": the scene does not build: {e}", x.label),
             )
         })?;
+        notice(cache, &format!("experiment \"{}\"", x.label));
         scenes.push(desc);
         experiments.push(Experiment {
             label: x.label,
@@ -347,6 +356,7 @@ fn parse_with(text: &str, file: &Path, cache: &mut AssetCache) -> Result<Lesson>
                 ),
             )
         })?;
+        notice(cache, &format!("exercise {}", k + 1));
         exercises.push(built);
     }
     Ok(Lesson {
@@ -364,7 +374,19 @@ fn parse_with(text: &str, file: &Path, cache: &mut AssetCache) -> Result<Lesson>
         exercises,
         question: raw.question.ask.trim().to_owned(),
         answer: raw.question.answer.trim().to_owned(),
+        warnings,
     })
+}
+
+/// Adds to `warnings` the notices of the scene `cache` checked last that are not in `seen`,
+/// each prefixed with `scene`.
+fn notice_once(cache: &AssetCache, scene: &str, seen: &mut Vec<String>, out: &mut Vec<String>) {
+    for n in cache.notices() {
+        if !seen.contains(n) {
+            seen.push(n.clone());
+            out.push(format!("{scene}: {n}"));
+        }
+    }
 }
 
 /// Reads (at most [`MAX_LESSON_BYTES`], through [`crate::input`]) and parses one lesson.

@@ -8,8 +8,8 @@ use crate::geometry::Mesh;
 use crate::geometry::displace::MAX_DISPLACED_TRIANGLES;
 use crate::input::{FileId, file_id, open_input};
 use crate::texture::{
-    Filter, ImageData, ImageRequest, MAX_IMAGE_BYTES, MipPyramid, approx_bytes, load_opened,
-    uv_grid_image,
+    Filter, ImageData, ImageRequest, MAX_IMAGE_BYTES, MipPyramid, TablePlan, approx_bytes,
+    load_opened, uv_grid_image,
 };
 use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
@@ -61,6 +61,9 @@ pub struct AssetCache {
     stand_in: bool,
     /// The files stood in since [`AssetCache::take_stood_in`].
     stood_in: Vec<PathBuf>,
+    /// The scene's texture budget when not [`MAX_SCENE_TEXEL_BYTES`] (tests lower it:
+    /// [`AssetCache::set_texture_budget`]).
+    budget: Option<u64>,
 }
 
 /// What one scene's build has taken of the budgets, each asset counted once.
@@ -133,6 +136,19 @@ impl AssetCache {
         true
     }
 
+    /// Lowers (or raises) the scene's texture budget from [`MAX_SCENE_TEXEL_BYTES`] for the
+    /// scenes built from now on: tests reach its limits with small images (the window's test of
+    /// the summed-area tables' warning, say).
+    pub fn set_texture_budget(&mut self, bytes: u64) {
+        self.budget = Some(bytes);
+    }
+
+    /// The scene's texture budget: [`MAX_SCENE_TEXEL_BYTES`] unless set otherwise.
+    #[must_use]
+    pub fn texture_budget(&self) -> u64 {
+        self.budget.unwrap_or(MAX_SCENE_TEXEL_BYTES)
+    }
+
     /// Whether this cache only checks (see [`AssetCache::checking`]).
     #[must_use]
     pub const fn is_checking(&self) -> bool {
@@ -181,8 +197,16 @@ impl AssetCache {
             if mip.has_summed_area() {
                 continue; // built for an earlier scene, counted when asked for
             }
-            let bytes = mip.table_bytes();
-            let left = MAX_SCENE_TEXEL_BYTES.saturating_sub(used.texel_bytes);
+            let bytes = if self.checking {
+                // A checked scene's images are 1 x 1 stand-ins: count the tables of the image
+                // each stands for, under the plan of every 8- and 16-bit image (a float image's
+                // texels are not read: above 1 they take twice this, or have no table).
+                let (w, h) = mip.level(0).full_size();
+                TablePlan::Narrow.table_bytes(w, h)
+            } else {
+                mip.table_bytes()
+            };
+            let left = self.texture_budget().saturating_sub(used.texel_bytes);
             if bytes > left {
                 notices.push(format!(
                     "{field}: its summed-area tables need {}, above the {} left of the \
@@ -190,7 +214,7 @@ impl AssetCache {
                      {}); {fallback}",
                     approx_bytes(bytes),
                     approx_bytes(left),
-                    approx_bytes(MAX_SCENE_TEXEL_BYTES),
+                    approx_bytes(self.texture_budget()),
                     approx_bytes(used.texel_bytes)
                 ));
                 continue;
@@ -219,7 +243,7 @@ impl AssetCache {
             .cloned()
             .collect();
         for key in others {
-            if total <= MAX_SCENE_TEXEL_BYTES {
+            if total <= self.texture_budget() {
                 break;
             }
             if let Some((image, bytes)) = self.images.remove(&key) {
@@ -266,7 +290,7 @@ impl AssetCache {
         let key = (file_id(&file, path), req.srgb, req.alpha);
         let counted = self.scene.as_ref().is_some_and(|s| s.images.contains(&key));
         let left = match &self.scene {
-            Some(s) if !counted => MAX_SCENE_TEXEL_BYTES.saturating_sub(s.texel_bytes),
+            Some(s) if !counted => self.texture_budget().saturating_sub(s.texel_bytes),
             _ => MAX_IMAGE_BYTES,
         };
         let (image, bytes) = if let Some((image, bytes)) = self.images.get(&key) {
@@ -415,14 +439,16 @@ impl AssetCache {
                 .as_ref()
                 .is_some_and(|m| s.pyramids.iter().any(|p| Arc::ptr_eq(p, m)))
         });
+        // A stand-in (a checking cache) is 1 x 1: the pyramid it stands for is a third of the
+        // image's bytes.
+        let stood_for = self.checking.then(|| self.image_bytes(image).div_ceil(3));
         if !counted && let Some(s) = &self.scene {
-            // A stand-in (a checking cache) is 1 x 1: its pyramid is a third of the image's bytes.
-            let bytes = match &found {
-                Some(m) => m.extra_bytes(),
-                None if self.checking => self.image_bytes(image).div_ceil(3),
-                None => MipPyramid::planned_bytes(image),
+            let bytes = match (&found, stood_for) {
+                (_, Some(bytes)) => bytes,
+                (Some(m), None) => m.extra_bytes(),
+                (None, None) => MipPyramid::planned_bytes(image),
             };
-            let left = MAX_SCENE_TEXEL_BYTES.saturating_sub(s.texel_bytes);
+            let left = self.texture_budget().saturating_sub(s.texel_bytes);
             if bytes > left {
                 return Err(format!(
                     "{filter:?} reads a mip pyramid of {}: {} (with any summed-area tables already \
@@ -431,7 +457,7 @@ impl AssetCache {
                     image.name,
                     approx_bytes(bytes),
                     approx_bytes(left),
-                    approx_bytes(MAX_SCENE_TEXEL_BYTES),
+                    approx_bytes(self.texture_budget()),
                     approx_bytes(s.texel_bytes)
                 ));
             }
@@ -443,7 +469,7 @@ impl AssetCache {
         });
         if let Some(s) = &mut self.scene {
             if !counted {
-                s.texel_bytes += m.extra_bytes();
+                s.texel_bytes += stood_for.unwrap_or_else(|| m.extra_bytes());
                 s.pyramids.push(m.clone());
             }
             if filter == Filter::Footprint && !s.tables.iter().any(|(p, _)| Arc::ptr_eq(p, &m)) {

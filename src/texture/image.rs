@@ -14,6 +14,7 @@ mod openexr;
 mod png_decode;
 mod storage;
 mod tiff;
+mod tiff_old;
 
 pub use storage::ImageRequest;
 use storage::Storage;
@@ -158,6 +159,9 @@ pub struct ImageData {
     /// Tiles per row of tiles.
     tiles_x: u32,
     texels: Texels,
+    /// The size of the image a header-only read's 1 x 1 stand-in stands for (its own size
+    /// otherwise): what a checked scene counts the image's summed-area tables by.
+    full_size: (u32, u32),
     /// Where it came from, for the inspector and messages.
     pub name: String,
 }
@@ -186,6 +190,7 @@ impl ImageData {
             height,
             tiles_x: width.div_ceil(TILE),
             texels,
+            full_size: (width, height),
             name: name.into(),
         }
     }
@@ -200,6 +205,13 @@ impl ImageData {
             }
         }
         Self::new(width, height, Texels::Linear(v), name)
+    }
+
+    /// The size of the image this one stands for: a header-only read's 1 x 1 stand-in keeps its
+    /// file's width and height (see [`ImageRequest::header_only`]); any other image its own.
+    #[must_use]
+    pub const fn full_size(&self) -> (u32, u32) {
+        self.full_size
     }
 
     /// Width in texels (the lecture's `hres`).

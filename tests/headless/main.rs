@@ -33,6 +33,7 @@ mod hostile_storage;
 mod hostile_values;
 mod images;
 mod layering;
+mod lesson_tables;
 mod lessons;
 mod lessons_claims;
 mod link;

@@ -28,5 +28,6 @@ mod gui_lessons_class;
 mod gui_links;
 mod gui_materials;
 mod gui_save;
+mod gui_scene_notices;
 mod gui_texture_panel;
 mod gui_view;

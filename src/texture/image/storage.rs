@@ -68,6 +68,8 @@ pub(super) struct Storage {
     /// The bytes the image's storage takes, checked from its header (a header-only stand-in
     /// keeps the full image's).
     pub(super) bytes: u64,
+    /// The full image's width and height (a stand-in's differ from its own).
+    full_size: (u32, u32),
 }
 
 impl Storage {
@@ -166,6 +168,7 @@ impl Storage {
             alpha: req.alpha,
             texels,
             bytes,
+            full_size: (width, height),
         }))
     }
 
@@ -187,6 +190,7 @@ impl Storage {
             alpha: req.alpha,
             texels: Texels::Linear(vec![[0.5; 3]; tile]),
             bytes,
+            full_size: (width, height),
         })
     }
 
@@ -343,6 +347,7 @@ impl Storage {
             height: self.height,
             tiles_x: self.tiles_x,
             texels: self.texels,
+            full_size: self.full_size,
             name,
         }
     }

@@ -23,6 +23,9 @@ enum Colour {
     Palette,
     /// Cyan, magenta, yellow, black (naive: no colour profile), then maybe alpha.
     Cmyk,
+    /// Luma and chroma as a JPEG stores them: the `tiff` crate hands JPEG-compressed data over
+    /// in the JPEG's own colour space, unconverted.
+    YCbCr,
 }
 
 /// How one sample is stored.
@@ -123,6 +126,16 @@ fn packed(row: &[u8], at: u64, bits: u32) -> u64 {
     v
 }
 
+/// JFIF's full-range YCbCr to RGB (what libjpeg does, and so libtiff), in [0, 1].
+fn ycbcr_to_rgb(y: f64, cb: f64, cr: f64) -> [f64; 3] {
+    let (cb, cr) = (cb - 128.0 / 255.0, cr - 128.0 / 255.0);
+    [
+        y + 1.402 * cr,
+        y - 0.344_136 * cb - 0.714_136 * cr,
+        y + 1.772 * cb,
+    ]
+}
+
 /// An IEEE half-precision float's value (a 16-bit float TIFF's samples).
 fn f16_to_f32(h: u16) -> f32 {
     let sign = if h & 0x8000 == 0 { 1.0 } else { -1.0 };
@@ -161,6 +174,32 @@ fn tiff_err(e: &tiff::TiffError) -> String {
     }
 }
 
+/// Reads the image into `buf` as the `tiff` crate decodes it, packed samples of 9 to 31 bits put
+/// back in the file's bit order; its rows' and planes' strides in bytes.
+fn read_image<R: Read + Seek>(
+    d: &mut Decoder<R>,
+    buf: &mut DecodingResult,
+    bits: u32,
+) -> Result<(usize, usize), String> {
+    let pref = d.read_image_to_buffer(buf).map_err(|e| tiff_err(&e))?;
+    let order = d.byte_order();
+    let mut view = buf.as_buffer(0);
+    let bytes = view.as_bytes_mut();
+    if bytes.len() < pref.complete_len {
+        return Err("the TIFF's planes do not fit in the decoder's buffer".into());
+    }
+    // Packed 9-31-bit samples come byte-swapped in groups of 2 or 4 when the file's byte order
+    // is not the machine's: undo that to read the bit stream as the file wrote it.
+    if bits > 8 && ![16, 32].contains(&bits) && order != tiff::tags::ByteOrder::native() {
+        let group = if bits <= 16 { 2 } else { 4 };
+        for g in bytes.chunks_exact_mut(group) {
+            g.reverse();
+        }
+    }
+    let stride = |s: Option<std::num::NonZeroUsize>| s.map_or(0, std::num::NonZeroUsize::get);
+    Ok((stride(pref.row_stride), stride(pref.plane_stride)))
+}
+
 /// Decodes a TIFF (its first image) into its texel storage, the budget checked from the header
 /// before anything is decoded; the decoder's buffer holds at most [`MAX_IMAGE_BYTES`].
 ///
@@ -169,12 +208,13 @@ fn tiff_err(e: &tiff::TiffError) -> String {
 pub(super) fn decode_tiff<R: Read + Seek>(r: R, req: ImageRequest) -> Result<Storage, String> {
     let mut limits = Limits::default();
     limits.decoding_buffer_size = usize::try_from(MAX_IMAGE_BYTES).unwrap_or(usize::MAX);
+    let r = super::tiff_old::Patched::new(r).map_err(|e| e.to_string())?;
     let mut d = Decoder::new(r)
         .map_err(|e| tiff_err(&e))?
         .with_limits(limits);
     let (w, h) = d.dimensions().map_err(|e| tiff_err(&e))?;
     let color = d.colortype().map_err(|e| tiff_err(&e))?;
-    let tag = |d: &mut Decoder<R>, t: Tag| d.find_tag_unsigned_vec::<u16>(t).ok().flatten();
+    let tag = |d: &mut Decoder<_>, t: Tag| d.find_tag_unsigned_vec::<u16>(t).ok().flatten();
     let format = match tag(&mut d, Tag::SampleFormat).and_then(|v| v.first().copied()) {
         None => Format::Uint,
         Some(f) if f == SampleFormat::Uint.to_u16() => Format::Uint,
@@ -197,8 +237,8 @@ pub(super) fn decode_tiff<R: Read + Seek>(r: R, req: ImageRequest) -> Result<Sto
         ColorType::Palette(b) => (Colour::Palette, 1, b),
         ColorType::CMYK(b) => (Colour::Cmyk, 4, b),
         ColorType::CMYKA(b) => (Colour::Cmyk, 5, b),
-        // JPEG-compressed YCbCr is decoded to RGB by the JPEG decoder.
-        ColorType::YCbCr(b) if jpeg => (Colour::Rgb, 3, b),
+        // JPEG-compressed YCbCr comes as the JPEG stores it (converted to RGB below).
+        ColorType::YCbCr(b) if jpeg => (Colour::YCbCr, 3, b),
         ColorType::YCbCr(_) => return Err("uncompressed YCbCr TIFF is not supported".into()),
         ColorType::Lab(_) => return Err("CIE L*a*b* TIFF is not supported".into()),
         ColorType::Multiband {
@@ -219,7 +259,7 @@ pub(super) fn decode_tiff<R: Read + Seek>(r: R, req: ImageRequest) -> Result<Sto
         Colour::Grey => spp >= 2,
         Colour::Rgb => spp >= 4,
         Colour::Cmyk => spp >= 5,
-        Colour::Palette => false,
+        Colour::Palette | Colour::YCbCr => false,
     };
     let cmap = if colour == Colour::Palette {
         let map = d
@@ -251,30 +291,35 @@ pub(super) fn decode_tiff<R: Read + Seek>(r: R, req: ImageRequest) -> Result<Sto
         return Storage::stand_in(w, h, layout, req);
     };
     let mut buf = DecodingResult::U8(Vec::new());
-    let pref = d.read_image_to_buffer(&mut buf).map_err(|e| tiff_err(&e))?;
-    let order = d.byte_order();
-    let mut view = buf.as_buffer(0);
-    let bytes = view.as_bytes_mut();
-    if bytes.len() < pref.complete_len {
-        return Err("the TIFF's planes do not fit in the decoder's buffer".into());
-    }
-    let row_stride = pref.row_stride.map_or(0, std::num::NonZeroUsize::get);
-    // Packed 9-31-bit samples come byte-swapped in groups of 2 or 4 when the file's byte order
-    // is not the machine's: undo that to read the bit stream as the file wrote it.
-    if bits > 8 && ![16, 32].contains(&bits) && order != tiff::tags::ByteOrder::native() {
-        let group = if bits <= 16 { 2 } else { 4 };
-        for g in bytes.chunks_exact_mut(group) {
-            g.reverse();
-        }
-    }
+    let mut view;
+    let mut own: Vec<u8>;
+    let (bytes, spp_stored, row_stride, plane_stride): (&mut [u8], usize, usize, usize) =
+        if let Some(codec) = super::tiff_old::own_codec(&mut d, bits, h)? {
+            // Decompressed here (see `tiff_old`), in the crate's layout.
+            let white = photometric == Some(PhotometricInterpretation::WhiteIsZero.to_u16());
+            let strips =
+                super::tiff_old::decode_strips(&mut d, codec, (w, h), (spp, planar), bits, white)?;
+            own = strips.bytes;
+            (
+                &mut own[..],
+                strips.spp,
+                strips.row_stride,
+                strips.plane_stride,
+            )
+        } else {
+            let (row_stride, plane_stride) = read_image(&mut d, &mut buf, bits)?;
+            view = buf.as_buffer(0);
+            let chunk_spp = if planar { 1 } else { spp };
+            (view.as_bytes_mut(), chunk_spp, row_stride, plane_stride)
+        };
     let samples = Samples {
         bytes: &*bytes,
         bits,
         format,
-        spp: if planar { 1 } else { spp },
+        spp: spp_stored,
         planar,
         row_stride,
-        plane_stride: pref.plane_stride.map_or(0, std::num::NonZeroUsize::get),
+        plane_stride,
     };
     let n = cmap.len() / 3;
     let mut row_bytes = Vec::with_capacity(w as usize * layout.bytes_per_pixel());
@@ -290,6 +335,7 @@ pub(super) fn decode_tiff<R: Read + Seek>(r: R, req: ImageRequest) -> Result<Sto
                     let c = |k: usize| f64::from(cmap[k * n + i]) / 65_535.0;
                     ([c(0), c(1), c(2)], None)
                 }
+                Colour::YCbCr => (ycbcr_to_rgb(v(0), v(1), v(2)), None),
                 Colour::Cmyk => {
                     let k = 1.0 - v(3);
                     (

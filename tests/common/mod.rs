@@ -143,3 +143,20 @@ pub fn tiny_report(presets: &[&Path], out: &Path, cache: Option<&Path>) -> Outpu
     let args: Vec<&str> = args.iter().map(String::as_str).collect();
     texplore(&args)
 }
+
+/// The CRC-32 of a PNG chunk's type and data (bit by bit: a test needs no table), for every
+/// test that writes a PNG by hand.
+pub fn crc32(bytes: &[u8]) -> u32 {
+    let mut crc = !0u32;
+    for &b in bytes {
+        crc ^= u32::from(b);
+        for _ in 0..8 {
+            crc = if crc & 1 == 1 {
+                (crc >> 1) ^ 0xEDB8_8320
+            } else {
+                crc >> 1
+            };
+        }
+    }
+    !crc
+}

@@ -174,16 +174,9 @@ fn summed_area_tables_count_in_the_scene_budget() {
     // images and their pyramids (512 MiB) are counted, then the tables (12 bytes a texel and a
     // third for the coarser levels, 64 MiB each) while they fit: the render stays within the
     // budget and a warning names each file whose table did not fit (read with EWA instead).
-    use crate::memory::{BASELINE, MIB, grey_png, texplore_limited};
+    use crate::memory::{BASELINE, MIB, greys_2048, texplore_limited};
     let dir = tempfile::tempdir().unwrap();
-    grey_png(&dir.path().join("g0.png"), 2048, 2048);
-    for i in 1..24 {
-        std::fs::copy(
-            dir.path().join("g0.png"),
-            dir.path().join(format!("g{i}.png")),
-        )
-        .unwrap();
-    }
+    greys_2048(dir.path());
     let preset = spheres(24, |i| format!("g{i}.png"), "Footprint", 8);
     std::fs::write(dir.path().join("p.ron"), preset).unwrap();
     let out = texplore_limited(

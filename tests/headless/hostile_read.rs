@@ -2,6 +2,7 @@
 //! a message naming the file (nothing blocks, nothing reads without end, nothing panics), and
 //! valid files that were refused before are read. Every child process runs under a deadline.
 
+use crate::common::crc32;
 use std::io::Write;
 use std::path::Path;
 use std::process::{Command, Output, Stdio};
@@ -400,22 +401,6 @@ fn float_tiffs_load_with_their_values() {
     std::fs::write(&p, float_tiff(2, 2, 3, &rgb)).unwrap();
     let img = load_image(&p, true).unwrap();
     assert_eq!(img.texel_top(1, 1).to_array(), [2.25, 2.5, 2.75]);
-}
-
-/// CRC-32 of PNG chunks.
-fn crc32(bytes: &[u8]) -> u32 {
-    let mut c = !0u32;
-    for &b in bytes {
-        c ^= u32::from(b);
-        for _ in 0..8 {
-            c = if c & 1 == 1 {
-                (c >> 1) ^ 0xedb8_8320
-            } else {
-                c >> 1
-            };
-        }
-    }
-    !c
 }
 
 fn chunk(kind: [u8; 4], data: &[u8]) -> Vec<u8> {

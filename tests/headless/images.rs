@@ -1,6 +1,7 @@
 //! Every supported image format loads with the right texels, and bad image files give one
 //! clear error naming the file; what a render shows, saves and is measured on are the same bytes.
 
+use crate::common::crc32;
 use crate::common::{build_with, root, sized};
 use std::fmt::Write as _;
 use std::path::Path;
@@ -212,19 +213,4 @@ fn absurd_dimensions_are_refused_before_allocating() {
     std::fs::write(&p, png).unwrap();
     let e = load_image(&p, true).unwrap_err().to_string();
     assert!(e.contains("bomb.png"), "{e}");
-}
-
-fn crc32(data: &[u8]) -> u32 {
-    let mut crc = 0xffff_ffffu32;
-    for &b in data {
-        crc ^= u32::from(b);
-        for _ in 0..8 {
-            crc = if crc & 1 != 0 {
-                (crc >> 1) ^ 0xedb8_8320
-            } else {
-                crc >> 1
-            };
-        }
-    }
-    !crc
 }

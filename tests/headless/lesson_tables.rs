@@ -4,7 +4,7 @@
 //! that the window and `texplore render` then read with EWA instead.
 
 use crate::common::{success, texplore_in};
-use crate::memory::grey_png;
+use crate::memory::{grey_png, greys_2048};
 use texplore::scene::{AssetCache, build_scene, load_preset};
 
 /// A preset of `n` spheres in a row, sphere `i` with the image `image(i)` under the footprint
@@ -68,14 +68,7 @@ fn lesson_list_warns_of_tables_over_the_budget_as_render_does() {
     // 2048 x 2048 PNGs under the footprint filter. `texplore render` builds 7 tables and warns
     // of the 17 that do not fit; the lesson's check, reading the headers only, says the same.
     let dir = tempfile::tempdir().unwrap();
-    grey_png(&dir.path().join("g0.png"), 2048, 2048);
-    for i in 1..24 {
-        std::fs::copy(
-            dir.path().join("g0.png"),
-            dir.path().join(format!("g{i}.png")),
-        )
-        .unwrap();
-    }
+    greys_2048(dir.path());
     std::fs::write(
         dir.path().join("p.ron"),
         spheres(24, |i| format!("g{i}.png")),

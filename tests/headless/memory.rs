@@ -4,6 +4,7 @@
 //! (`RLIMIT_AS`), so a copy too many makes the child fail and the test with it.
 #![cfg(unix)]
 
+use crate::common::crc32;
 use std::io::Write;
 use std::path::Path;
 use std::process::{Command, Output, Stdio};
@@ -236,22 +237,6 @@ fn headers_claiming_more_than_the_budget_are_refused_before_allocating() {
     }
 }
 
-/// The CRC-32 of a PNG chunk's type and data.
-fn crc32(bytes: &[u8]) -> u32 {
-    let mut crc = !0u32;
-    for &b in bytes {
-        crc ^= u32::from(b);
-        for _ in 0..8 {
-            crc = if crc & 1 == 1 {
-                (crc >> 1) ^ 0xEDB8_8320
-            } else {
-                crc >> 1
-            };
-        }
-    }
-    !crc
-}
-
 /// The first `bytes` of the repository's asset `name`, written to `dir` as `out`.
 fn truncated_asset(dir: &Path, name: &str, bytes: usize, out: &str) {
     let data = std::fs::read(crate::common::root().join("assets").join(name)).unwrap();
@@ -399,4 +384,13 @@ fn a_16384_squared_render_is_refused_by_the_render_budget_before_allocating() {
     let mut cache = texplore::scene::AssetCache::default();
     let built = texplore::scene::build_scene(&desc, &dir.path().join("p.ron"), &mut cache);
     assert!(built.is_ok(), "{:?}", built.err().map(|e| e.to_string()));
+}
+
+/// 24 grey 2048 x 2048 PNGs, `g0.png` to `g23.png`, in `dir` (distinct files, so a scene reading
+/// them all builds 24 images, pyramids and tables): the scene of the texture budget's tests.
+pub(crate) fn greys_2048(dir: &Path) {
+    grey_png(&dir.join("g0.png"), 2048, 2048);
+    for i in 1..24 {
+        std::fs::copy(dir.join("g0.png"), dir.join(format!("g{i}.png"))).unwrap();
+    }
 }

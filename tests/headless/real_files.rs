@@ -1,6 +1,7 @@
 //! Issue 38 §2 and §4: real files texplore read wrong or refused, each case rebuilt small here
 //! (the suites they come from are judged by `scripts/suites.py`; see docs/robustness.md).
 
+use crate::common::crc32;
 use std::fmt::Write as _;
 use std::path::Path;
 use texplore::math::Rgb;
@@ -523,22 +524,6 @@ fn tiff_jpeg_ycbcr_is_converted_to_rgb() {
         let worst = (0..3).map(|c| got[c].abs_diff(want[c])).max().unwrap();
         assert!(worst <= 6, "({x}, {y}): {got:?}, expected {want:?}");
     }
-}
-
-/// The CRC-32 of PNG chunks (bit by bit: a test needs no table).
-fn crc32(bytes: &[u8]) -> u32 {
-    let mut c = !0u32;
-    for &b in bytes {
-        c ^= u32::from(b);
-        for _ in 0..8 {
-            c = if c & 1 == 1 {
-                (c >> 1) ^ 0xEDB8_8320
-            } else {
-                c >> 1
-            };
-        }
-    }
-    !c
 }
 
 /// image-png's x_consecutive_idat.png: image data split by another chunk is invalid (image-png's

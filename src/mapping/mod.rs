@@ -403,12 +403,7 @@ impl Mapping {
             };
         }
         let m = mapping.map_point(p);
-        TexCoord {
-            uv: m.uv,
-            duvdx: Vec2::new(m.grad_u.dot(dpdx), m.grad_v.dot(dpdx)),
-            duvdy: Vec2::new(m.grad_u.dot(dpdy), m.grad_v.dot(dpdy)),
-        }
-        .bounded()
+        TexCoord::from_gradients(m.uv, m.grad_u, m.grad_v, dpdx, dpdy)
     }
 }
 
@@ -519,6 +514,35 @@ impl UvAffine {
 pub const MAX_FOOTPRINT: f32 = 1.0;
 
 impl TexCoord {
+    /// (u, v) with their screen-space derivatives from the gradients of u and v and the
+    /// object-space offsets `dpdx`, `dpdy` to the neighbouring pixels' hits, [bounded]: zero
+    /// derivatives where there is no footprint (both offsets zero), whatever the gradients.
+    ///
+    /// [bounded]: TexCoord::bounded
+    #[must_use]
+    #[inline]
+    pub fn from_gradients(
+        uv: Vec2,
+        grad_u: Vec3A,
+        grad_v: Vec3A,
+        dpdx: Vec3A,
+        dpdy: Vec3A,
+    ) -> Self {
+        if dpdx == Vec3A::ZERO && dpdy == Vec3A::ZERO {
+            return Self {
+                uv,
+                duvdx: Vec2::ZERO,
+                duvdy: Vec2::ZERO,
+            };
+        }
+        Self {
+            uv,
+            duvdx: Vec2::new(grad_u.dot(dpdx), grad_v.dot(dpdx)),
+            duvdy: Vec2::new(grad_u.dot(dpdy), grad_v.dot(dpdy)),
+        }
+        .bounded()
+    }
+
     /// Derivatives clamped to [`MAX_FOOTPRINT`] and cleaned of NaN.
     #[must_use]
     #[inline]

@@ -518,7 +518,18 @@ impl ImageTexture {
     #[must_use]
     #[inline(always)]
     pub fn eval(&self, ctx: &TextureContext) -> Rgb {
-        let tc = self.tex_coord(ctx);
+        self.eval_mapped(ctx.tex_coord(&self.mapping))
+    }
+
+    /// The colour at coordinates `tc` as the mapping gave them, before the (u, v) transform
+    /// (which is applied here); the [`mark`] where they are not finite.
+    #[must_use]
+    #[inline(always)]
+    pub fn eval_mapped(&self, tc: TexCoord) -> Rgb {
+        let tc = match &self.transform {
+            Some(a) if tc.uv.is_finite() => a.apply(tc),
+            _ => tc,
+        };
         if tc.uv.is_finite() {
             self.sample(tc) * self.scale
         } else {

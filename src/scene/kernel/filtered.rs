@@ -16,7 +16,7 @@ use crate::material::C3;
 use crate::math::lanes::{M, MAX_LANES, from_array, mask_to_array, to_array};
 use crate::math::{Vec2, Vec3A};
 use crate::scene::Scene;
-use crate::texture::{ImageTexture, Texture, mark};
+use crate::texture::{ImageTexture, Texture};
 use pulp::Simd;
 
 impl Scene {
@@ -76,33 +76,16 @@ impl Scene {
             } else {
                 (Vec3A::ZERO, Vec3A::ZERO)
             };
-            // `Mapping::map_with_differentials` for a built-in mapping of the point.
-            let uv = Vec2::new(u[i], v[i]);
-            let tc = if dpdx == Vec3A::ZERO && dpdy == Vec3A::ZERO {
-                TexCoord {
-                    uv,
-                    duvdx: Vec2::ZERO,
-                    duvdy: Vec2::ZERO,
-                }
-            } else {
-                let (grad_u, grad_v) = (vec(&gu, i), vec(&gv, i));
-                TexCoord {
-                    uv,
-                    duvdx: Vec2::new(grad_u.dot(dpdx), grad_v.dot(dpdx)),
-                    duvdy: Vec2::new(grad_u.dot(dpdy), grad_v.dot(dpdy)),
-                }
-                .bounded()
-            };
-            // `TextureContext::transformed_tex_coord`, then `ImageTexture::eval`.
-            let tc = match &t.transform {
-                Some(a) if tc.uv.is_finite() => a.apply(tc),
-                _ => tc,
-            };
-            let rgb = if tc.uv.is_finite() {
-                t.sample(tc) * t.scale
-            } else {
-                mark()
-            };
+            // `Mapping::map_with_differentials` for a built-in mapping of the point, then
+            // `ImageTexture::eval`.
+            let tc = TexCoord::from_gradients(
+                Vec2::new(u[i], v[i]),
+                vec(&gu, i),
+                vec(&gv, i),
+                dpdx,
+                dpdy,
+            );
+            let rgb = t.eval_mapped(tc);
             (c[0][i], c[1][i], c[2][i]) = (rgb.0, rgb.1, rgb.2);
         }
         c.map(|a| from_array::<S>(&a))

@@ -44,6 +44,7 @@ pub fn run(a: &ImageInfoArgs) -> Result<()> {
     let (w, h) = (img.width(), img.height());
     let storage = match img.texels() {
         Texels::Srgb8(_) => "srgb8",
+        Texels::Unorm8(_) => "unorm8",
         Texels::Linear(_) => "linear",
     };
     let bytes = img.texels_bytes();

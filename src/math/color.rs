@@ -139,6 +139,21 @@ pub fn srgb8_table() -> &'static [f32; 256] {
     &SRGB8_TABLE
 }
 
+static UNORM8_TABLE: LazyLock<[f32; 256]> = LazyLock::new(|| {
+    let mut t = [0.0; 256];
+    for (i, e) in t.iter_mut().enumerate() {
+        *e = f32::from(i as u8) / 255.0;
+    }
+    t
+});
+
+/// The values of raw (not sRGB-encoded) 8-bit samples, `v / 255`, as a 256-entry table: the
+/// same bits as the division, read like [`srgb8_table`].
+#[must_use]
+pub fn unorm8_table() -> &'static [f32; 256] {
+    &UNORM8_TABLE
+}
+
 /// The 8-bit quantiser: an encoded (display) value in [0, 1] rounded to the nearest byte;
 /// clipped to [0, 1] first, NaN to 0. Every 8-bit sRGB byte texplore writes comes from here.
 #[must_use]

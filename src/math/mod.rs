@@ -9,7 +9,7 @@ mod rng;
 pub use atan::atan2;
 pub use color::{
     DisplayImage, Rgb, encode_display, encode_srgb8, linear_to_srgb, linear_to_srgb8, quantize8,
-    srgb_to_linear, srgb8_table, srgb8_to_linear,
+    srgb_to_linear, srgb8_table, srgb8_to_linear, unorm8_table,
 };
 pub use glam::{Affine3A, Mat3, Mat3A, Quat, Vec2, Vec3, Vec3A};
 pub use rng::{SampleRng, hash3, hash3_lanes, pcg_lanes, unit_f32};

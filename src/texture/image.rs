@@ -3,7 +3,7 @@
 
 use super::{Lookup, Wrap};
 use crate::error::{Error, Result};
-use crate::math::{Rgb, Vec2, floor_fast, linear_to_srgb8, srgb8_table};
+use crate::math::{Rgb, Vec2, floor_fast, linear_to_srgb8, srgb8_table, unorm8_table};
 use std::path::Path;
 
 mod hdr;
@@ -41,8 +41,26 @@ pub const MAX_IMAGE_BYTES: u64 = 1 << 30;
 pub enum Texels {
     /// 8-bit sRGB-encoded RGB, padded to 4 bytes for aligned loads.
     Srgb8(Vec<[u8; 4]>),
+    /// 8-bit RGB read raw (`v / 255`, an image loaded with `srgb: false`), padded to 4 bytes:
+    /// a third of the bytes the same values take as [`Texels::Linear`], so a minified lookup
+    /// brings a third of the memory traffic.
+    Unorm8(Vec<[u8; 4]>),
     /// Linear RGB.
     Linear(Vec<[f32; 3]>),
+}
+
+impl Texels {
+    /// 8-bit texels with the table that decodes their bytes to linear values (sRGB or raw), or
+    /// `None` for linear floats.
+    #[must_use]
+    #[inline(always)]
+    pub fn bytes(&self) -> Option<(&[[u8; 4]], &'static [f32; 256])> {
+        match self {
+            Self::Srgb8(v) => Some((v, srgb8_table())),
+            Self::Unorm8(v) => Some((v, unorm8_table())),
+            Self::Linear(_) => None,
+        }
+    }
 }
 
 /// Side of the square tiles texels are stored in. A 4 x 4 tile of sRGB texels is one 64-byte
@@ -174,7 +192,7 @@ impl ImageData {
     #[must_use]
     pub fn new(width: u32, height: u32, texels: Texels, name: impl Into<String>) -> Self {
         let n = match &texels {
-            Texels::Srgb8(v) => v.len(),
+            Texels::Srgb8(v) | Texels::Unorm8(v) => v.len(),
             Texels::Linear(v) => v.len(),
         };
         assert!(
@@ -183,6 +201,7 @@ impl ImageData {
         );
         let texels = match texels {
             Texels::Srgb8(v) => Texels::Srgb8(to_tiles(width, height, &v)),
+            Texels::Unorm8(v) => Texels::Unorm8(to_tiles(width, height, &v)),
             Texels::Linear(v) => Texels::Linear(to_tiles(width, height, &v)),
         };
         Self {
@@ -242,7 +261,7 @@ impl ImageData {
     #[must_use]
     pub const fn bytes_per_texel(&self) -> usize {
         match self.texels {
-            Texels::Srgb8(_) => 4,
+            Texels::Srgb8(_) | Texels::Unorm8(_) => 4,
             Texels::Linear(_) => 12,
         }
     }
@@ -251,7 +270,7 @@ impl ImageData {
     #[must_use]
     pub fn texels_bytes(&self) -> u64 {
         let n = match &self.texels {
-            Texels::Srgb8(v) => v.len(),
+            Texels::Srgb8(v) | Texels::Unorm8(v) => v.len(),
             Texels::Linear(v) => v.len(),
         };
         n as u64 * self.bytes_per_texel() as u64
@@ -263,7 +282,8 @@ impl ImageData {
         usize::try_from(self.texels_bytes()).unwrap_or(usize::MAX)
     }
 
-    /// Whether the image holds linear (HDR or 16-bit) values.
+    /// Whether the image holds linear floats (HDR, 16-bit and float files, alpha channels, mip
+    /// levels of raw 8-bit images), not bytes.
     #[must_use]
     pub const fn is_linear(&self) -> bool {
         matches!(self.texels, Texels::Linear(_))
@@ -282,12 +302,12 @@ impl ImageData {
     #[inline]
     pub fn texel_top(&self, column: u32, row: u32) -> Rgb {
         let i = tiled_index(self.tiles_x, column, row);
+        let decode = |[r, g, b, _]: [u8; 4], t: &[f32; 256]| {
+            Rgb(t[r as usize], t[g as usize], t[b as usize])
+        };
         match &self.texels {
-            Texels::Srgb8(v) => {
-                let t = srgb8_table();
-                let [r, g, b, _] = v[i];
-                Rgb(t[r as usize], t[g as usize], t[b as usize])
-            }
+            Texels::Srgb8(v) => decode(v[i], srgb8_table()),
+            Texels::Unorm8(v) => decode(v[i], unorm8_table()),
             Texels::Linear(v) => Rgb::from_array(v[i]),
         }
     }

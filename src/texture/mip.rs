@@ -404,7 +404,10 @@ fn downsample(img: &ImageData) -> ImageData {
                 })
                 .collect(),
         ),
-        Texels::Linear(_) => Texels::Linear(dst.iter().map(|c| c.to_array()).collect()),
+        // Raw 8-bit levels keep their averages unquantised, as linear floats.
+        Texels::Unorm8(_) | Texels::Linear(_) => {
+            Texels::Linear(dst.iter().map(|c| c.to_array()).collect())
+        }
     };
     ImageData::new(nw, nh, texels, name)
 }

@@ -10,7 +10,7 @@ use texplore::math::{DisplayImage, Rgb, quantize8, srgb_to_linear};
 use texplore::render::render_blocking;
 use texplore::report::metrics::EncodedImage;
 use texplore::scene::{AssetCache, load_preset, save_render_png};
-use texplore::texture::load_image;
+use texplore::texture::{ImageData, MipPyramid, Texels, load_image};
 
 /// A 3 x 2 test pattern (row 0 on top): distinct colours so a flip or swap shows.
 const PATTERN: [[u8; 3]; 6] = [
@@ -72,6 +72,41 @@ fn png_tiff_ppm_load_exactly_and_jpeg_closely() {
     assert_eq!((img.width(), img.height()), (48, 32));
     let c = img.texel_top(8, 8);
     assert!(c.0 > 0.8 && c.1 < 0.1 && c.2 < 0.1, "{c:?}");
+}
+
+/// An 8-bit image read raw (`srgb: false`, a mask or a data texture) keeps its bytes, 4 a
+/// texel as sRGB ones do, and reads each as exactly `v / 255`; its coarser mip levels are the
+/// exact averages of those values.
+#[test]
+fn a_raw_8_bit_image_keeps_its_bytes_and_reads_v_over_255() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path().join("t.png");
+    rgb8().save(&p).unwrap();
+    let img = load_image(&p, false).unwrap();
+    assert!(matches!(img.texels(), Texels::Unorm8(_)));
+    assert_eq!(
+        img.texels_bytes(),
+        load_image(&p, true).unwrap().texels_bytes()
+    );
+    for (i, px) in PATTERN.iter().enumerate() {
+        let c = img.texel_top(i as u32 % 3, i as u32 / 3);
+        assert_eq!(c.to_array(), px.map(|v| f32::from(v) / 255.0), "texel {i}");
+    }
+    // The same values as linear floats (what raw 8-bit images were stored as before): the same
+    // mip levels, bit for bit.
+    let floats = ImageData::from_fn(3, 2, "floats", |c, r| img.texel_top(c, r));
+    let (raw, floats) = (
+        MipPyramid::build(std::sync::Arc::new(img)),
+        MipPyramid::build(std::sync::Arc::new(floats)),
+    );
+    assert_eq!(raw.len(), floats.len());
+    for l in 1..raw.len() {
+        let (a, b) = (raw.level(l), floats.level(l));
+        assert!(a.is_linear());
+        for (c, r) in [(0, 0), (a.width() - 1, a.height() - 1)] {
+            assert_eq!(a.texel(c, r), b.texel(c, r), "level {l}");
+        }
+    }
 }
 
 /// An 8-bit texture encoded back to sRGB bytes is the file's bytes.

@@ -7,7 +7,7 @@ use crate::geometry::{Object, Shape};
 use crate::mapping::{AnyMapping, Mapping, TexCoord};
 use crate::material::{C3, splat_rgb};
 use crate::math::lanes::{F, M, MAX_LANES, V3, from_array, mask_to_array, to_array};
-use crate::math::{Vec2, Vec3A, srgb8_table};
+use crate::math::{Vec2, Vec3A};
 use crate::scene::{Scene, natural_mapping};
 use crate::texture::{
     Filter, ImageData, Lookup, Texels, Texture, TextureContext, Wrap, tiled_index,
@@ -91,27 +91,23 @@ impl<'a> Nearest<'a> {
         let tiles_x = self.image.tiles_x();
         let mut c = [[0.0; MAX_LANES]; 3];
         let k = self.scale;
-        match self.image.texels() {
-            Texels::Srgb8(px) => {
-                let t = srgb8_table();
-                for i in 0..n {
-                    if on[i] {
-                        // `ImageData::texel`: the row from the bottom to the file's from the top.
-                        let [r, g, b, _] = px[tiled_index(tiles_x, col[i], h - 1 - row[i])];
-                        c[0][i] = t[r as usize] * k;
-                        c[1][i] = t[g as usize] * k;
-                        c[2][i] = t[b as usize] * k;
-                    }
+        if let Some((px, t)) = self.image.texels().bytes() {
+            for i in 0..n {
+                if on[i] {
+                    // `ImageData::texel`: the row from the bottom to the file's from the top.
+                    let [r, g, b, _] = px[tiled_index(tiles_x, col[i], h - 1 - row[i])];
+                    c[0][i] = t[r as usize] * k;
+                    c[1][i] = t[g as usize] * k;
+                    c[2][i] = t[b as usize] * k;
                 }
             }
-            Texels::Linear(px) => {
-                for i in 0..n {
-                    if on[i] {
-                        let [r, g, b] = px[tiled_index(tiles_x, col[i], h - 1 - row[i])];
-                        c[0][i] = r * k;
-                        c[1][i] = g * k;
-                        c[2][i] = b * k;
-                    }
+        } else if let Texels::Linear(px) = self.image.texels() {
+            for i in 0..n {
+                if on[i] {
+                    let [r, g, b] = px[tiled_index(tiles_x, col[i], h - 1 - row[i])];
+                    c[0][i] = r * k;
+                    c[1][i] = g * k;
+                    c[2][i] = b * k;
                 }
             }
         }

@@ -47,9 +47,10 @@ impl ImageRequest {
         }
     }
 
-    /// Whether samples in `layout` are stored as linear floats (alpha, and all but 8-bit sRGB).
+    /// Whether samples in `layout` are stored as linear floats (alpha, and all but 8-bit
+    /// colour, which keeps its bytes, sRGB or raw).
     fn linear(self, layout: Layout) -> bool {
-        self.alpha || !(layout.sample == Sample::U8 && self.srgb)
+        self.alpha || layout.sample != Sample::U8
     }
 }
 
@@ -114,7 +115,8 @@ impl Storage {
         let kind = match (req.alpha, linear) {
             (true, _) => "as a linear alpha channel (12 bytes a texel)",
             (false, true) => "as linear RGB (12 bytes a texel)",
-            (false, false) => "as sRGB (4 bytes a texel)",
+            (false, false) if req.srgb => "as sRGB (4 bytes a texel)",
+            (false, false) => "as raw 8-bit RGB (4 bytes a texel)",
         };
         if bytes > MAX_IMAGE_BYTES {
             return Err(format!(
@@ -157,8 +159,10 @@ impl Storage {
             .map_err(|_| "the image does not fit in memory".to_string())?;
         let texels = if linear {
             Texels::Linear(zeroed(n, "the texels")?)
-        } else {
+        } else if req.srgb {
             Texels::Srgb8(zeroed(n, "the texels")?)
+        } else {
+            Texels::Unorm8(zeroed(n, "the texels")?)
         };
         Ok(Some(Self {
             width,
@@ -227,7 +231,8 @@ impl Storage {
     }
 
     /// Converts file row `row` (0 = top), in `layout`, into its texels. Grey becomes RGB, alpha
-    /// is dropped (or is all that is kept, see [`ImageRequest::alpha`]), 8-bit samples stay sRGB-encoded (or become linear `v / 255` when not sRGB),
+    /// is dropped (or is all that is kept, see [`ImageRequest::alpha`]), 8-bit samples keep their
+    /// bytes (sRGB-encoded, or raw `v / 255` when not sRGB),
     /// 16-bit ones become linear through the sRGB curve (unless not sRGB), floats are
     /// [sanitized](sanitize). Bytes past the row's width are ignored.
     pub(super) fn put_row(&mut self, row: u32, data: &[u8], layout: Layout) {
@@ -270,12 +275,16 @@ impl Storage {
             f32::from_ne_bytes([p[4 * c], p[4 * c + 1], p[4 * c + 2], p[4 * c + 3]])
         };
         match (&mut self.texels, layout.sample, grey) {
-            (Texels::Srgb8(v), _, true) => fill(v, tiles_x, width, row, data, bpp, |p| {
-                [p[0], p[0], p[0], 255]
-            }),
-            (Texels::Srgb8(v), _, false) => fill(v, tiles_x, width, row, data, bpp, |p| {
-                [p[0], p[1], p[2], 255]
-            }),
+            (Texels::Srgb8(v) | Texels::Unorm8(v), _, true) => {
+                fill(v, tiles_x, width, row, data, bpp, |p| {
+                    [p[0], p[0], p[0], 255]
+                });
+            }
+            (Texels::Srgb8(v) | Texels::Unorm8(v), _, false) => {
+                fill(v, tiles_x, width, row, data, bpp, |p| {
+                    [p[0], p[1], p[2], 255]
+                });
+            }
             (Texels::Linear(v), Sample::U8, true) => {
                 fill(v, tiles_x, width, row, data, bpp, |p| [u8_linear(p[0]); 3]);
             }

@@ -113,7 +113,7 @@ impl Bump {
     /// [`Bump::perturb`] for the lanes in `on` of a packet, each lane's coordinates and
     /// gradients given: the three height lookups of every lane in lanes
     /// ([`Texture::eval_tex_coord_lanes`]: an image's bilinear or trilinear filter runs in
-    /// lanes), each lane's slope and tilted normal by [`Bump::tilt`].
+    /// lanes), each lane's slope and tilted normal by `Bump::tilt`.
     #[must_use]
     #[inline(always)]
     pub fn perturb_lanes<S: Simd>(

@@ -61,7 +61,7 @@ impl NormalMap {
     /// [`NormalMap::perturb`] for the lanes in `on` of a packet, each lane's coordinates and
     /// gradients given: each lane's tangent frame ([`tangent_frame`]), the map read in lanes
     /// where the frame is not degenerate ([`Texture::eval_tex_coord_lanes`]), each lane's
-    /// normal by [`NormalMap::tilt`].
+    /// normal by `NormalMap::tilt`.
     #[must_use]
     #[inline(always)]
     pub fn perturb_lanes<S: Simd>(

@@ -4,8 +4,10 @@
 
 use crate::mapping::TexCoord;
 use crate::mapping::{AnyMapping, Mapping};
-use crate::math::Vec3A;
+use crate::math::lanes::{MAX_LANES, to_array};
+use crate::math::{Rgb, Vec3A};
 use crate::texture::{Texture, TextureContext};
+use pulp::Simd;
 
 /// A height texture (its luminance, in world units times `scale`) that tilts the normal.
 #[derive(Clone, Debug)]
@@ -20,31 +22,148 @@ pub struct Bump {
 /// (or none, without differentials) reads the height over this step.
 pub const MIN_BUMP_STEP: f32 = 5e-4;
 
+/// Per lane, what a bump or normal map reads at a hit: the texture coordinates (mapped and
+/// transformed, with their screen-space derivatives), the object-space gradients of the
+/// transformed u and v ([`uv_gradients`]), the object-space hit point and unit normal.
+/// Inactive lanes hold anything.
+#[derive(Clone, Copy, Debug)]
+pub struct UvLanes {
+    /// Texture coordinates.
+    pub tc: [TexCoord; MAX_LANES],
+    /// Gradients of u.
+    pub gu: [Vec3A; MAX_LANES],
+    /// Gradients of v.
+    pub gv: [Vec3A; MAX_LANES],
+    /// Hit points (what a formula texture reads).
+    pub p: [Vec3A; MAX_LANES],
+    /// Normals to tilt.
+    pub n: [Vec3A; MAX_LANES],
+}
+
+impl UvLanes {
+    /// Lane 0 of a width-1 packet: the scalar path's one hit, and the lanes switched on.
+    #[must_use]
+    #[inline]
+    pub fn one(
+        tc: TexCoord,
+        gu: Vec3A,
+        gv: Vec3A,
+        p: Vec3A,
+        n: Vec3A,
+    ) -> (Self, [bool; MAX_LANES]) {
+        let mut at = Self {
+            tc: [TexCoord::default(); MAX_LANES],
+            gu: [Vec3A::ZERO; MAX_LANES],
+            gv: [Vec3A::ZERO; MAX_LANES],
+            p: [Vec3A::ZERO; MAX_LANES],
+            n: [Vec3A::Y; MAX_LANES],
+        };
+        (at.tc[0], at.gu[0], at.gv[0], at.p[0], at.n[0]) = (tc, gu, gv, p, n);
+        let mut on = [false; MAX_LANES];
+        on[0] = true;
+        (at, on)
+    }
+}
+
+/// `tc` with `du` added to u and `dv` to v: where a height difference is read.
+#[inline(always)]
+fn shifted(tc: &TexCoord, du: f32, dv: f32) -> TexCoord {
+    let mut t = *tc;
+    t.uv.x += du;
+    t.uv.y += dv;
+    t
+}
+
+/// Each lane's luminance of `texture` at coordinates `tc` (see [`Texture::eval_tex_coord_lanes`]).
+#[inline(always)]
+fn heights<S: Simd>(
+    s: S,
+    texture: &Texture,
+    tc: &[TexCoord; MAX_LANES],
+    p: &[Vec3A; MAX_LANES],
+    on: &[bool; MAX_LANES],
+) -> [f32; MAX_LANES] {
+    let c = texture.eval_tex_coord_lanes(s, tc, p, on);
+    let (r, g, b) = (
+        to_array::<S>(c[0]),
+        to_array::<S>(c[1]),
+        to_array::<S>(c[2]),
+    );
+    let mut h = [0.0; MAX_LANES];
+    for i in 0..S::F32_LANES {
+        h[i] = Rgb(r[i], g[i], b[i]).luminance();
+    }
+    h
+}
+
 impl Bump {
     /// The object-space unit normal `n` at the hit of `ctx`, tilted by the height's slope.
     /// A constant (or flat) height returns `n` itself, bit for bit; the result is always
     /// finite and unit (where the slope is undefined, at a pole or a degenerate triangle, `n`).
+    /// [`Bump::perturb_lanes`] at width 1.
     #[must_use]
     pub fn perturb(&self, ctx: &TextureContext, n: Vec3A) -> Vec3A {
         let Some((tc, gu, gv)) = uv_gradients(&self.height, ctx) else {
             return n;
         };
-        // Filtered finite differences over the pixel's footprint (at least MIN_BUMP_STEP).
-        let du = (0.5 * (tc.duvdx.x.abs() + tc.duvdy.x.abs())).max(MIN_BUMP_STEP);
-        let dv = (0.5 * (tc.duvdx.y.abs() + tc.duvdy.y.abs())).max(MIN_BUMP_STEP);
-        let h = |du: f32, dv: f32| {
-            let mut t = tc;
-            t.uv.x += du;
-            t.uv.y += dv;
-            self.height.eval_tex_coord(t, ctx.p).luminance()
-        };
-        let h0 = h(0.0, 0.0);
+        let (at, on) = UvLanes::one(tc, gu, gv, ctx.p, n);
+        self.perturb_lanes(pulp::Scalar, &at, &on)[0]
+    }
+
+    /// [`Bump::perturb`] for the lanes in `on` of a packet, each lane's coordinates and
+    /// gradients given: the three height lookups of every lane in lanes
+    /// ([`Texture::eval_tex_coord_lanes`]: an image's bilinear or trilinear filter runs in
+    /// lanes), each lane's slope and tilted normal by `Bump::tilt`.
+    #[must_use]
+    #[inline(always)]
+    pub fn perturb_lanes<S: Simd>(
+        &self,
+        s: S,
+        at: &UvLanes,
+        on: &[bool; MAX_LANES],
+    ) -> [Vec3A; MAX_LANES] {
+        let (mut du, mut dv) = ([0.0; MAX_LANES], [0.0; MAX_LANES]);
+        let mut t = [[TexCoord::default(); MAX_LANES]; 3];
+        for i in 0..S::F32_LANES {
+            if on[i] {
+                let tc = &at.tc[i];
+                // Filtered finite differences over the pixel's footprint (at least
+                // MIN_BUMP_STEP).
+                du[i] = (0.5 * (tc.duvdx.x.abs() + tc.duvdy.x.abs())).max(MIN_BUMP_STEP);
+                dv[i] = (0.5 * (tc.duvdx.y.abs() + tc.duvdy.y.abs())).max(MIN_BUMP_STEP);
+                t[0][i] = shifted(tc, 0.0, 0.0);
+                t[1][i] = shifted(tc, du[i], 0.0);
+                t[2][i] = shifted(tc, 0.0, dv[i]);
+            }
+        }
+        let h0 = heights(s, &self.height, &t[0], &at.p, on);
+        let hu = heights(s, &self.height, &t[1], &at.p, on);
+        let hv = heights(s, &self.height, &t[2], &at.p, on);
+        let mut out = at.n;
+        for i in 0..S::F32_LANES {
+            if on[i] {
+                out[i] = self.tilt(
+                    [h0[i], hu[i], hv[i]],
+                    (du[i], dv[i]),
+                    (at.gu[i], at.gv[i]),
+                    at.n[i],
+                );
+            }
+        }
+        out
+    }
+
+    /// The normal `n` tilted by the heights `h` read at (u, v), (u + du, v) and (u, v + dv),
+    /// with `g` the gradients of u and v.
+    #[inline(always)]
+    fn tilt(&self, h: [f32; 3], (du, dv): (f32, f32), (gu, gv): (Vec3A, Vec3A), n: Vec3A) -> Vec3A {
+        let h0 = h[0];
         // Differences at the level of f32 rounding (a filter averaging a flat texture) are no
         // slope: a flat height leaves the normal exactly as it was.
         let flat = 4.0 * f32::EPSILON * h0.abs().max(1.0);
         let step = |d: f32| if d.abs() <= flat { 0.0 } else { d };
-        let dhdu = step(h(du, 0.0) - h0) / du;
-        let dhdv = step(h(0.0, dv) - h0) / dv;
+        let dhdu = step(h[1] - h0) / du;
+        let dhdv = step(h[2] - h0) / dv;
         if dhdu == 0.0 && dhdv == 0.0 {
             return n;
         }
@@ -100,15 +219,22 @@ pub fn uv_gradients(texture: &Texture, ctx: &TextureContext) -> Option<(TexCoord
             (grad(&g[0]), grad(&g[1]))
         }
     };
-    // Through the texture's (u, v) transform: u' = a u + b v, v' = c u + d v.
-    let (gu, gv) = match texture.uv_affine() {
+    let (gu, gv) = through_transform(texture, gu, gv);
+    Some((tc, gu, gv))
+}
+
+/// The object-space gradients `gu`, `gv` of a mapping's u and v through `texture`'s (u, v)
+/// transform, u' = a u + b v, v' = c u + d v: the gradients of the texture's own u and v.
+#[must_use]
+#[inline]
+pub fn through_transform(texture: &Texture, gu: Vec3A, gv: Vec3A) -> (Vec3A, Vec3A) {
+    match texture.uv_affine() {
         Some(t) => {
             let (x, y) = (t.matrix.x_axis, t.matrix.y_axis);
             (x.x * gu + y.x * gv, x.y * gu + y.y * gv)
         }
         None => (gu, gv),
-    };
-    Some((tc, gu, gv))
+    }
 }
 
 /// The gradients of u and v on a surface whose tangents are `dpdu` and `dpdv`: the vectors in

@@ -9,8 +9,8 @@ mod param;
 mod table;
 mod terms;
 
-pub use bump::{Bump, MIN_BUMP_STEP, dual_basis, uv_gradients};
-pub use normal::{NormalMap, decode_normal, encode_normal};
+pub use bump::{Bump, MIN_BUMP_STEP, UvLanes, dual_basis, through_transform, uv_gradients};
+pub use normal::{NormalMap, decode_normal, encode_normal, tangent_frame};
 pub use param::{Colour, ParamValue, Scalar, ScalarTexture};
 pub(crate) use table::material_table;
 pub use table::{ParamDefault, ParamSpec};

@@ -56,6 +56,15 @@ pub enum Perturbation {
 }
 
 impl Perturbation {
+    /// The texture it reads: the height field or the normals.
+    #[must_use]
+    pub const fn texture(&self) -> &crate::texture::Texture {
+        match self {
+            Self::Bump(b) => &b.height,
+            Self::Normal(n) => &n.map,
+        }
+    }
+
     /// Whether its texture needs ray differentials.
     #[must_use]
     pub fn needs_differentials(&self) -> bool {
@@ -214,19 +223,34 @@ impl Scene {
         hit: &SurfaceHit,
         diff: Option<&RayDifferential>,
     ) -> TextureContext {
-        let obj = &self.objects[hit.object];
-        let (dpdx, dpdy) = match diff {
+        let (dpdx, dpdy) =
+            self.footprint_at(&self.objects[hit.object], diff, hit.local.p, hit.local.n);
+        self.texture_context_at(hit, dpdx, dpdy)
+    }
+
+    /// The object-space offsets from the object-space hit `p` (normal `n`) of `obj` to the
+    /// neighbouring pixels' hits on its tangent plane, from the ray differentials `diff`
+    /// (zero without them, or when no filter needs a footprint).
+    #[must_use]
+    #[inline(always)]
+    pub(crate) fn footprint_at(
+        &self,
+        obj: &Object,
+        diff: Option<&RayDifferential>,
+        p: Vec3A,
+        n: Vec3A,
+    ) -> (Vec3A, Vec3A) {
+        match diff {
             Some(d) if self.needs_differentials => {
                 let d = if obj.identity {
                     *d
                 } else {
                     d.transformed(&obj.object_from_world)
                 };
-                d.footprint_on_plane(hit.local.p, hit.local.n)
+                d.footprint_on_plane(p, n)
             }
             _ => (Vec3A::ZERO, Vec3A::ZERO),
-        };
-        self.texture_context_at(hit, dpdx, dpdy)
+        }
     }
 
     /// The texture context of a hit given the object-space offsets `dpdx`, `dpdy` to the
@@ -337,16 +361,33 @@ impl Scene {
             hit.local.ns
         };
         let tilted = perturb(n_local);
+        Self::tilted_to_world(obj, n_local, tilted, hit.ns, hit.wo, hit.front_face)
+    }
+
+    /// The world shading normal of a hit of `obj` whose object-space normal `n_local` a bump
+    /// or normal map turned to `tilted` (`ns`, `wo` and `front` the hit's shading normal,
+    /// direction to the viewer and side): `ns` itself if nothing turned, else on the viewer's
+    /// side, bent back towards the viewer if it would face away.
+    #[must_use]
+    #[inline(always)]
+    pub(crate) fn tilted_to_world(
+        obj: &Object,
+        n_local: Vec3A,
+        tilted: Vec3A,
+        ns: Vec3A,
+        wo: Vec3A,
+        front: bool,
+    ) -> Vec3A {
         if tilted == n_local {
-            return hit.ns;
+            return ns;
         }
-        let side = if hit.front_face { 1.0 } else { -1.0 };
-        let mut ns = (obj.normal_to_world(tilted) * side).normalize_or(hit.ns);
-        let facing = ns.dot(hit.wo);
+        let side = if front { 1.0 } else { -1.0 };
+        let mut n = (obj.normal_to_world(tilted) * side).normalize_or(ns);
+        let facing = n.dot(wo);
         if facing < 1e-3 {
-            ns = (ns + (1e-3 - facing) * hit.wo).normalize_or(hit.ns);
+            n = (n + (1e-3 - facing) * wo).normalize_or(ns);
         }
-        if ns.is_finite() { ns } else { hit.ns }
+        if n.is_finite() { n } else { ns }
     }
 
     /// How far rays leave a hit point: [`SHADOW_OFFSET_RELATIVE`] of the coordinates' size.

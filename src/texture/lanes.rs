@@ -1,11 +1,15 @@
 //! Texture lookups written once over pulp's `Simd`, as the render kernel reads them: the
-//! bilinear filter's arithmetic in lanes around its per-lane wrap and texel loads.
-//! [`ImageData::bilinear`] is its width-1 instance.
+//! bilinear filter's arithmetic in lanes around its per-lane wrap and texel loads
+//! ([`ImageData::bilinear`] is its width-1 instance), trilinear filtering as bilinear lanes at
+//! each lane's two mip levels ([`MipPyramid::trilinear`] is its width-1 instance), and a
+//! texture's value at lanes of texture coordinates already mapped
+//! ([`Texture::eval_tex_coord_lanes`], what bump and normal maps read).
 
-use super::{ImageData, Lookup, Wrap};
+use super::{Filter, ImageData, ImageTexture, Lookup, MipPyramid, Texture, Wrap, mark};
 
-use crate::math::lanes::{C3, F, MAX_LANES, from_array, to_array};
-use crate::math::{Rgb, Vec2, floor_fast};
+use crate::mapping::TexCoord;
+use crate::math::lanes::{C3, F, MAX_LANES, from_array, mask_from_array, to_array};
+use crate::math::{Rgb, Vec2, Vec3A, floor_fast};
 use pulp::Simd;
 
 /// Per-lane colour buffers.
@@ -118,6 +122,182 @@ impl ImageData {
     }
 }
 
+impl MipPyramid {
+    /// Trilinear filtering per lane for the lanes in `on` (`tc`: each lane's coordinates and
+    /// screen-space derivatives): each lane's footprint width and continuous level
+    /// ([`MipPyramid::level_for_width`]), bilinear lanes at each level the lanes need (one
+    /// call per distinct level, masked to its lanes), then `a (1 - t) + b t` in lanes where a
+    /// lane's level has a fraction `t > 0`.
+    #[must_use]
+    #[inline(always)]
+    pub fn trilinear_lanes<S: Simd>(
+        &self,
+        s: S,
+        tc: &[TexCoord; MAX_LANES],
+        wu: Wrap,
+        wv: Wrap,
+        on: &[bool; MAX_LANES],
+    ) -> C3<S> {
+        let base = self.level(0);
+        let size = Vec2::new(base.width() as f32, base.height() as f32);
+        let (mut u, mut v) = ([0.0; MAX_LANES], [0.0; MAX_LANES]);
+        let (mut lower, mut t) = ([0_usize; MAX_LANES], [0.0_f32; MAX_LANES]);
+        let mut upper_on = [false; MAX_LANES];
+        for i in 0..S::F32_LANES {
+            if !on[i] {
+                continue;
+            }
+            (u[i], v[i]) = (tc[i].uv.x, tc[i].uv.y);
+            let width = (tc[i].duvdx * size)
+                .length()
+                .max((tc[i].duvdy * size).length());
+            let lod = self.level_for_width(width);
+            let l0 = lod.floor();
+            t[i] = lod - l0;
+            lower[i] = l0 as usize;
+            upper_on[i] = t[i] > 0.0;
+        }
+        let (u, v) = (from_array::<S>(&u), from_array::<S>(&v));
+        let a = self.levels_lanes(s, u, v, &lower, wu, wv, on);
+        if !upper_on[..S::F32_LANES].contains(&true) {
+            return a;
+        }
+        let mut upper = lower;
+        for l in &mut upper {
+            *l += 1;
+        }
+        let b = self.levels_lanes(s, u, v, &upper, wu, wv, &upper_on);
+        let t = from_array::<S>(&t);
+        let one_minus = s.sub_f32s(s.splat_f32s(1.0), t);
+        let blend = mask_from_array(s, &upper_on);
+        let mut out = a;
+        for k in 0..3 {
+            let mixed = s.add_f32s(s.mul_f32s(a[k], one_minus), s.mul_f32s(b[k], t));
+            out[k] = s.select_f32s(blend, mixed, a[k]);
+        }
+        out
+    }
+
+    /// Bilinear lanes at level `level[i]` for each lane `i` in `on`: one masked call per
+    /// distinct level.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn levels_lanes<S: Simd>(
+        &self,
+        s: S,
+        u: F<S>,
+        v: F<S>,
+        level: &[usize; MAX_LANES],
+        wu: Wrap,
+        wv: Wrap,
+        on: &[bool; MAX_LANES],
+    ) -> C3<S> {
+        let mut out = [s.splat_f32s(0.0); 3];
+        let mut left = *on;
+        while let Some(first) = left[..S::F32_LANES].iter().position(|&x| x) {
+            let l = level[first];
+            let mut these = [false; MAX_LANES];
+            for i in 0..S::F32_LANES {
+                these[i] = left[i] && level[i] == l;
+            }
+            let c = self.level(l).bilinear_lanes(s, u, v, wu, wv, &these);
+            let m = mask_from_array(s, &these);
+            for k in 0..3 {
+                out[k] = s.select_f32s(m, c[k], out[k]);
+            }
+            for i in 0..S::F32_LANES {
+                left[i] &= !these[i];
+            }
+        }
+        out
+    }
+}
+
+impl ImageTexture {
+    /// The filtered colour (before `scale`) at each lane's coordinates `tc` for the lanes in
+    /// `on`: [`ImageTexture::sample`] lane-wise, the bilinear and trilinear filters in lanes,
+    /// the others per lane.
+    #[must_use]
+    #[inline(always)]
+    pub fn sample_lanes<S: Simd>(
+        &self,
+        s: S,
+        tc: &[TexCoord; MAX_LANES],
+        on: &[bool; MAX_LANES],
+    ) -> C3<S> {
+        let (wu, wv) = self.wraps();
+        match (self.filter, &self.mip) {
+            (Filter::Trilinear, Some(m)) => m.trilinear_lanes(s, tc, wu, wv, on),
+            (Filter::Bilinear, _) | (Filter::Trilinear | Filter::Ewa, None) => {
+                let (mut u, mut v) = ([0.0; MAX_LANES], [0.0; MAX_LANES]);
+                for i in 0..S::F32_LANES {
+                    (u[i], v[i]) = (tc[i].uv.x, tc[i].uv.y);
+                }
+                self.image
+                    .bilinear_lanes(s, from_array::<S>(&u), from_array::<S>(&v), wu, wv, on)
+            }
+            _ => {
+                let mut c: Buf = Default::default();
+                for i in 0..S::F32_LANES {
+                    if on[i] {
+                        put(&mut c, i, self.sample(tc[i]));
+                    }
+                }
+                c.map(|a| from_array::<S>(&a))
+            }
+        }
+    }
+}
+
+impl Texture {
+    /// [`Texture::eval_tex_coord`] at each lane's coordinates `tc` and object-space point `p`
+    /// for the lanes in `on`: an image in lanes ([`ImageTexture::sample_lanes`], times its
+    /// `scale`; the [`mark`] where a lane's (u, v) is not finite), a constant splat, the other
+    /// kinds per lane.
+    #[must_use]
+    #[inline(always)]
+    pub fn eval_tex_coord_lanes<S: Simd>(
+        &self,
+        s: S,
+        tc: &[TexCoord; MAX_LANES],
+        p: &[Vec3A; MAX_LANES],
+        on: &[bool; MAX_LANES],
+    ) -> C3<S> {
+        match self {
+            Self::Image(t) => {
+                let mut ok = [false; MAX_LANES];
+                for i in 0..S::F32_LANES {
+                    ok[i] = on[i] && tc[i].uv.is_finite();
+                }
+                let k = s.splat_f32s(t.scale);
+                let mut c = t.sample_lanes(s, tc, &ok);
+                for x in &mut c {
+                    *x = s.mul_f32s(*x, k);
+                }
+                if ok[..S::F32_LANES] != on[..S::F32_LANES] {
+                    let m = mask_from_array(s, &ok);
+                    let x = mark();
+                    let x = [x.0, x.1, x.2];
+                    for k in 0..3 {
+                        c[k] = s.select_f32s(m, c[k], s.splat_f32s(x[k]));
+                    }
+                }
+                c
+            }
+            Self::Constant(c) => [s.splat_f32s(c.0), s.splat_f32s(c.1), s.splat_f32s(c.2)],
+            _ => {
+                let mut c: Buf = Default::default();
+                for i in 0..S::F32_LANES {
+                    if on[i] {
+                        put(&mut c, i, self.eval_tex_coord(tc[i], p[i]));
+                    }
+                }
+                c.map(|a| from_array::<S>(&a))
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -171,5 +351,67 @@ mod tests {
     #[test]
     fn bilinear_gives_the_same_bits_at_every_width() {
         assert!(at_every_width(&mut Agree) >= 1);
+    }
+
+    /// Trilinear lanes at every width against the filter's definition per lane: bilinear at
+    /// the two levels around the footprint's width, `a (1 - t) + b t`, on footprints from
+    /// magnified to wider than the image (so the lanes of one packet read different levels),
+    /// with hard coordinates and derivatives.
+    struct Trilinear;
+
+    impl WidthCheck for Trilinear {
+        fn check<S: Simd>(&mut self, s: S, name: &'static str) {
+            let base = ImageData::from_fn(37, 20, "37x20", |c, r| {
+                Rgb(c as f32 / 37.0, (r * c % 7) as f32 / 7.0, 0.25)
+            });
+            let mip = MipPyramid::build(std::sync::Arc::new(base));
+            let mut walk = Walk(3);
+            for round in 0..300 {
+                let (u, v) = (walk.lanes(), walk.lanes());
+                let (dx, dy) = (walk.lanes(), walk.lanes());
+                let on: [bool; MAX_LANES] = std::array::from_fn(|i| (i + round) % 5 != 0);
+                let tc: [TexCoord; MAX_LANES] = std::array::from_fn(|i| {
+                    // Widths from a hundredth of a texel to past the whole image.
+                    let k = 10f32.powi((i as i32 + round as i32) % 6 - 4);
+                    TexCoord {
+                        uv: Vec2::new(u[i], v[i]),
+                        duvdx: Vec2::new(dx[i] * k, dy[i] * k * 0.5),
+                        duvdy: Vec2::new(dy[i] * k * 0.25, dx[i] * k),
+                    }
+                });
+                let (wu, wv) = (Wrap::VARIANTS[round % 4], Wrap::VARIANTS[(round / 4) % 4]);
+                let c = mip.trilinear_lanes(s, &tc, wu, wv, &on).map(to_array::<S>);
+                for i in 0..S::F32_LANES {
+                    if !on[i] {
+                        continue;
+                    }
+                    let size = Vec2::new(37.0, 20.0);
+                    let width = (tc[i].duvdx * size)
+                        .length()
+                        .max((tc[i].duvdy * size).length());
+                    let lod = mip.level_for_width(width);
+                    let l0 = lod.floor();
+                    let t = lod - l0;
+                    let a = mip.level(l0 as usize).bilinear(tc[i].uv, wu, wv);
+                    let want = if t <= 0.0 {
+                        a
+                    } else {
+                        let b = mip.level(l0 as usize + 1).bilinear(tc[i].uv, wu, wv);
+                        a * (1.0 - t) + b * t
+                    };
+                    assert_eq!(
+                        [c[0][i], c[1][i], c[2][i]].map(bits),
+                        [want.0, want.1, want.2].map(bits),
+                        "{name}: {:?} {wu:?} {wv:?}",
+                        tc[i]
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn trilinear_gives_the_filters_bits_at_every_width() {
+        assert!(at_every_width(&mut Trilinear) >= 1);
     }
 }

@@ -192,19 +192,13 @@ impl MipPyramid {
     #[must_use]
     #[inline]
     pub fn trilinear(&self, uv: Vec2, duvdx: Vec2, duvdy: Vec2, wu: Wrap, wv: Wrap) -> Rgb {
-        let base = self.level(0);
-        let size = Vec2::new(base.width() as f32, base.height() as f32);
-        let width = (duvdx * size).length().max((duvdy * size).length());
-        let lod = self.level_for_width(width);
-        let l0 = lod.floor();
-        let t = lod - l0;
-        let l0 = l0 as usize;
-        let a = self.level(l0).bilinear(uv, wu, wv);
-        if t <= 0.0 {
-            return a;
-        }
-        let b = self.level(l0 + 1).bilinear(uv, wu, wv);
-        a * (1.0 - t) + b * t
+        // The width-1 instance of the lanes (`texture/lanes.rs`).
+        let mut tc = [crate::mapping::TexCoord::default(); crate::math::lanes::MAX_LANES];
+        tc[0] = crate::mapping::TexCoord { uv, duvdx, duvdy };
+        let mut on = [false; crate::math::lanes::MAX_LANES];
+        on[0] = true;
+        let [r, g, b] = self.trilinear_lanes(pulp::Scalar, &tc, wu, wv, &on);
+        Rgb(r, g, b)
     }
 
     /// Elliptically weighted average (Heckbert 1989, pbrt's Gaussian form): the pixel's

@@ -68,11 +68,18 @@ impl TextureContext {
         mapping: &AnyMapping,
         transform: Option<&UvAffine>,
     ) -> TexCoord {
-        let tc = self.tex_coord(mapping);
-        match transform {
-            Some(a) if tc.uv.is_finite() => a.apply(tc),
-            _ => tc,
-        }
+        transformed(self.tex_coord(mapping), transform)
+    }
+}
+
+/// Coordinates `tc` as a mapping gave them after a texture's (u, v) transform, if it has one
+/// (not applied to a formula's NaN (u, v), which stays NaN and marks the pixel).
+#[must_use]
+#[inline]
+pub fn transformed(tc: TexCoord, transform: Option<&UvAffine>) -> TexCoord {
+    match transform {
+        Some(a) if tc.uv.is_finite() => a.apply(tc),
+        _ => tc,
     }
 }
 

@@ -10,8 +10,8 @@
 //! 2. [`shade`], object by object for the lanes that hit it: the hit resolved in world space
 //!    and faced toward the viewer, the texture's (u, v) by the mapping's own file
 //!    (`Mapping::map_lanes`) and its texels (the lane-wise nearest lookup, else the texture's
-//!    filter per lane), the material's terms (`Material::terms`), a bump or normal map, the
-//!    debug views.
+//!    filter per lane), the material's terms (`Material::terms`), a bump or normal map
+//!    ([`perturb`]: the map's texels read for the packet in lanes), the debug views.
 //! 3. [`light`]: each light's reflected radiance (`Terms::add_light`) past its shadow rays, and
 //!    Phong's glow.
 //! 4. Mirrors and clip maps: the lanes that reflect, or that see through a partly transparent
@@ -20,7 +20,8 @@
 //!
 //! What stays per lane calls the one scalar definition there is of it: a texture filtered over
 //! the pixel's footprint (`Texture::eval`), a student's formula, a textured coefficient, a bump
-//! or normal map, a shadow ray's any-hit walk, a mesh's BVH walk, a mirror's ray differentials.
+//! or normal map's slope and tilt, a shadow ray's any-hit walk, a mesh's BVH walk, a mirror's
+//! ray differentials.
 //! Each operation in lanes is one IEEE operation per lane in the scalar code's order, so a lane
 //! gives the same bits at every width: renders are identical for `--simd scalar` and `auto`.
 
@@ -30,6 +31,7 @@
 mod filtered;
 mod light;
 mod nearest;
+mod perturb;
 mod shade;
 mod texels;
 

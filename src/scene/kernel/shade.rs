@@ -28,9 +28,9 @@ pub(super) struct Resolved<S: Simd> {
 
 /// The per-lane records the scalar building blocks take, made when some part of the object's
 /// shading runs per lane.
-struct PerLane {
-    hits: [SurfaceHit; MAX_LANES],
-    ctx: [TextureContext; MAX_LANES],
+pub(super) struct PerLane {
+    pub hits: [SurfaceHit; MAX_LANES],
+    pub ctx: [TextureContext; MAX_LANES],
 }
 
 /// The material's parameters of the lanes being shaded: constants in every lane, textures per
@@ -252,7 +252,7 @@ impl Scene {
         let reflective = matches!(material, crate::material::Material::Reflective { .. });
         let needs_lanes = (filtered && in_lanes.is_none())
             || clip.is_some()
-            || perturbation.is_some()
+            || perturbation.is_some_and(|p| !self.perturbation_in_lanes(k, p))
             || textured
             || reflective
             || view != View::Shaded;
@@ -316,18 +316,9 @@ impl Scene {
                 on,
             };
             let terms = material.terms(s, &cd, self.ambient, &params);
-            // A bump or normal map tilts the shading normal, lane by lane.
-            if let (Some(_), Some(pl)) = (perturbation, per.as_mut()) {
-                let mut ns = r.ns.to_arrays();
-                for i in 0..S::F32_LANES {
-                    if on[i]
-                        && let Some(n) = self.perturbed_normal_at(&pl.hits[i], &pl.ctx[i])
-                    {
-                        (ns[0][i], ns[1][i], ns[2][i]) = (n.x, n.y, n.z);
-                        pl.hits[i].ns = n;
-                    }
-                }
-                r.ns = V3::from_arrays(&ns);
+            // A bump or normal map tilts the shading normal.
+            if let Some(p) = perturbation {
+                self.perturb_lanes(s, k, p, hits, &mut r, per.as_deref_mut(), diffs, &on);
             }
             if terms.lit {
                 let mut l = self.direct_lanes(s, k, &terms, &r, shade_on, offset, &mut keys);

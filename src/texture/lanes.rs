@@ -249,6 +249,39 @@ impl ImageTexture {
     }
 }
 
+impl ImageTexture {
+    /// The colour at each lane's coordinates `tc` (after the (u, v) transform) for the lanes in
+    /// `on`: [`ImageTexture::sample_lanes`] times the texture's `scale`, the [`mark`] where a
+    /// lane's (u, v) is not finite (what `ImageTexture::eval_mapped` gives per lane).
+    #[must_use]
+    #[inline(always)]
+    pub fn eval_lanes<S: Simd>(
+        &self,
+        s: S,
+        tc: &[TexCoord; MAX_LANES],
+        on: &[bool; MAX_LANES],
+    ) -> C3<S> {
+        let mut ok = [false; MAX_LANES];
+        for i in 0..S::F32_LANES {
+            ok[i] = on[i] && tc[i].uv.is_finite();
+        }
+        let k = s.splat_f32s(self.scale);
+        let mut c = self.sample_lanes(s, tc, &ok);
+        for x in &mut c {
+            *x = s.mul_f32s(*x, k);
+        }
+        if ok[..S::F32_LANES] != on[..S::F32_LANES] {
+            let m = mask_from_array(s, &ok);
+            let x = mark();
+            let x = [x.0, x.1, x.2];
+            for k in 0..3 {
+                c[k] = s.select_f32s(m, c[k], s.splat_f32s(x[k]));
+            }
+        }
+        c
+    }
+}
+
 impl Texture {
     /// [`Texture::eval_tex_coord`] at each lane's coordinates `tc` and object-space point `p`
     /// for the lanes in `on`: an image in lanes ([`ImageTexture::sample_lanes`], times its
@@ -264,26 +297,7 @@ impl Texture {
         on: &[bool; MAX_LANES],
     ) -> C3<S> {
         match self {
-            Self::Image(t) => {
-                let mut ok = [false; MAX_LANES];
-                for i in 0..S::F32_LANES {
-                    ok[i] = on[i] && tc[i].uv.is_finite();
-                }
-                let k = s.splat_f32s(t.scale);
-                let mut c = t.sample_lanes(s, tc, &ok);
-                for x in &mut c {
-                    *x = s.mul_f32s(*x, k);
-                }
-                if ok[..S::F32_LANES] != on[..S::F32_LANES] {
-                    let m = mask_from_array(s, &ok);
-                    let x = mark();
-                    let x = [x.0, x.1, x.2];
-                    for k in 0..3 {
-                        c[k] = s.select_f32s(m, c[k], s.splat_f32s(x[k]));
-                    }
-                }
-                c
-            }
+            Self::Image(t) => t.eval_lanes(s, tc, on),
             Self::Constant(c) => [s.splat_f32s(c.0), s.splat_f32s(c.1), s.splat_f32s(c.2)],
             _ => {
                 let mut c: Buf = Default::default();

@@ -1,7 +1,8 @@
 //! The kernel's texture stage for an image filtered over the pixel's footprint (trilinear, EWA,
 //! the footprint filter) under a built-in mapping of a generic shape: (u, v) and their
 //! gradients by the mapping's own lanes, then per lane the footprint on the tangent plane, the
-//! screen-space derivatives, the (u, v) transform and the filter.
+//! screen-space derivatives and the (u, v) transform, then the filter: trilinear in lanes
+//! (`MipPyramid::trilinear_lanes`), EWA and the footprint filter per lane.
 //!
 //! The same steps as `Scene::texture_context` then `ImageTexture::eval`, in the same order and
 //! with the same functions (the mapping at width 1 is `Mapping::map_point`), so a lane's colour
@@ -13,10 +14,10 @@ use super::nearest::Hits;
 use crate::geometry::{Object, Shape};
 use crate::mapping::{AnyMapping, Mapping, TexCoord};
 use crate::material::C3;
-use crate::math::lanes::{M, MAX_LANES, from_array, mask_to_array, to_array};
+use crate::math::lanes::{M, MAX_LANES, mask_to_array, to_array};
 use crate::math::{Vec2, Vec3A};
 use crate::scene::Scene;
-use crate::texture::{ImageTexture, Texture};
+use crate::texture::{ImageTexture, Texture, transformed};
 use pulp::Simd;
 
 impl Scene {
@@ -59,35 +60,25 @@ impl Scene {
         let (u, v) = (to_array::<S>(m.u), to_array::<S>(m.v));
         let (gu, gv) = (m.grad_u.to_arrays(), m.grad_v.to_arrays());
         let vec = |a: &[[f32; MAX_LANES]; 3], i: usize| Vec3A::new(a[0][i], a[1][i], a[2][i]);
-        let mut c = [[0.0; MAX_LANES]; 3];
+        let mut tc = [TexCoord::default(); MAX_LANES];
         for i in 0..S::F32_LANES {
             if !flags[i] {
                 continue;
             }
-            // `Scene::texture_context`: the differentials in object space, the footprint on
-            // the hit's tangent plane.
-            let d = if obj.identity {
-                diffs[i]
-            } else {
-                diffs[i].transformed(&obj.object_from_world)
-            };
-            let (dpdx, dpdy) = if self.needs_differentials {
-                d.footprint_on_plane(vec(&lp, i), vec(&ln, i))
-            } else {
-                (Vec3A::ZERO, Vec3A::ZERO)
-            };
-            // `Mapping::map_with_differentials` for a built-in mapping of the point, then
-            // `ImageTexture::eval`.
-            let tc = TexCoord::from_gradients(
+            // `Scene::texture_context`: the footprint on the hit's tangent plane; then
+            // `Mapping::map_with_differentials` for a built-in mapping of the point, and the
+            // texture's (u, v) transform.
+            let (dpdx, dpdy) = self.footprint_at(obj, Some(&diffs[i]), vec(&lp, i), vec(&ln, i));
+            let mapped = TexCoord::from_gradients(
                 Vec2::new(u[i], v[i]),
                 vec(&gu, i),
                 vec(&gv, i),
                 dpdx,
                 dpdy,
             );
-            let rgb = t.eval_mapped(tc);
-            (c[0][i], c[1][i], c[2][i]) = (rgb.0, rgb.1, rgb.2);
+            tc[i] = transformed(mapped, t.transform.as_ref());
         }
-        c.map(|a| from_array::<S>(&a))
+        // `ImageTexture::eval_mapped`: the filter (trilinear in lanes, the others per lane).
+        t.eval_lanes(s, &tc, &flags)
     }
 }

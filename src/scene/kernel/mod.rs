@@ -6,11 +6,13 @@
 //!
 //! The stages, in order ([`Scene::radiance_lanes`]):
 //! 1. [`nearest`]: the nearest hit over the objects in preset order: the generic shapes'
-//!    intersections in lanes (`geometry::lanes`), a mesh's BVH per lane.
+//!    intersections in lanes (`geometry::lanes`), a mesh's BVH walked by the whole packet
+//!    (`geometry::mesh::packet`).
 //! 2. [`shade`], object by object for the lanes that hit it: the hit resolved in world space
 //!    and faced toward the viewer, the texture's (u, v) by the mapping's own file
-//!    (`Mapping::map_lanes`) and its texels (the lane-wise nearest lookup, else the texture's
-//!    filter per lane), the material's terms (`Material::terms`), a bump or normal map
+//!    (`Mapping::map_lanes`) and its texels (the lane-wise nearest lookup; an image filtered
+//!    over the footprint by [`filtered`]: trilinear in lanes, EWA and the footprint filter per
+//!    lane), the material's terms (`Material::terms`), a bump or normal map
 //!    ([`perturb`]: the map's texels read for the packet in lanes), the debug views.
 //! 3. [`light`]: each light's reflected radiance (`Terms::add_light`) past its shadow rays, and
 //!    Phong's glow.
@@ -18,10 +20,10 @@
 //!    surface, are traced again as a packet of their own (masked), one level deeper, and
 //!    blended in.
 //!
-//! What stays per lane calls the one scalar definition there is of it: a texture filtered over
-//! the pixel's footprint (`Texture::eval`), a student's formula, a textured coefficient, a bump
-//! or normal map's slope and tilt, a shadow ray's any-hit walk, a mesh's BVH walk, a mirror's
-//! ray differentials.
+//! What stays per lane calls the one scalar definition there is of it: EWA and the footprint
+//! filter's lookups, a texture on a mesh's own (u, v) filtered over the footprint
+//! (`Texture::eval`), a student's formula, a textured coefficient, a bump or normal map's
+//! slope and tilt, a shadow ray's any-hit walk, a mirror's ray differentials.
 //! Each operation in lanes is one IEEE operation per lane in the scalar code's order, so a lane
 //! gives the same bits at every width: renders are identical for `--simd scalar` and `auto`.
 

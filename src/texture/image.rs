@@ -177,6 +177,9 @@ pub struct ImageData {
     /// Tiles per row of tiles.
     tiles_x: u32,
     texels: Texels,
+    /// The table that decodes 8-bit texels' bytes (`Texels::bytes`'s, looked up once here, not
+    /// at every texel).
+    table: &'static [f32; 256],
     /// The size of the image a header-only read's 1 x 1 stand-in stands for (its own size
     /// otherwise): what a checked scene counts the image's summed-area tables by.
     full_size: (u32, u32),
@@ -208,6 +211,7 @@ impl ImageData {
             width,
             height,
             tiles_x: width.div_ceil(TILE),
+            table: texels.bytes().map_or(srgb8_table(), |b| b.1),
             texels,
             full_size: (width, height),
             name: name.into(),
@@ -291,7 +295,7 @@ impl ImageData {
 
     /// The texel at `column` and `row_from_bottom` (the lecture's row, v up), linear RGB.
     #[must_use]
-    #[inline]
+    #[inline(always)]
     pub fn texel(&self, column: u32, row_from_bottom: u32) -> Rgb {
         let row = self.height - 1 - row_from_bottom;
         self.texel_top(column, row)
@@ -299,15 +303,14 @@ impl ImageData {
 
     /// The texel at `column` and file row `row` (0 = top), linear RGB.
     #[must_use]
-    #[inline]
+    #[inline(always)]
     pub fn texel_top(&self, column: u32, row: u32) -> Rgb {
         let i = tiled_index(self.tiles_x, column, row);
-        let decode = |[r, g, b, _]: [u8; 4], t: &[f32; 256]| {
-            Rgb(t[r as usize], t[g as usize], t[b as usize])
-        };
         match &self.texels {
-            Texels::Srgb8(v) => decode(v[i], srgb8_table()),
-            Texels::Unorm8(v) => decode(v[i], unorm8_table()),
+            Texels::Srgb8(v) | Texels::Unorm8(v) => {
+                let ([r, g, b, _], t) = (v[i], self.table);
+                Rgb(t[r as usize], t[g as usize], t[b as usize])
+            }
             Texels::Linear(v) => Rgb::from_array(v[i]),
         }
     }

@@ -6,7 +6,7 @@ use super::{
     ImageData, Layout, MAX_IMAGE_BYTES, MAX_IMAGE_DIMENSION, Sample, TILE, Texels, approx_bytes,
     sanitize, tiled_index, zeroed,
 };
-use crate::math::srgb_to_linear;
+use crate::math::{srgb_to_linear, srgb8_table};
 
 /// What to read of an image file, and how much memory its texels may take.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -355,6 +355,7 @@ impl Storage {
             width: self.width,
             height: self.height,
             tiles_x: self.tiles_x,
+            table: self.texels.bytes().map_or(srgb8_table(), |b| b.1),
             texels: self.texels,
             full_size: self.full_size,
             name,

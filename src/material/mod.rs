@@ -124,6 +124,43 @@ impl Material {
         }
     }
 
+    /// Whether every textured coefficient and colour (besides the colour texture) has a texture
+    /// `ok` accepts (true when none is textured).
+    #[must_use]
+    pub fn textured_params_all(&self, ok: impl Fn(&Texture) -> bool) -> bool {
+        let s = |p: &Scalar| match p {
+            Scalar::Const(_) => true,
+            Scalar::Texture(t) => ok(&t.texture),
+        };
+        let c = |p: &Colour| match p {
+            Colour::Const(_) => true,
+            Colour::Texture(t) => ok(t),
+        };
+        match self {
+            Self::Matte { ka, kd, .. } => s(ka) && s(kd),
+            Self::Phong {
+                ka,
+                kd,
+                ks,
+                cs,
+                exp,
+                ce,
+                ..
+            } => s(ka) && s(kd) && s(ks) && c(cs) && s(exp) && c(ce),
+            Self::Reflective {
+                ka,
+                kd,
+                ks,
+                cs,
+                exp,
+                kr,
+                cr,
+                ..
+            } => s(ka) && s(kd) && s(ks) && c(cs) && s(exp) && s(kr) && c(cr),
+            Self::Emissive { ls, .. } => s(ls),
+        }
+    }
+
     /// Whether lights affect this material (emissive surfaces ignore them).
     #[must_use]
     pub const fn is_lit(&self) -> bool {

@@ -14,7 +14,7 @@ use super::nearest::Hits;
 use crate::geometry::{Object, Shape};
 use crate::mapping::{AnyMapping, Mapping, TexCoord};
 use crate::material::C3;
-use crate::math::lanes::{M, MAX_LANES, mask_to_array, to_array};
+use crate::math::lanes::{M, MAX_LANES, V3, from_array, mask_from_array, mask_to_array, to_array};
 use crate::math::{Vec2, Vec3A};
 use crate::scene::Scene;
 use crate::texture::{ImageTexture, Texture, transformed};
@@ -40,6 +40,66 @@ impl Scene {
         }
     }
 
+    /// [`Scene::filtered_lanes`] as a call of its own, entered through `s`'s `#[target_feature]`
+    /// entry as `Scene::radiance_nested` is: a material reads up to seven textured coefficients
+    /// and colours, and the stage inlined at each would multiply the kernel's code (and its
+    /// build time) by as much.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(never)]
+    pub(super) fn filtered_lanes_call<S: Simd>(
+        &self,
+        s: S,
+        obj: &Object,
+        t: &ImageTexture,
+        mapping: Mapping,
+        hits: &Hits<S>,
+        diffs: Option<&Diffs>,
+        on: M<S>,
+    ) -> C3<S> {
+        /// The stage's inputs as per-lane buffers (pulp's `WithSimd` hands `with_simd` a token
+        /// of its own type parameter).
+        struct Call<'a> {
+            scene: &'a Scene,
+            obj: &'a Object,
+            t: &'a ImageTexture,
+            mapping: Mapping,
+            p: [[f32; MAX_LANES]; 3],
+            n: [[f32; MAX_LANES]; 3],
+            diffs: Option<&'a Diffs>,
+            on: [bool; MAX_LANES],
+        }
+        impl pulp::WithSimd for Call<'_> {
+            type Output = [[f32; MAX_LANES]; 3];
+            #[inline(always)]
+            fn with_simd<S: Simd>(self, s: S) -> Self::Output {
+                let (p, n) = (V3::from_arrays(&self.p), V3::from_arrays(&self.n));
+                let on = mask_from_array(s, &self.on);
+                let c = self.scene.filtered_lanes_at(
+                    s,
+                    self.obj,
+                    self.t,
+                    self.mapping,
+                    &p,
+                    &n,
+                    self.diffs,
+                    on,
+                );
+                c.map(to_array::<S>)
+            }
+        }
+        let c = s.vectorize(Call {
+            scene: self,
+            obj,
+            t,
+            mapping,
+            p: hits.p.to_arrays(),
+            n: hits.n.to_arrays(),
+            diffs,
+            on: mask_to_array(s, on),
+        });
+        c.map(|a| from_array::<S>(&a))
+    }
+
     /// The filtered colour of `t` (mapped by `mapping`, see [`Scene::filtered_in_lanes`]) at
     /// the lanes in `on` of object `obj`, with each lane's ray differentials from `diffs`.
     #[allow(clippy::too_many_arguments)]
@@ -51,12 +111,29 @@ impl Scene {
         t: &ImageTexture,
         mapping: Mapping,
         hits: &Hits<S>,
-        diffs: &Diffs,
+        diffs: Option<&Diffs>,
+        on: M<S>,
+    ) -> C3<S> {
+        self.filtered_lanes_at(s, obj, t, mapping, &hits.p, &hits.n, diffs, on)
+    }
+
+    /// [`Scene::filtered_lanes`] at the object-space points `p` with normals `n`.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn filtered_lanes_at<S: Simd>(
+        &self,
+        s: S,
+        obj: &Object,
+        t: &ImageTexture,
+        mapping: Mapping,
+        p: &V3<S>,
+        n: &V3<S>,
+        diffs: Option<&Diffs>,
         on: M<S>,
     ) -> C3<S> {
         let flags = mask_to_array(s, on);
-        let (lp, ln) = (hits.p.to_arrays(), hits.n.to_arrays());
-        let m = mapping.map_lanes::<S, true>(s, &hits.p);
+        let (lp, ln) = (p.to_arrays(), n.to_arrays());
+        let m = mapping.map_lanes::<S, true>(s, p);
         let (u, v) = (to_array::<S>(m.u), to_array::<S>(m.v));
         let (gu, gv) = (m.grad_u.to_arrays(), m.grad_v.to_arrays());
         let vec = |a: &[[f32; MAX_LANES]; 3], i: usize| Vec3A::new(a[0][i], a[1][i], a[2][i]);
@@ -68,7 +145,8 @@ impl Scene {
             // `Scene::texture_context`: the footprint on the hit's tangent plane; then
             // `Mapping::map_with_differentials` for a built-in mapping of the point, and the
             // texture's (u, v) transform.
-            let (dpdx, dpdy) = self.footprint_at(obj, Some(&diffs[i]), vec(&lp, i), vec(&ln, i));
+            let (dpdx, dpdy) =
+                self.footprint_at(obj, diffs.map(|d| &d[i]), vec(&lp, i), vec(&ln, i));
             let mapped = TexCoord::from_gradients(
                 Vec2::new(u[i], v[i]),
                 vec(&gu, i),

@@ -39,11 +39,43 @@ struct LaneParams<'a, S: Simd> {
     s: S,
     per: Option<&'a PerLane>,
     on: [bool; MAX_LANES],
+    /// What an image under a built-in mapping of a generic shape is read in lanes from
+    /// ([`Scene::filtered_lanes`]): the scene, the object, its hits and the rays' differentials.
+    scene: &'a Scene,
+    obj: &'a Object,
+    hits: &'a Hits<S>,
+    diffs: Option<&'a Diffs>,
+    mask: M<S>,
+}
+
+impl<S: Simd> LaneParams<'_, S> {
+    /// `texture`'s colour in lanes, where it is an image [`Scene::filtered_in_lanes`] serves.
+    #[inline(always)]
+    fn in_lanes(&self, texture: &crate::texture::Texture) -> Option<C3<S>> {
+        let (t, m) = Scene::filtered_in_lanes(self.obj, texture)?;
+        Some(
+            self.scene
+                .filtered_lanes_call(self.s, self.obj, t, m, self.hits, self.diffs, self.mask),
+        )
+    }
 }
 
 impl<S: Simd> ParamLanes<S> for LaneParams<'_, S> {
     #[inline(always)]
     fn scalar(&self, p: &Scalar) -> F<S> {
+        if let Scalar::Texture(t) = p
+            && let Some(c) = self.in_lanes(&t.texture)
+        {
+            // `ScalarTexture::eval`: the channel of the colour, per lane.
+            let c = c.map(to_array::<S>);
+            let mut a = [0.0; MAX_LANES];
+            for i in 0..S::F32_LANES {
+                if self.on[i] {
+                    a[i] = t.channel.of(Rgb(c[0][i], c[1][i], c[2][i]));
+                }
+            }
+            return from_array::<S>(&a);
+        }
         match (p, self.per) {
             (Scalar::Const(v), _) => self.s.splat_f32s(*v),
             (Scalar::Texture(t), Some(pl)) => {
@@ -55,13 +87,18 @@ impl<S: Simd> ParamLanes<S> for LaneParams<'_, S> {
                 }
                 from_array::<S>(&a)
             }
-            // Unreachable: a textured parameter makes the lanes' records.
+            // Unreachable: a textured parameter not read in lanes makes the lanes' records.
             (Scalar::Texture(_), None) => self.s.splat_f32s(0.0),
         }
     }
 
     #[inline(always)]
     fn colour(&self, p: &Colour) -> C3<S> {
+        if let Colour::Texture(t) = p
+            && let Some(c) = self.in_lanes(t)
+        {
+            return c;
+        }
         match (p, self.per) {
             (Colour::Const(c), _) => splat_rgb(self.s, *c),
             (Colour::Texture(_), Some(pl)) => {
@@ -248,7 +285,10 @@ impl Scene {
             .perturbation
             .as_ref()
             .filter(|_| self.has_perturbations);
-        let textured = material.has_textured_params();
+        // Textured coefficients and colours are read in lanes where each is an image under a
+        // built-in mapping of a generic shape (`LaneParams`); others need the per-lane records.
+        let textured = material.has_textured_params()
+            && !material.textured_params_all(|t| Self::filtered_in_lanes(obj, t).is_some());
         let reflective = matches!(material, crate::material::Material::Reflective { .. });
         let needs_lanes = (filtered && in_lanes.is_none())
             || clip.is_some()
@@ -303,7 +343,7 @@ impl Scene {
             })
         } else {
             let cd = if let Some((t, m, d)) = in_lanes {
-                self.filtered_lanes(s, obj, t, m, hits, d, shade_on)
+                self.filtered_lanes(s, obj, t, m, hits, Some(d), shade_on)
             } else if let (Some(p), true) = (&per, filtered) {
                 each(&|i| texture.eval(&p.ctx[i]))
             } else {
@@ -314,6 +354,11 @@ impl Scene {
                 s,
                 per: per.as_deref(),
                 on,
+                scene: self,
+                obj,
+                hits,
+                diffs,
+                mask: shade_on,
             };
             let terms = material.terms(s, &cd, self.ambient, &params);
             // A bump or normal map tilts the shading normal.

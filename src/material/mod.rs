@@ -97,31 +97,7 @@ impl Material {
     /// packet).
     #[must_use]
     pub fn has_textured_params(&self) -> bool {
-        let s = |p: &Scalar| matches!(p, Scalar::Texture(_));
-        let c = |p: &Colour| matches!(p, Colour::Texture(_));
-        match self {
-            Self::Matte { ka, kd, .. } => s(ka) || s(kd),
-            Self::Phong {
-                ka,
-                kd,
-                ks,
-                cs,
-                exp,
-                ce,
-                ..
-            } => s(ka) || s(kd) || s(ks) || c(cs) || s(exp) || c(ce),
-            Self::Reflective {
-                ka,
-                kd,
-                ks,
-                cs,
-                exp,
-                kr,
-                cr,
-                ..
-            } => s(ka) || s(kd) || s(ks) || c(cs) || s(exp) || s(kr) || c(cr),
-            Self::Emissive { ls, .. } => s(ls),
-        }
+        !self.textured_params_all(|_| false)
     }
 
     /// Whether every textured coefficient and colour (besides the colour texture) has a texture

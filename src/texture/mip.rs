@@ -11,7 +11,7 @@
 //! content shifts. A side of 1 stays 1. Lookups wrap each level with the texture's wrap modes,
 //! so periodic mappings filter across their seam at every level.
 
-use super::{ImageData, Texels, Wrap};
+use super::{ImageData, TILE, Texels, Wrap, tiled_index};
 use crate::math::{Rgb, Vec2, linear_to_srgb8};
 use std::sync::{Arc, LazyLock, OnceLock};
 
@@ -323,49 +323,138 @@ fn ewa_level(
     }
     let (s0, s1) = ((s - du).ceil() as i64, (s + du).floor() as i64);
     let (t0, t1) = ((t - dv).ceil() as i64, (t + dv).floor() as i64);
-    let weights = &*EWA_WEIGHTS;
-    let table_scale = (WEIGHT_TABLE_SIZE - 1) as f32;
-    let mut sum = Rgb::BLACK;
-    let mut wsum = 0.0;
-    for it in t0..=t1 {
-        let tt = it as f32 - t;
-        // Only the span of this row inside the ellipse: A ss^2 + (B tt) ss + (C tt^2 - 1) < 0.
-        let (qb, qc) = (b * tt, c * tt * tt - 1.0);
-        let disc = qb * qb - 4.0 * a * qc;
-        // (NaN fails the comparison too.)
-        if disc.is_nan() || disc <= 0.0 {
-            continue;
-        }
-        let root = disc.sqrt();
-        let lo = ((s + (-qb - root) / (2.0 * a)).ceil() as i64).max(s0);
-        let hi = ((s + (-qb + root) / (2.0 * a)).floor() as i64).min(s1);
-        let row = wv.index(it, h);
-        // Columns inside the image need no wrapping (the common case).
-        let inside = lo >= 0 && hi < i64::from(w);
-        for is in lo..=hi {
-            let ss = is as f32 - s;
-            let r2 = a * ss * ss + b * ss * tt + c * tt * tt;
-            if r2 >= 1.0 {
-                continue;
-            }
-            let wgt = weights[((r2 * table_scale) as usize).min(WEIGHT_TABLE_SIZE - 1)];
-            wsum += wgt;
-            // Outside under `Black`: black texels still count in the average.
-            let Some(row) = row else { continue };
-            let col = if inside {
-                Some(is as u32)
-            } else {
-                wu.index(is, w)
-            };
-            if let Some(col) = col {
-                sum += img.texel(col, row) * wgt;
+    let [r, g, b, wsum] = pulp::Arch::new().dispatch(EwaRows {
+        img,
+        a,
+        b,
+        c,
+        s,
+        t,
+        columns: (s0, s1),
+        rows: (t0, t1),
+        wu,
+        wv,
+    });
+    if wsum > 0.0 {
+        Rgb(r, g, b) / wsum
+    } else {
+        img.bilinear(uv, wu, wv)
+    }
+}
+
+/// The texels of one EWA level inside the ellipse `a ss^2 + b ss tt + c tt^2 < 1` (centred on
+/// texel coordinates (`s`, `t`), within the bounding box `columns` x `rows`), each weighed by
+/// the Gaussian: the weighted sum of their colours and the sum of the weights, `[r, g, b, w]`.
+///
+/// Entered through pulp's dispatch so the loop is compiled for the machine's instruction set
+/// (rounding and conversions in single instructions, not library calls), with the texel format
+/// chosen once per lookup rather than at every texel. The sums run texel by texel in the same
+/// order as a plain loop, so the result is the same bits on every instruction set.
+struct EwaRows<'a> {
+    img: &'a ImageData,
+    a: f32,
+    b: f32,
+    c: f32,
+    s: f32,
+    t: f32,
+    columns: (i64, i64),
+    rows: (i64, i64),
+    wu: Wrap,
+    wv: Wrap,
+}
+
+impl pulp::WithSimd for EwaRows<'_> {
+    type Output = [f32; 4];
+
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _simd: S) -> [f32; 4] {
+        match self.img.texels() {
+            Texels::Linear(px) => self.sum(|i| px[i]),
+            texels => {
+                let Some((px, table)) = texels.bytes() else {
+                    return [0.0; 4];
+                };
+                self.sum(|i| {
+                    let [r, g, b, _] = px[i];
+                    [table[r as usize], table[g as usize], table[b as usize]]
+                })
             }
         }
     }
-    if wsum > 0.0 {
-        sum / wsum
-    } else {
-        img.bilinear(uv, wu, wv)
+}
+
+impl EwaRows<'_> {
+    /// The sums, reading the texel at a tiled storage index with `texel`.
+    #[inline(always)]
+    fn sum(&self, texel: impl Fn(usize) -> [f32; 3]) -> [f32; 4] {
+        let Self { a, b, c, s, t, .. } = *self;
+        let (w, h) = (self.img.width(), self.img.height());
+        let tiles_x = self.img.tiles_x() as usize;
+        let weights = &*EWA_WEIGHTS;
+        let table_scale = (WEIGHT_TABLE_SIZE - 1) as f32;
+        // Accumulated in the order a plain loop adds: the same bits whatever the loop's shape.
+        let mut acc = [0.0_f32; 4];
+        let add = |acc: &mut [f32; 4], c: [f32; 3], wgt: f32| {
+            *acc = [
+                acc[0] + c[0] * wgt,
+                acc[1] + c[1] * wgt,
+                acc[2] + c[2] * wgt,
+                acc[3] + wgt,
+            ];
+        };
+        for it in self.rows.0..=self.rows.1 {
+            let tt = it as f32 - t;
+            // Only the span of this row inside the ellipse: A ss^2 + (B tt) ss + (C tt^2 - 1) < 0.
+            let (qb, qc) = (b * tt, c * tt * tt - 1.0);
+            let disc = qb * qb - 4.0 * a * qc;
+            // (NaN fails the comparison too.)
+            if disc.is_nan() || disc <= 0.0 {
+                continue;
+            }
+            let root = disc.sqrt();
+            let lo = ((s + (-qb - root) / (2.0 * a)).ceil() as i64).max(self.columns.0);
+            let hi = ((s + (-qb + root) / (2.0 * a)).floor() as i64).min(self.columns.1);
+            let ctt = c * tt * tt;
+            let weight = |is: i64| {
+                let ss = is as f32 - s;
+                let r2 = a * ss * ss + b * ss * tt + ctt;
+                (r2 < 1.0 || r2.is_nan())
+                    .then(|| weights[((r2 * table_scale) as usize).min(WEIGHT_TABLE_SIZE - 1)])
+            };
+            let row = self.wv.index(it, h);
+            match row {
+                // Every column inside the image (the common case): no wrapping, and the
+                // storage index of (column, row) from the row's start in its tiles.
+                Some(row) if lo >= 0 && hi < i64::from(w) => {
+                    let top = (h - 1 - row) as usize;
+                    let start = top / TILE as usize * tiles_x * (TILE * TILE) as usize
+                        + top % TILE as usize * TILE as usize;
+                    for is in lo..=hi {
+                        if let Some(wgt) = weight(is) {
+                            let col = is as usize;
+                            let i = start
+                                + col / TILE as usize * (TILE * TILE) as usize
+                                + col % TILE as usize;
+                            add(&mut acc, texel(i), wgt);
+                        }
+                    }
+                }
+                _ => {
+                    for is in lo..=hi {
+                        let Some(wgt) = weight(is) else { continue };
+                        // Outside under `Black`: black texels still count in the average.
+                        match (row, self.wu.index(is, w)) {
+                            (Some(row), Some(col)) => {
+                                let i = tiled_index(self.img.tiles_x(), col, h - 1 - row);
+                                add(&mut acc, texel(i), wgt);
+                            }
+                            _ => acc[3] += wgt,
+                        }
+                    }
+                }
+            }
+        }
+        acc
     }
 }
 

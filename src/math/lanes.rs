@@ -79,19 +79,43 @@ pub fn from_array_u32<S: Simd>(a: &[u32; MAX_LANES]) -> U<S> {
     S::as_simd_u32s(&a[..S::U32_LANES]).0[0]
 }
 
+/// `[f(a[0]), f(a[1]), f(a[2])]`, always inlined. The kernel uses this, not `<[T; 3]>::map`:
+/// `map` goes through `try_map`, which LLVM does not always inline into the kernel's one large
+/// dispatched function, and out of line it calls the SIMD intrinsics its closure uses as
+/// functions compiled without the instruction set (a splat became a call in the mesh's
+/// triangle test; small scenes lost 5-10% as the kernel grew).
+#[must_use]
+#[inline(always)]
+pub fn map3<T, R>(a: [T; 3], mut f: impl FnMut(T) -> R) -> [R; 3] {
+    let [x, y, z] = a;
+    [f(x), f(y), f(z)]
+}
+
+/// `[f(0), f(1), ..]` over the lanes, always inlined: the kernel's `std::array::from_fn` (which
+/// goes through `try_from_fn`, see [`map3`]).
+#[must_use]
+#[inline(always)]
+pub fn each_lane<T: Copy + Default>(mut f: impl FnMut(usize) -> T) -> [T; MAX_LANES] {
+    let mut out = [T::default(); MAX_LANES];
+    for (i, o) in out.iter_mut().enumerate() {
+        *o = f(i);
+    }
+    out
+}
+
 /// The flags of a mask.
 #[must_use]
 #[inline(always)]
 pub fn mask_to_array<S: Simd>(s: S, m: M<S>) -> [bool; MAX_LANES] {
     let bits = to_array_u32::<S>(s.select_u32s(m, s.splat_u32s(1), s.splat_u32s(0)));
-    bits.map(|b| b != 0)
+    each_lane(|i| bits[i] != 0)
 }
 
 /// A mask from flags.
 #[must_use]
 #[inline(always)]
 pub fn mask_from_array<S: Simd>(s: S, a: &[bool; MAX_LANES]) -> M<S> {
-    let bits = from_array_u32::<S>(&a.map(u32::from));
+    let bits = from_array_u32::<S>(&each_lane(|i| u32::from(a[i])));
     s.equal_u32s(bits, s.splat_u32s(1))
 }
 

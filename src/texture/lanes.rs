@@ -243,7 +243,7 @@ impl ImageTexture {
                         put(&mut c, i, self.sample(tc[i]));
                     }
                 }
-                c.map(|a| from_array::<S>(&a))
+                crate::math::lanes::map3(c, |a| from_array::<S>(&a))
             }
         }
     }
@@ -306,7 +306,7 @@ impl Texture {
                         put(&mut c, i, self.eval_tex_coord(tc[i], p[i]));
                     }
                 }
-                c.map(|a| from_array::<S>(&a))
+                crate::math::lanes::map3(c, |a| from_array::<S>(&a))
             }
         }
     }

@@ -102,14 +102,14 @@ impl<S: Simd> WoopRays<S> {
     #[inline(always)]
     fn vertex(&self, s: S, p: Vec3) -> V3<S> {
         let [px, py, pz] = if let Some(k) = self.uniform {
-            k.map(|k| s.splat_f32s(p[k]))
+            crate::math::lanes::map3(k, |k| s.splat_f32s(p[k]))
         } else {
             let v = V3 {
                 x: s.splat_f32s(p.x),
                 y: s.splat_f32s(p.y),
                 z: s.splat_f32s(p.z),
             };
-            self.k.map(|(is_x, is_y)| pick(s, is_x, is_y, &v))
+            crate::math::lanes::map3(self.k, |(is_x, is_y)| pick(s, is_x, is_y, &v))
         };
         let vz = s.sub_f32s(pz, self.o.z);
         V3 {

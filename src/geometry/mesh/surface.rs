@@ -86,7 +86,7 @@ impl Mesh {
         let hit = mask_to_array(s, hits.hit);
         // Lanes without a hit read triangle 0 (every mesh has one): finite, meaningless.
         let triangle: [u32; MAX_LANES] =
-            std::array::from_fn(|i| if hit[i] { hits.triangle[i] } else { 0 });
+            crate::math::lanes::each_lane(|i| if hit[i] { hits.triangle[i] } else { 0 });
         let w = &hits.bary;
         let pc = self.gather(lanes, &triangle, &self.positions, |v: Vec3| v.to_array());
         let (p0, p1, p2) = (

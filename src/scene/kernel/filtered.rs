@@ -84,7 +84,7 @@ impl Scene {
                     self.diffs,
                     on,
                 );
-                c.map(to_array::<S>)
+                crate::math::lanes::map3(c, to_array::<S>)
             }
         }
         let c = s.vectorize(Call {
@@ -97,7 +97,7 @@ impl Scene {
             diffs,
             on: mask_to_array(s, on),
         });
-        c.map(|a| from_array::<S>(&a))
+        crate::math::lanes::map3(c, |a| from_array::<S>(&a))
     }
 
     /// The filtered colour of `t` (mapped by `mapping`, see [`Scene::filtered_in_lanes`]) at

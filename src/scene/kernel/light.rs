@@ -66,7 +66,7 @@ impl Scene {
             Shape::Plane | Shape::Rectangle | Shape::Disk => [false; MAX_LANES],
             Shape::Sphere | Shape::Cylinder { capped: true } => {
                 let front = mask_to_array(s, r.front);
-                std::array::from_fn(|i| !front[i])
+                crate::math::lanes::each_lane(|i| !front[i])
             }
             Shape::Cylinder { capped: false } | Shape::Mesh(_) => [true; MAX_LANES],
         };
@@ -92,7 +92,8 @@ impl Scene {
                     s.sub_f32s(dist, offset),
                     s.splat_f32s(f32::INFINITY),
                 );
-                let skip = std::array::from_fn(|i| if self_shadows[i] { usize::MAX } else { k });
+                let skip =
+                    crate::math::lanes::each_lane(|i| if self_shadows[i] { usize::MAX } else { k });
                 let blocked = self.occluded_lanes(s, &rays, t_max, &skip);
                 let flags = mask_to_array(s, blocked);
                 for (i, key) in keys.iter_mut().enumerate().take(S::F32_LANES) {

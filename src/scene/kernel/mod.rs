@@ -171,7 +171,7 @@ impl Scene {
                 let t = self
                     .scene
                     .radiance_lanes(s, &rays, self.diffs, self.depth, self.layer);
-                (t.rgb.map(to_array::<S>), t.keys)
+                (crate::math::lanes::map3(t.rgb, to_array::<S>), t.keys)
             }
         }
         let (rgb, keys) = s.vectorize(Nested {
@@ -184,7 +184,7 @@ impl Scene {
             layer,
         });
         Traced {
-            rgb: rgb.map(|c| crate::math::lanes::from_array::<S>(&c)),
+            rgb: crate::math::lanes::map3(rgb, |c| crate::math::lanes::from_array::<S>(&c)),
             keys,
         }
     }

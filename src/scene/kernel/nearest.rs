@@ -34,7 +34,7 @@ impl<S: Simd> Hits<S> {
     /// The lanes that hit object `k`.
     #[inline(always)]
     pub fn of_object(&self, s: S, k: u32) -> M<S> {
-        let mine: [bool; MAX_LANES] = std::array::from_fn(|i| self.object[i] == k);
+        let mine: [bool; MAX_LANES] = crate::math::lanes::each_lane(|i| self.object[i] == k);
         s.and_m32s(self.hit, mask_from_array(s, &mine))
     }
 
@@ -164,7 +164,7 @@ impl Scene {
             if !ob.casts_shadows {
                 continue;
             }
-            let others: [bool; MAX_LANES] = std::array::from_fn(|i| skip[i] != k);
+            let others: [bool; MAX_LANES] = crate::math::lanes::each_lane(|i| skip[i] != k);
             let open = s.and_m32s(
                 s.and_m32s(rays.active, mask_from_array(s, &others)),
                 s.not_m32s(blocked),

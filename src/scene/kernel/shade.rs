@@ -67,7 +67,7 @@ impl<S: Simd> ParamLanes<S> for LaneParams<'_, S> {
             && let Some(c) = self.in_lanes(&t.texture)
         {
             // `ScalarTexture::eval`: the channel of the colour, per lane.
-            let c = c.map(to_array::<S>);
+            let c = crate::math::lanes::map3(c, to_array::<S>);
             let mut a = [0.0; MAX_LANES];
             for i in 0..S::F32_LANES {
                 if self.on[i] {
@@ -109,7 +109,7 @@ impl<S: Simd> ParamLanes<S> for LaneParams<'_, S> {
                         (a[0][i], a[1][i], a[2][i]) = (c.0, c.1, c.2);
                     }
                 }
-                a.map(|c| from_array::<S>(&c))
+                crate::math::lanes::map3(a, |c| from_array::<S>(&c))
             }
             (Colour::Texture(_), None) => splat_rgb(self.s, Rgb::BLACK),
         }
@@ -311,7 +311,7 @@ impl Scene {
                     alpha[i] = clip.eval(&per.ctx[i]).clamp(0.0, 1.0);
                 }
             }
-            let gone: [bool; MAX_LANES] = std::array::from_fn(|i| alpha[i] <= 0.0);
+            let gone: [bool; MAX_LANES] = crate::math::lanes::each_lane(|i| alpha[i] <= 0.0);
             shade_on = s.and_m32s(mine, s.not_m32s(mask_from_array(s, &gone)));
         }
         let on = mask_to_array(s, shade_on);
@@ -325,7 +325,7 @@ impl Scene {
                     (c[0][i], c[1][i], c[2][i]) = (v.0, v.1, v.2);
                 }
             }
-            c.map(|a| from_array::<S>(&a))
+            crate::math::lanes::map3(c, |a| from_array::<S>(&a))
         };
 
         let mut l = if let (true, Some(p)) = (
@@ -382,7 +382,7 @@ impl Scene {
                 match (view, &per) {
                     (View::Shaded, _) | (_, None) => l,
                     (_, Some(pl)) => {
-                        let la = l.map(to_array::<S>);
+                        let la = crate::math::lanes::map3(l, to_array::<S>);
                         each(&|i| {
                             texture.debug_color(&pl.ctx[i], view, Rgb(la[0][i], la[1][i], la[2][i]))
                         })
@@ -392,7 +392,7 @@ impl Scene {
                 match (view, &per) {
                     (View::Shaded, _) | (_, None) => terms.base,
                     (_, Some(pl)) => {
-                        let b = terms.base.map(to_array::<S>);
+                        let b = crate::math::lanes::map3(terms.base, to_array::<S>);
                         each(&|i| {
                             texture.debug_color(&pl.ctx[i], view, Rgb(b[0][i], b[1][i], b[2][i]))
                         })
@@ -404,7 +404,7 @@ impl Scene {
         // What lies behind a partly transparent surface, traced on and blended in.
         if clip.is_some() {
             let see_through: [bool; MAX_LANES] =
-                std::array::from_fn(|i| flags[i] && alpha[i] < 1.0);
+                crate::math::lanes::each_lane(|i| flags[i] && alpha[i] < 1.0);
             if see_through.contains(&true) {
                 let behind = if layer + 1 < MAX_CLIP_LAYERS {
                     let on = mask_from_array(s, &see_through);
@@ -425,7 +425,7 @@ impl Scene {
                 let one_minus = s.sub_f32s(s.splat_f32s(1.0), a);
                 let blend = mask_from_array(s, &see_through);
                 let gone: [bool; MAX_LANES] =
-                    std::array::from_fn(|i| see_through[i] && alpha[i] <= 0.0);
+                    crate::math::lanes::each_lane(|i| see_through[i] && alpha[i] <= 0.0);
                 let gone_m = mask_from_array(s, &gone);
                 for c in 0..3 {
                     let mixed =

@@ -112,7 +112,7 @@ impl<'a> Nearest<'a> {
             }
         }
         let _ = s;
-        c.map(|a| from_array::<S>(&a))
+        crate::math::lanes::map3(c, |a| from_array::<S>(&a))
     }
 }
 
@@ -127,7 +127,7 @@ fn marked<S: Simd>(
     flags: &[bool; MAX_LANES],
 ) -> C3<S> {
     let bad: [bool; MAX_LANES] =
-        std::array::from_fn(|i| flags[i] && !(u[i].is_finite() && v[i].is_finite()));
+        crate::math::lanes::each_lane(|i| flags[i] && !(u[i].is_finite() && v[i].is_finite()));
     if !bad[..S::F32_LANES].contains(&true) {
         return c;
     }
@@ -252,7 +252,7 @@ impl Scene {
                         &flags,
                     );
                     let k = s.splat_f32s(t.scale);
-                    Some(c.map(|c| s.mul_f32s(c, k)))
+                    Some(crate::math::lanes::map3(c, |c| s.mul_f32s(c, k)))
                 }
                 _ => None,
             }
@@ -271,6 +271,6 @@ impl Scene {
                 (c[0][i], c[1][i], c[2][i]) = (rgb.0, rgb.1, rgb.2);
             }
         }
-        c.map(|a| from_array::<S>(&a))
+        crate::math::lanes::map3(c, |a| from_array::<S>(&a))
     }
 }

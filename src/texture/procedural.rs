@@ -2,7 +2,7 @@
 
 use super::{Filter, ImageData, TextureContext};
 use crate::mapping::{AnyMapping, TexCoord, UvAffine};
-use crate::math::{Rgb, srgb_to_linear};
+use crate::math::{Rgb, floor_fast, srgb_to_linear};
 
 /// A checkerboard of `squares.0 x squares.1` squares over the unit (u, v) square, repeating
 /// outside it.
@@ -49,7 +49,8 @@ impl Checker {
     /// odd squares is `(I(s1) - I(s0)) / (s1 - s0)` with `I(x) = floor(x / 2) +
     /// 2 max(x / 2 - floor(x / 2) - 1 / 2, 0)` the integral of the odd-square indicator; the 2D
     /// share of the second colour is `a (1 - b) + b (1 - a)`. The box is the bounding box of the
-    /// one-pixel parallelogram spanned by d(u, v)/dx and d(u, v)/dy.
+    /// one-pixel parallelogram spanned by d(u, v)/dx and d(u, v)/dy. (Floors by [`floor_fast`]:
+    /// this runs per lane outside the kernel's instruction set, where `f32::floor` is a call.)
     #[must_use]
     pub fn box_filtered(&self, tc: &TexCoord) -> Rgb {
         let (nu, nv) = self.squares;
@@ -58,7 +59,7 @@ impl Checker {
         let dt = 0.5 * (tc.duvdx.y.abs() + tc.duvdy.y.abs()) * nv;
         let (s0, s1, t0, t1) = (s - ds, s + ds, t - dt, t + dt);
         if !(s0.is_finite() && s1.is_finite() && t0.is_finite() && t1.is_finite())
-            || (s0.floor() == s1.floor() && t0.floor() == t1.floor())
+            || (floor_fast(s0) == floor_fast(s1) && floor_fast(t0) == floor_fast(t1))
         {
             return self.point(tc.uv);
         }
@@ -66,7 +67,7 @@ impl Checker {
         let share = |a: f32, b: f32, d: f32| {
             if d <= 0.0 {
                 // Zero width: a point along this axis.
-                if a.floor().rem_euclid(2.0) < 0.5 {
+                if floor_fast(a).rem_euclid(2.0) < 0.5 {
                     0.0
                 } else {
                     1.0
@@ -88,8 +89,8 @@ impl Checker {
     #[inline]
     pub fn point(&self, uv: crate::math::Vec2) -> Rgb {
         let (i, j) = (
-            (uv.x * self.squares.0).floor(),
-            (uv.y * self.squares.1).floor(),
+            floor_fast(uv.x * self.squares.0),
+            floor_fast(uv.y * self.squares.1),
         );
         let parity = (i + j).rem_euclid(2.0);
         if parity < 0.5 {
@@ -104,7 +105,7 @@ impl Checker {
 #[inline]
 fn odd_integral(x: f32) -> f32 {
     let h = x * 0.5;
-    let f = h.floor();
+    let f = floor_fast(h);
     f + 2.0 * (h - f - 0.5).max(0.0)
 }
 

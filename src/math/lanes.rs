@@ -367,9 +367,16 @@ impl<S: Simd> V3<S> {
     #[must_use]
     #[inline(always)]
     pub fn normalize_or(&self, s: S, fallback: Vec3A) -> Self {
+        self.normalize_or_lanes(s, &Self::splat(s, fallback))
+    }
+
+    /// [`V3::normalize_or`] with a fallback of its own in each lane.
+    #[must_use]
+    #[inline(always)]
+    pub fn normalize_or_lanes(&self, s: S, fallback: &Self) -> Self {
         let rcp = s.div_f32s(s.splat_f32s(1.0), s.sqrt_f32s(self.dot(s, self)));
         let ok = s.and_m32s(finite(s, rcp), s.greater_than_f32s(rcp, s.splat_f32s(0.0)));
-        Self::select(s, ok, &self.scale(s, rcp), &Self::splat(s, fallback))
+        Self::select(s, ok, &self.scale(s, rcp), fallback)
     }
 
     /// The largest absolute coordinate per lane, as `math::max_abs` (glam's `max_element`)

@@ -14,7 +14,7 @@ use super::nearest::Hits;
 use crate::geometry::{Object, Shape};
 use crate::mapping::{AnyMapping, Mapping, TexCoord};
 use crate::material::C3;
-use crate::math::lanes::{M, MAX_LANES, V3, from_array, mask_from_array, mask_to_array, to_array};
+use crate::math::lanes::{M, MAX_LANES, V3, from_array, mask_to_array, to_array};
 use crate::math::{Vec2, Vec3A};
 use crate::scene::Scene;
 use crate::texture::{ImageTexture, Texture, transformed};
@@ -44,6 +44,10 @@ impl Scene {
     /// entry as `Scene::radiance_nested` is: a material reads up to seven textured coefficients
     /// and colours, and the stage inlined at each would multiply the kernel's code (and its
     /// build time) by as much.
+    ///
+    /// `mapped` holds the lanes' coordinates under `mapping` where another texture of the same
+    /// object has already computed them (the Earth's colour, ocean mask and night lights share
+    /// one spherical map): they are read, not computed again. The coordinates are returned.
     #[allow(clippy::too_many_arguments)]
     #[inline(never)]
     pub(super) fn filtered_lanes_call<S: Simd>(
@@ -55,7 +59,8 @@ impl Scene {
         hits: &Hits<S>,
         diffs: Option<&Diffs>,
         on: M<S>,
-    ) -> C3<S> {
+        mapped: Option<&Mapped>,
+    ) -> (C3<S>, Mapped) {
         /// The stage's inputs as per-lane buffers (pulp's `WithSimd` hands `with_simd` a token
         /// of its own type parameter).
         struct Call<'a> {
@@ -67,27 +72,32 @@ impl Scene {
             n: [[f32; MAX_LANES]; 3],
             diffs: Option<&'a Diffs>,
             on: [bool; MAX_LANES],
+            mapped: Option<&'a Mapped>,
         }
         impl pulp::WithSimd for Call<'_> {
-            type Output = [[f32; MAX_LANES]; 3];
+            type Output = ([[f32; MAX_LANES]; 3], Mapped);
             #[inline(always)]
             fn with_simd<S: Simd>(self, s: S) -> Self::Output {
-                let (p, n) = (V3::from_arrays(&self.p), V3::from_arrays(&self.n));
-                let on = mask_from_array(s, &self.on);
-                let c = self.scene.filtered_lanes_at(
-                    s,
-                    self.obj,
-                    self.t,
-                    self.mapping,
-                    &p,
-                    &n,
-                    self.diffs,
-                    on,
-                );
-                crate::math::lanes::map3(c, to_array::<S>)
+                let mapped = match self.mapped {
+                    Some(m) => *m,
+                    None => {
+                        let (p, n) = (V3::from_arrays(&self.p), V3::from_arrays(&self.n));
+                        self.scene.mapped_lanes(
+                            s,
+                            self.obj,
+                            self.mapping,
+                            &p,
+                            &n,
+                            self.diffs,
+                            &self.on,
+                        )
+                    }
+                };
+                let c = eval_mapped(s, self.t, &mapped, &self.on);
+                (crate::math::lanes::map3(c, to_array::<S>), mapped)
             }
         }
-        let c = s.vectorize(Call {
+        let (c, mapped) = s.vectorize(Call {
             scene: self,
             obj,
             t,
@@ -96,12 +106,14 @@ impl Scene {
             n: hits.n.to_arrays(),
             diffs,
             on: mask_to_array(s, on),
+            mapped,
         });
-        crate::math::lanes::map3(c, |a| from_array::<S>(&a))
+        (crate::math::lanes::map3(c, |a| from_array::<S>(&a)), mapped)
     }
 
     /// The filtered colour of `t` (mapped by `mapping`, see [`Scene::filtered_in_lanes`]) at
-    /// the lanes in `on` of object `obj`, with each lane's ray differentials from `diffs`.
+    /// the lanes in `on` of object `obj`, with each lane's ray differentials from `diffs`; and
+    /// the lanes' coordinates under `mapping`, for other textures of the object to reuse.
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     pub(super) fn filtered_lanes<S: Simd>(
@@ -113,25 +125,27 @@ impl Scene {
         hits: &Hits<S>,
         diffs: Option<&Diffs>,
         on: M<S>,
-    ) -> C3<S> {
-        self.filtered_lanes_at(s, obj, t, mapping, &hits.p, &hits.n, diffs, on)
+    ) -> (C3<S>, Mapped) {
+        let flags = mask_to_array(s, on);
+        let mapped = self.mapped_lanes(s, obj, mapping, &hits.p, &hits.n, diffs, &flags);
+        (eval_mapped(s, t, &mapped, &flags), mapped)
     }
 
-    /// [`Scene::filtered_lanes`] at the object-space points `p` with normals `n`.
+    /// The texture coordinates and their screen-space derivatives under `mapping` at the
+    /// object-space points `p` with normals `n` of the lanes in `flags`, before any texture's
+    /// (u, v) transform.
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
-    fn filtered_lanes_at<S: Simd>(
+    fn mapped_lanes<S: Simd>(
         &self,
         s: S,
         obj: &Object,
-        t: &ImageTexture,
         mapping: Mapping,
         p: &V3<S>,
         n: &V3<S>,
         diffs: Option<&Diffs>,
-        on: M<S>,
-    ) -> C3<S> {
-        let flags = mask_to_array(s, on);
+        flags: &[bool; MAX_LANES],
+    ) -> Mapped {
         let (lp, ln) = (p.to_arrays(), n.to_arrays());
         let m = mapping.map_lanes::<S, true>(s, p);
         let (u, v) = (to_array::<S>(m.u), to_array::<S>(m.v));
@@ -143,20 +157,38 @@ impl Scene {
                 continue;
             }
             // `Scene::texture_context`: the footprint on the hit's tangent plane; then
-            // `Mapping::map_with_differentials` for a built-in mapping of the point, and the
-            // texture's (u, v) transform.
+            // `Mapping::map_with_differentials` for a built-in mapping of the point.
             let (dpdx, dpdy) =
                 self.footprint_at(obj, diffs.map(|d| &d[i]), vec(&lp, i), vec(&ln, i));
-            let mapped = TexCoord::from_gradients(
+            tc[i] = TexCoord::from_gradients(
                 Vec2::new(u[i], v[i]),
                 vec(&gu, i),
                 vec(&gv, i),
                 dpdx,
                 dpdy,
             );
-            tc[i] = transformed(mapped, t.transform.as_ref());
         }
-        // `ImageTexture::eval_mapped`: the filter (trilinear in lanes, the others per lane).
-        t.eval_lanes(s, &tc, &flags)
+        tc
     }
+}
+
+/// The lanes' texture coordinates under one mapping, before a texture's (u, v) transform.
+pub(super) type Mapped = [TexCoord; MAX_LANES];
+
+/// `ImageTexture::eval_mapped` of the lanes in `flags` at the coordinates `mapped`: the
+/// texture's (u, v) transform, then the filter (trilinear in lanes, the others per lane).
+#[inline(always)]
+fn eval_mapped<S: Simd>(
+    s: S,
+    t: &ImageTexture,
+    mapped: &Mapped,
+    flags: &[bool; MAX_LANES],
+) -> C3<S> {
+    let mut tc = [TexCoord::default(); MAX_LANES];
+    for i in 0..S::F32_LANES {
+        if flags[i] {
+            tc[i] = transformed(mapped[i], t.transform.as_ref());
+        }
+    }
+    t.eval_lanes(s, &tc, flags)
 }

@@ -2,9 +2,11 @@
 //! faced toward the viewer (`Scene::resolve`'s steps), the texture and the material's terms,
 //! a bump or normal map, the debug views, mirrors and clip maps.
 
+use super::filtered::Mapped;
 use super::nearest::Hits;
 use super::{Diffs, Rays, lanes};
 use crate::geometry::{LocalHit, Object};
+use crate::mapping::Mapping;
 use crate::material::{C3, Colour, ParamLanes, Scalar, splat_rgb};
 use crate::math::lanes::{
     F, M, MAX_LANES, V3, from_array, mask_from_array, mask_to_array, max, to_array,
@@ -46,6 +48,9 @@ struct LaneParams<'a, S: Simd> {
     hits: &'a Hits<S>,
     diffs: Option<&'a Diffs>,
     mask: M<S>,
+    /// The lanes' coordinates under the last mapping an image was read through in lanes, for
+    /// the next image under the same mapping.
+    mapped: std::cell::RefCell<Option<(Mapping, Box<Mapped>)>>,
 }
 
 impl<S: Simd> LaneParams<'_, S> {
@@ -53,10 +58,15 @@ impl<S: Simd> LaneParams<'_, S> {
     #[inline(always)]
     fn in_lanes(&self, texture: &crate::texture::Texture) -> Option<C3<S>> {
         let (t, m) = Scene::filtered_in_lanes(self.obj, texture)?;
-        Some(
-            self.scene
-                .filtered_lanes_call(self.s, self.obj, t, m, self.hits, self.diffs, self.mask),
-        )
+        let mut cache = self.mapped.borrow_mut();
+        let known = cache.as_ref().filter(|(at, _)| *at == m).map(|(_, c)| &**c);
+        let (c, mapped) = self.scene.filtered_lanes_call(
+            self.s, self.obj, t, m, self.hits, self.diffs, self.mask, known,
+        );
+        if known.is_none() {
+            *cache = Some((m, Box::new(mapped)));
+        }
+        Some(c)
     }
 }
 
@@ -289,12 +299,13 @@ impl Scene {
         // built-in mapping of a generic shape (`LaneParams`); others need the per-lane records.
         let textured = material.has_textured_params()
             && !material.textured_params_all(|t| Self::filtered_in_lanes(obj, t).is_some());
+        // A mirror's ray is made in lanes; its ray differentials per lane (`Scene::mirror_ray`).
         let reflective = matches!(material, crate::material::Material::Reflective { .. });
         let needs_lanes = (filtered && in_lanes.is_none())
             || clip.is_some()
             || perturbation.is_some_and(|p| !self.perturbation_in_lanes(k, p))
             || textured
-            || reflective
+            || (reflective && diffs.is_some())
             || view != View::Shaded;
         let mut per = needs_lanes.then(|| self.per_lane(s, k, hits, &r, mine, diffs));
         let flags = mask_to_array(s, mine);
@@ -342,8 +353,11 @@ impl Scene {
                 }
             })
         } else {
+            let mut mapped = None;
             let cd = if let Some((t, m, d)) = in_lanes {
-                self.filtered_lanes(s, obj, t, m, hits, Some(d), shade_on)
+                let (c, at) = self.filtered_lanes(s, obj, t, m, hits, Some(d), shade_on);
+                mapped = Some((m, Box::new(at)));
+                c
             } else if let (Some(p), true) = (&per, filtered) {
                 each(&|i| texture.eval(&p.ctx[i]))
             } else {
@@ -359,6 +373,7 @@ impl Scene {
                 hits,
                 diffs,
                 mask: shade_on,
+                mapped: std::cell::RefCell::new(mapped),
             };
             let terms = material.terms(s, &cd, self.ambient, &params);
             // A bump or normal map tilts the shading normal.
@@ -371,8 +386,16 @@ impl Scene {
                     (terms.mirror, depth < self.settings.reflection_depth)
                 {
                     let bounce = s.and_m32s(shade_on, mirrors);
-                    if let (true, Some(pl)) = (crate::math::lanes::any(s, bounce), &per) {
-                        let seen = self.reflected_lanes(s, pl, bounce, diffs, offset, depth);
+                    let seen = match (crate::math::lanes::any(s, bounce), diffs, &per) {
+                        (false, _, _) => None,
+                        (true, None, _) => Some(self.mirrored_lanes(s, &r, bounce, offset, depth)),
+                        (true, Some(_), Some(pl)) => {
+                            Some(self.reflected_lanes(s, pl, bounce, diffs, offset, depth))
+                        }
+                        // Unreachable: a mirror with ray differentials makes the lanes' records.
+                        (true, Some(_), None) => None,
+                    };
+                    if let Some(seen) = seen {
                         for c in 0..3 {
                             let add = s.add_f32s(l[c], s.mul_f32s(m[c], seen[c]));
                             l[c] = s.select_f32s(bounce, add, l[c]);
@@ -441,6 +464,34 @@ impl Scene {
             }
         }
         (l, keys)
+    }
+
+    /// The radiance the mirrors of lanes `bounce` reflect where the rays carry no
+    /// differentials: `Scene::mirror_ray`'s ray in lanes, `wi = 2 (n . wo) n - wo` about the
+    /// shading normal (the geometric normal where that has no length), leaving `offset` off the
+    /// surface on `wi`'s side, traced as a packet one bounce deeper.
+    #[inline(always)]
+    fn mirrored_lanes<S: Simd>(
+        &self,
+        s: S,
+        r: &Resolved<S>,
+        bounce: M<S>,
+        offset: F<S>,
+        depth: u32,
+    ) -> C3<S> {
+        let cos = r.ns.dot(s, &r.wo);
+        let wi =
+            r.ns.scale(s, s.mul_f32s(s.splat_f32s(2.0), cos))
+                .sub(s, &r.wo)
+                .normalize_or_lanes(s, &r.ng);
+        let ahead = s.greater_than_or_equal_f32s(wi.dot(s, &r.ng), s.splat_f32s(0.0));
+        let side = s.select_f32s(ahead, s.splat_f32s(1.0), s.splat_f32s(-1.0));
+        let rays = Rays {
+            o: r.p.add(s, &r.ng.scale(s, s.mul_f32s(offset, side))),
+            d: wi,
+            active: bounce,
+        };
+        self.radiance_nested(s, &rays, None, depth + 1, 0).rgb
     }
 
     /// The radiance the mirrors of lanes `bounce` reflect: each lane's mirrored ray and ray

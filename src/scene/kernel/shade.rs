@@ -50,7 +50,7 @@ struct LaneParams<'a, S: Simd> {
     mask: M<S>,
     /// The lanes' coordinates under the last mapping an image was read through in lanes, for
     /// the next image under the same mapping.
-    mapped: std::cell::RefCell<Option<(Mapping, Box<Mapped>)>>,
+    mapped: std::cell::RefCell<Option<(Mapping, Mapped)>>,
 }
 
 impl<S: Simd> LaneParams<'_, S> {
@@ -59,12 +59,12 @@ impl<S: Simd> LaneParams<'_, S> {
     fn in_lanes(&self, texture: &crate::texture::Texture) -> Option<C3<S>> {
         let (t, m) = Scene::filtered_in_lanes(self.obj, texture)?;
         let mut cache = self.mapped.borrow_mut();
-        let known = cache.as_ref().filter(|(at, _)| *at == m).map(|(_, c)| &**c);
+        let known = cache.as_ref().filter(|(at, _)| *at == m).map(|(_, c)| c);
         let (c, mapped) = self.scene.filtered_lanes_call(
             self.s, self.obj, t, m, self.hits, self.diffs, self.mask, known,
         );
         if known.is_none() {
-            *cache = Some((m, Box::new(mapped)));
+            *cache = Some((m, mapped));
         }
         Some(c)
     }
@@ -356,7 +356,7 @@ impl Scene {
             let mut mapped = None;
             let cd = if let Some((t, m, d)) = in_lanes {
                 let (c, at) = self.filtered_lanes(s, obj, t, m, hits, Some(d), shade_on);
-                mapped = Some((m, Box::new(at)));
+                mapped = Some((m, at));
                 c
             } else if let (Some(p), true) = (&per, filtered) {
                 each(&|i| texture.eval(&p.ctx[i]))

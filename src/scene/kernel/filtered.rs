@@ -78,20 +78,12 @@ impl Scene {
             type Output = ([[f32; MAX_LANES]; 3], Mapped);
             #[inline(always)]
             fn with_simd<S: Simd>(self, s: S) -> Self::Output {
-                let mapped = match self.mapped {
-                    Some(m) => *m,
-                    None => {
-                        let (p, n) = (V3::from_arrays(&self.p), V3::from_arrays(&self.n));
-                        self.scene.mapped_lanes(
-                            s,
-                            self.obj,
-                            self.mapping,
-                            &p,
-                            &n,
-                            self.diffs,
-                            &self.on,
-                        )
-                    }
+                let mapped = if let Some(m) = self.mapped {
+                    *m
+                } else {
+                    let (p, n) = (V3::from_arrays(&self.p), V3::from_arrays(&self.n));
+                    self.scene
+                        .mapped_lanes(s, self.obj, self.mapping, &p, &n, self.diffs, &self.on)
                 };
                 let c = eval_mapped(s, self.t, &mapped, &self.on);
                 (crate::math::lanes::map3(c, to_array::<S>), mapped)

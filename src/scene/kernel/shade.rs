@@ -386,14 +386,13 @@ impl Scene {
                     (terms.mirror, depth < self.settings.reflection_depth)
                 {
                     let bounce = s.and_m32s(shade_on, mirrors);
+                    // (A mirror with ray differentials makes the lanes' records.)
                     let seen = match (crate::math::lanes::any(s, bounce), diffs, &per) {
-                        (false, _, _) => None,
                         (true, None, _) => Some(self.mirrored_lanes(s, &r, bounce, offset, depth)),
                         (true, Some(_), Some(pl)) => {
                             Some(self.reflected_lanes(s, pl, bounce, diffs, offset, depth))
                         }
-                        // Unreachable: a mirror with ray differentials makes the lanes' records.
-                        (true, Some(_), None) => None,
+                        _ => None,
                     };
                     if let Some(seen) = seen {
                         for c in 0..3 {

@@ -7,8 +7,10 @@ use crate::camera::Camera;
 use crate::geometry::{LocalHit, Object, Shape};
 use crate::mapping::Mapping;
 use crate::material::{Bump, Light, Material, NormalMap, Scalar};
+use crate::math::lanes::{F, V3};
 use crate::math::{Ray, RayDifferential, Rgb, Vec3A, max_abs};
 use crate::texture::TextureContext;
+use pulp::Simd;
 
 /// Shadow-ray origins are pushed off the surface along its geometric normal by this fraction of
 /// the magnitude of the coordinates involved (hit point and the object's translation): about a
@@ -455,10 +457,17 @@ impl Scene {
     ) -> (Ray, Option<RayDifferential>) {
         let (n, wo) = (hit.ns, hit.wo);
         let cos = n.dot(wo);
-        let wi = (2.0 * cos * n - wo).normalize_or(hit.ng);
-        // Leave on the side the reflected ray goes to.
-        let side = if wi.dot(hit.ng) >= 0.0 { 1.0 } else { -1.0 };
-        let ray = Ray::new(hit.p + hit.ng * (offset * side), wi);
+        let one = V3::<pulp::Scalar>::one;
+        let (origin, wi) = mirror_lanes(
+            pulp::Scalar,
+            &one(hit.p),
+            &one(hit.ng),
+            &one(n),
+            &one(wo),
+            offset,
+        );
+        let (origin, wi) = (origin.vec(), wi.vec());
+        let ray = Ray::new(origin, wi);
         let mirrored = diff.map(|d| {
             let (dpdx, dpdy) = d.footprint_on_plane(hit.p, hit.ng);
             let mirror = |dp: Vec3A, dir: Vec3A| {
@@ -496,6 +505,30 @@ impl Scene {
         let dn = n - hit.ns;
         if dn.is_finite() { dn } else { Vec3A::ZERO }
     }
+}
+
+/// The ray a mirror reflects the viewer's ray into, per lane: from the point `p` with
+/// geometric normal `ng` and shading normal `ns`, seen from `wo`, the direction
+/// `wi = 2 (ns . wo) ns - wo` (`ng` where that has no length) and the origin `offset` off the
+/// surface on the side `wi` goes to. [`Scene::mirror_ray`] is its width-1 instance.
+#[inline(always)]
+pub(crate) fn mirror_lanes<S: Simd>(
+    s: S,
+    p: &V3<S>,
+    ng: &V3<S>,
+    ns: &V3<S>,
+    wo: &V3<S>,
+    offset: F<S>,
+) -> (V3<S>, V3<S>) {
+    let cos = ns.dot(s, wo);
+    let wi = ns
+        .scale(s, s.mul_f32s(s.splat_f32s(2.0), cos))
+        .sub(s, wo)
+        .normalize_or_lanes(s, ng);
+    // Leave on the side the reflected ray goes to.
+    let ahead = s.greater_than_or_equal_f32s(wi.dot(s, ng), s.splat_f32s(0.0));
+    let side = s.select_f32s(ahead, s.splat_f32s(1.0), s.splat_f32s(-1.0));
+    (p.add(s, &ng.scale(s, s.mul_f32s(offset, side))), wi)
 }
 
 /// The shape's own parameterisation, which [`Mapping::Uv`] falls back to.

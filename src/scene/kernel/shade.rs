@@ -13,7 +13,7 @@ use crate::math::lanes::{
 };
 use crate::math::{Ray, RayDifferential, Rgb, Vec3A};
 use crate::scene::Scene;
-use crate::scene::trace::{MAX_CLIP_LAYERS, SHADOW_OFFSET_RELATIVE, SurfaceHit};
+use crate::scene::trace::{MAX_CLIP_LAYERS, SHADOW_OFFSET_RELATIVE, SurfaceHit, mirror_lanes};
 use crate::texture::{TextureContext, View};
 use pulp::Simd;
 
@@ -466,9 +466,8 @@ impl Scene {
     }
 
     /// The radiance the mirrors of lanes `bounce` reflect where the rays carry no
-    /// differentials: `Scene::mirror_ray`'s ray in lanes, `wi = 2 (n . wo) n - wo` about the
-    /// shading normal (the geometric normal where that has no length), leaving `offset` off the
-    /// surface on `wi`'s side, traced as a packet one bounce deeper.
+    /// differentials: each lane's mirrored ray (`mirror_lanes`, which `Scene::mirror_ray` runs
+    /// at width 1), traced as a packet one bounce deeper.
     #[inline(always)]
     fn mirrored_lanes<S: Simd>(
         &self,
@@ -478,16 +477,10 @@ impl Scene {
         offset: F<S>,
         depth: u32,
     ) -> C3<S> {
-        let cos = r.ns.dot(s, &r.wo);
-        let wi =
-            r.ns.scale(s, s.mul_f32s(s.splat_f32s(2.0), cos))
-                .sub(s, &r.wo)
-                .normalize_or_lanes(s, &r.ng);
-        let ahead = s.greater_than_or_equal_f32s(wi.dot(s, &r.ng), s.splat_f32s(0.0));
-        let side = s.select_f32s(ahead, s.splat_f32s(1.0), s.splat_f32s(-1.0));
+        let (o, d) = mirror_lanes(s, &r.p, &r.ng, &r.ns, &r.wo, offset);
         let rays = Rays {
-            o: r.p.add(s, &r.ng.scale(s, s.mul_f32s(offset, side))),
-            d: wi,
+            o,
+            d,
             active: bounce,
         };
         self.radiance_nested(s, &rays, None, depth + 1, 0).rgb

@@ -368,7 +368,11 @@ impl ImageData {
         let (wx, wy) = (catmull_rom(x - x0), catmull_rom(y - y0));
         let (x0, y0) = (x0 as i64 - 1, y0 as i64 - 1);
         // The four columns wrapped once, not once per row.
-        let cols: [Option<u32>; 4] = std::array::from_fn(|i| wu.index(x0 + i as i64, self.width));
+        // (A loop, not `std::array::from_fn`, whose body is out of line: see `lanes::map3`.)
+        let mut cols = [None; 4];
+        for (i, c) in cols.iter_mut().enumerate() {
+            *c = wu.index(x0 + i as i64, self.width);
+        }
         let mut sum = Rgb::BLACK;
         for (j, wyj) in wy.iter().enumerate() {
             let Some(r) = wv.index(y0 + j as i64, self.height) else {

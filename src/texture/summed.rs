@@ -358,8 +358,13 @@ impl<T: FixedSum> Level<T> {
             }
         } else {
             let stride = self.width as usize + 1;
-            let tx = [kx0, kx0 + 1, kx1, kx1 + 1].map(|x| axis_terms(wu, x, w));
-            let ty = [ky0, ky0 + 1, ky1, ky1 + 1].map(|y| axis_terms(wv, y, h));
+            // (Loops, not `<[T; N]>::map`, whose body is out of line: see `lanes::map3`.)
+            let (xs, ys) = ([kx0, kx0 + 1, kx1, kx1 + 1], [ky0, ky0 + 1, ky1, ky1 + 1]);
+            let (mut tx, mut ty) = ([[(0, 0); 2]; 4], [[(0, 0); 2]; 4]);
+            for k in 0..4 {
+                tx[k] = axis_terms(wu, xs[k], w);
+                ty[k] = axis_terms(wv, ys[k], h);
+            }
             for (er, ty) in e.iter_mut().zip(&ty) {
                 for (ec, tx) in er.iter_mut().zip(&tx) {
                     let mut acc = [T::default(); 4];
@@ -405,8 +410,12 @@ impl<T: FixedSum> Level<T> {
         let stride = self.width as usize + 1;
         let (w, h) = (i64::from(self.width), i64::from(self.height));
         let at = |k: [i64; 2], i: usize| k[i / 3] + (i % 3) as i64;
-        let tx: [[(i64, i64); 2]; 6] = std::array::from_fn(|c| axis_terms(wu, at(kx, c), w));
-        let ty: [[(i64, i64); 2]; 6] = std::array::from_fn(|r| axis_terms(wv, at(ky, r), h));
+        // (A loop, not `std::array::from_fn`, whose body is out of line: see `lanes::map3`.)
+        let (mut tx, mut ty) = ([[(0, 0); 2]; 6], [[(0, 0); 2]; 6]);
+        for i in 0..6 {
+            tx[i] = axis_terms(wu, at(kx, i), w);
+            ty[i] = axis_terms(wv, at(ky, i), h);
+        }
         for (er, ty) in e.iter_mut().zip(&ty) {
             for (ec, tx) in er.iter_mut().zip(&tx) {
                 let mut acc = [T::default(); 4];
@@ -508,7 +517,7 @@ impl<T: FixedSum> Table<T> {
         wv: Wrap,
     ) -> [f32; 3] {
         let s = self.levels[level - self.first].box_sum(x0, x1, y0, y1, wu, wv);
-        s.map(|c| c * self.quantum)
+        crate::math::lanes::map3(s, |c| c * self.quantum)
     }
 
     /// The integral of mip level `level`'s nearest-texel image over the box [x0, x1] x
@@ -526,7 +535,7 @@ impl<T: FixedSum> Table<T> {
         wv: Wrap,
     ) -> [f32; 3] {
         let s = self.levels[level - self.first].nearest_box_sum(x0, x1, y0, y1, wu, wv);
-        s.map(|c| c * self.quantum)
+        crate::math::lanes::map3(s, |c| c * self.quantum)
     }
 
     fn bytes(&self) -> usize {

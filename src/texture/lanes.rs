@@ -5,7 +5,10 @@
 //! texture's value at lanes of texture coordinates already mapped
 //! ([`Texture::eval_tex_coord_lanes`], what bump and normal maps read).
 
-use super::{Filter, ImageData, ImageTexture, Lookup, MipPyramid, Texture, Wrap, mark};
+use super::{
+    Filter, ImageData, ImageTexture, Lookup, MipPyramid, TILE, Texels, Texture, Wrap, mark,
+    tiled_index,
+};
 
 use crate::mapping::TexCoord;
 use crate::math::lanes::{C3, F, MAX_LANES, from_array, mask_from_array, to_array};
@@ -30,6 +33,61 @@ fn lerp<S: Simd>(s: S, a: &[f32; MAX_LANES], b: &[f32; MAX_LANES], wa: F<S>, wb:
 }
 
 impl ImageData {
+    /// The four texels of each lane in `inside` whose lower-left texel (rows from the bottom)
+    /// is stored at `at[i]` (lanes `0..n`), into `t` (lower-left, lower-right, upper-left, upper-right): the
+    /// same texels as `ImageData::texel` at the four corners, the other three addressed from
+    /// the first by the tile layout, the storage's format chosen once for all lanes.
+    #[inline(always)]
+    fn quads(
+        &self,
+        n: usize,
+        inside: &[bool; MAX_LANES],
+        at: &[usize; MAX_LANES],
+        t: [&mut Buf; 4],
+    ) {
+        if let Some((v, table)) = self.texels().bytes() {
+            self.gather_quads(n, inside, at, t, |k| {
+                let [r, g, b, _] = v[k];
+                Rgb(table[r as usize], table[g as usize], table[b as usize])
+            });
+        } else if let Texels::Linear(v) = self.texels() {
+            self.gather_quads(n, inside, at, t, |k| Rgb::from_array(v[k]));
+        }
+    }
+
+    /// [`ImageData::quads`] with the texel at storage index `k` read by `load`.
+    #[inline(always)]
+    fn gather_quads(
+        &self,
+        n: usize,
+        inside: &[bool; MAX_LANES],
+        at: &[usize; MAX_LANES],
+        t: [&mut Buf; 4],
+        load: impl Fn(usize) -> Rgb,
+    ) {
+        // One texel right: the next in the tile's row, or the first of the next tile's row.
+        // One row up (the file's row above): the tile's row above, or the tile above's last.
+        let (tile, row) = ((TILE * TILE) as usize, TILE as usize);
+        let up_tile = self.tiles_x() as usize * tile - row * (row - 1);
+        let [t00, t10, t01, t11] = t;
+        for i in 0..n {
+            if !inside[i] {
+                continue;
+            }
+            let k = at[i];
+            let right = if k % row == row - 1 {
+                tile - (row - 1)
+            } else {
+                1
+            };
+            let above = k - if k % tile < row { up_tile } else { row };
+            put(t00, i, load(k));
+            put(t10, i, load(k + right));
+            put(t01, i, load(above));
+            put(t11, i, load(above + right));
+        }
+    }
+
     /// Bilinear interpolation between the four nearest texel centres, (i + 0.5) / w, at
     /// (`u`, `v`) per lane for the lanes in `on`: each axis reduced by its wrap, the texel
     /// corner and weights, the four texels loaded per lane (wrapped only at the image's edges;
@@ -69,6 +127,10 @@ impl ImageData {
         let (mut t00, mut t10, mut t01, mut t11): (Buf, Buf, Buf, Buf) = Default::default();
         let mut near: Buf = Default::default();
         let (w, h) = (i64::from(self.width()), i64::from(self.height()));
+        // The lanes whose four texels are all inside the image (nearly every lookup), and the
+        // storage index of each one's lower-left texel, gathered below in one pass.
+        let mut inside = [false; MAX_LANES];
+        let mut at = [0_usize; MAX_LANES];
         for i in 0..n {
             if !on[i] {
                 continue;
@@ -82,12 +144,9 @@ impl ImageData {
             (x0[i], y0[i]) = (floor_fast(xa[i]), floor_fast(ya[i]));
             let (xi, yi) = (x0[i] as i64, y0[i] as i64);
             if xi >= 0 && yi >= 0 && xi + 1 < w && yi + 1 < h {
-                // All four texels inside the image (nearly every lookup): no wrapping.
-                let (c, r) = (xi as u32, yi as u32);
-                put(&mut t00, i, self.texel(c, r));
-                put(&mut t10, i, self.texel(c + 1, r));
-                put(&mut t01, i, self.texel(c, r + 1));
-                put(&mut t11, i, self.texel(c + 1, r + 1));
+                inside[i] = true;
+                // `ImageData::texel`: rows from the bottom, stored from the top.
+                at[i] = tiled_index(self.tiles_x(), xi as u32, (h - 1 - yi) as u32);
             } else {
                 // At an edge: each axis's two indices wrapped once.
                 let (c0, c1) = (wu.index(xi, self.width()), wu.index(xi + 1, self.width()));
@@ -102,6 +161,7 @@ impl ImageData {
                 put(&mut t11, i, fetch(c1, r1));
             }
         }
+        self.quads(n, &inside, &at, [&mut t00, &mut t10, &mut t01, &mut t11]);
         let one = s.splat_f32s(1.0);
         let fx = s.sub_f32s(x, from_array::<S>(&x0));
         let fy = s.sub_f32s(y, from_array::<S>(&y0));
@@ -365,6 +425,76 @@ mod tests {
     #[test]
     fn bilinear_gives_the_same_bits_at_every_width() {
         assert!(at_every_width(&mut Agree) >= 1);
+    }
+
+    /// The bilinear lanes at every width against the filter's definition from the four
+    /// `ImageData::texel` reads, at every inside position of images whose sides are not
+    /// multiples of the tile (so lanes read across tile edges in both directions), in 8-bit
+    /// and linear storage.
+    struct Corners;
+
+    impl WidthCheck for Corners {
+        fn check<S: Simd>(&mut self, s: S, name: &'static str) {
+            let (w, h) = (11_u32, 9_u32);
+            let colour =
+                |c: u32, r: u32| [(c * 23 + r * 7) as u8, (r * 31) as u8, (c * 5) as u8, 255];
+            let texels = |f: fn(Vec<[u8; 4]>) -> Texels| {
+                f((0..h)
+                    .flat_map(|r| (0..w).map(move |c| colour(c, r)))
+                    .collect())
+            };
+            let images = [
+                ImageData::new(w, h, texels(Texels::Srgb8), "srgb"),
+                ImageData::new(w, h, texels(Texels::Unorm8), "unorm"),
+                ImageData::from_fn(w, h, "linear", |c, r| {
+                    let [a, b, d, _] = colour(c, r);
+                    Rgb(f32::from(a) / 7.0, f32::from(b) / 3.0, f32::from(d))
+                }),
+            ];
+            // Every lower-left texel (c, r) of an inside quad, at a point inside it.
+            let corners: Vec<(u32, u32)> = (0..h - 1)
+                .flat_map(|r| (0..w - 1).map(move |c| (c, r)))
+                .collect();
+            for img in &images {
+                for chunk in corners.chunks(S::F32_LANES) {
+                    let (mut u, mut v) = ([0.0; MAX_LANES], [0.0; MAX_LANES]);
+                    let mut on = [false; MAX_LANES];
+                    for (i, &(c, r)) in chunk.iter().enumerate() {
+                        u[i] = (c as f32 + 0.5 + 0.3) / w as f32;
+                        v[i] = (r as f32 + 0.5 + 0.6) / h as f32;
+                        on[i] = true;
+                    }
+                    let (wu, wv) = (Wrap::Repeat, Wrap::Clamp);
+                    let got = img
+                        .bilinear_lanes(s, from_array::<S>(&u), from_array::<S>(&v), wu, wv, &on)
+                        .map(to_array::<S>);
+                    for (i, &(c, r)) in chunk.iter().enumerate() {
+                        let (x, y) = (u[i] * w as f32 - 0.5, v[i] * h as f32 - 0.5);
+                        let (fx, fy) = (x - c as f32, y - r as f32);
+                        let (gx, gy) = (1.0 - fx, 1.0 - fy);
+                        let t = |c, r| img.texel(c, r).to_array();
+                        let (t00, t10, t01, t11) =
+                            (t(c, r), t(c + 1, r), t(c, r + 1), t(c + 1, r + 1));
+                        for k in 0..3 {
+                            let bottom = t00[k] * gx + t10[k] * fx;
+                            let top = t01[k] * gx + t11[k] * fx;
+                            let want = bottom * gy + top * fy;
+                            assert_eq!(
+                                bits(got[k][i]),
+                                bits(want),
+                                "{name} {}: texel ({c}, {r}) channel {k}",
+                                img.name
+                            );
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn bilinear_reads_the_four_texels_across_tile_edges() {
+        assert!(at_every_width(&mut Corners) >= 1);
     }
 
     /// Trilinear lanes at every width against the filter's definition per lane: bilinear at

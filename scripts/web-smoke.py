@@ -30,11 +30,12 @@ clicked with the browser's own pointer), and checks, in each browser:
 Prints the times, the bytes and the render's rays per second, and writes screenshots to --out
 (one folder per browser).
 
-With --bench N,N,... it times the Earth's render instead (README, "In the browser").
+With --bench N,N,... it times the Earth's render instead (README, "In the browser"), or with
+--lesson NAME (repeatable) each lesson's own scene, opened by its link.
 
 Usage: scripts/web-smoke.py [--site target/web] [--out target/web-smoke]
                             [--browser chromium|firefox|both] [--update-reference]
-                            [--bench 0,1,2,4 [--runs 3]]
+                            [--bench 0,1,2,4 [--runs 3] [--lesson NAME ...]]
 """
 
 import argparse
@@ -399,9 +400,9 @@ class Page:
 
     def settled(self, timeout=180):
         """Waits for the render to finish (every pass of the scene's samples), with every file
-        in (no stand-in)."""
+        in (no stand-in; builds before stand-ins have no count)."""
         return self.wait("the render finishes",
-                         lambda: (lambda s: s.get("finished") == 1 and s.get("standIns") == 0)(self.status()),
+                         lambda: (lambda s: s.get("finished") == 1 and s.get("standIns", 0) == 0)(self.status()),
                          timeout)
 
     def widgets(self):
@@ -747,36 +748,62 @@ def run_checks(p, url, name, update_reference):
     return figures
 
 
-def bench(p, url, workers, runs):
-    """The Earth rendered to its 16 spp with each number of workers, `runs` times each (the
+def lesson_preset(lesson):
+    """The file name of the preset lesson `lesson` (lessons/NAME.toml) starts on."""
+    with open(os.path.join(ROOT, "lessons", lesson + ".toml"), encoding="utf-8") as f:
+        for line in f:
+            if line.startswith("preset"):
+                return os.path.basename(line.split("=", 1)[1].strip().strip('"'))
+    raise ValueError(f"lessons/{lesson}.toml names no preset")
+
+
+def bench(p, url, workers, runs, lessons=()):
+    """The Earth (or each lesson in `lessons`, opened by its link on its own scene) rendered to
+    its scene's samples per pixel with each number of workers, `runs` times each (scenes and
     counts alternated, so a busy minute spreads over all): the status line's rays per second,
-    the time to 16 spp, the window's frames per second meanwhile and each worker's memory."""
-    results = {n: [] for n in workers}
+    the time to the last pass, the window's frames per second meanwhile and each worker's
+    memory."""
+    scenes = [(lesson, lesson_preset(lesson)) for lesson in lessons] or [("", "")]
+    results = {(name, n): [] for name, _ in scenes for n in workers}
     for r in range(runs):
-        for n in workers:
-            p.d.go("about:blank")
-            p.d.go(f"{url}?workers={n}")
-            if not p.started():
-                continue
-            p.wait("a render under way", lambda: p.status().get("spp") is not None, 120)
-            s0, t0 = p.status(), time.time()
-            if not p.settled(300):
-                continue
-            s1, t1 = p.status(), time.time()
-            fps = (s1.get("frames", 0) - s0.get("frames", 0)) / max(t1 - t0, 1e-3)
-            memory = [round(m / 1e6, 1) for m in s1.get("workerMemory", [])]
-            results[n].append((s1["raysPerSecond"], s1["elapsed"], fps, memory))
-            print(f"  run {r + 1}, {n} workers: {s1['raysPerSecond'] / 1e6:.2f} M rays/s, "
-                  f"16 spp after {s1['elapsed']:.1f} s, {fps:.1f} frames/s, worker memory {memory} MB "
-                  f"(load {os.getloadavg()[0]:.1f})")
-    for n, rs in results.items():
+        for name, preset in scenes:
+            for n in workers:
+                what = f"lesson {name}" if name else "the Earth"
+                p.d.go("about:blank")
+                p.d.go(f"{url}?workers={n}" + (f"#texplore1-l-{name}" if name else ""))
+                if not p.started():
+                    continue
+                # A lesson's scene replaces the Earth once the link is read and its files are in:
+                # wait for its preset (builds before the status named the scene: the lesson,
+                # then a moment for its scene to build), then for a render of it under way.
+                if name and not p.wait(f"{what} opens on {preset}",
+                                       lambda: p.status().get("lesson") == name
+                                       and p.status().get("scene", preset).endswith(preset), 120):
+                    continue
+                if name and "scene" not in p.status():
+                    time.sleep(3)
+                p.wait("a render under way", lambda: p.status().get("spp") is not None, 120)
+                s0, t0 = p.status(), time.time()
+                if not p.settled(300):
+                    continue
+                s1, t1 = p.status(), time.time()
+                fps = (s1.get("frames", 0) - s0.get("frames", 0)) / max(t1 - t0, 1e-3)
+                memory = [round(m / 1e6, 1) for m in s1.get("workerMemory", [])]
+                film = f"{s1.get('filmWidth', 0):.0f}x{s1.get('filmHeight', 0):.0f}"
+                results[(name, n)].append((s1["raysPerSecond"], s1["elapsed"], fps, memory))
+                print(f"  run {r + 1}, {what}, {n} workers: {s1['raysPerSecond'] / 1e6:.2f} M rays/s, "
+                      f"{s1.get('spp', 0):.0f} spp at {film} after {s1['elapsed']:.1f} s, {fps:.1f} frames/s, "
+                      f"worker memory {memory} MB (load {os.getloadavg()[0]:.1f})")
+                if name:
+                    p.shot(f"bench-{name}-{n}.png")
+    for (name, n), rs in results.items():
         if rs:
             med = sorted(x[0] for x in rs)[len(rs) // 2]
             lo, hi = min(x[0] for x in rs), max(x[0] for x in rs)
             el = sorted(x[1] for x in rs)[len(rs) // 2]
             fps = sorted(x[2] for x in rs)[len(rs) // 2]
-            print(f"{n} workers: median {med / 1e6:.2f} M rays/s ({lo / 1e6:.2f}-{hi / 1e6:.2f}, {len(rs)} runs), "
-                  f"16 spp after {el:.1f} s, {fps:.1f} frames/s")
+            print(f"{f'lesson {name}' if name else 'the Earth'}, {n} workers: median {med / 1e6:.2f} M rays/s "
+                  f"({lo / 1e6:.2f}-{hi / 1e6:.2f}, {len(rs)} runs), last pass after {el:.1f} s, {fps:.1f} frames/s")
 
 
 def main():
@@ -792,6 +819,9 @@ def main():
                     help="instead of the checks, time the Earth's render with these numbers of workers "
                          "(0: on the page's thread alone)")
     ap.add_argument("--runs", type=int, default=3, help="--bench: runs per number of workers")
+    ap.add_argument("--lesson", action="append", default=[], metavar="NAME",
+                    help="--bench: time this lesson's own scene (lessons/NAME.toml, opened by its link) "
+                         "instead of the Earth; repeat for several")
     ap.add_argument("--update-reference", action="store_true",
                     help="write Chromium's settled screenshot as web/smoke-earth.png")
     a = ap.parse_args()
@@ -838,7 +868,7 @@ def main():
                 driver.size_viewport(WIDTH, HEIGHT)
                 page = Page(driver, out, failures[name])
                 if a.bench:
-                    bench(page, url, [int(n) for n in a.bench.split(",")], a.runs)
+                    bench(page, url, [int(n) for n in a.bench.split(",")], a.runs, a.lesson)
                 else:
                     run_checks(page, url, name, a.update_reference and name == "chromium")
             finally:

@@ -33,10 +33,11 @@ fn lerp<S: Simd>(s: S, a: &[f32; MAX_LANES], b: &[f32; MAX_LANES], wa: F<S>, wb:
 }
 
 impl ImageData {
-    /// The four texels of each lane in `inside` whose lower-left texel (rows from the bottom)
-    /// is stored at `at[i]` (lanes `0..n`), into `t` (lower-left, lower-right, upper-left, upper-right): the
-    /// same texels as `ImageData::texel` at the four corners, the other three addressed from
-    /// the first by the tile layout, the storage's format chosen once for all lanes.
+    /// The four texels of each lane in `inside` (lanes `0..n`) whose lower-left texel (rows
+    /// from the bottom) is stored at `at[i]`, into `t` (lower-left, lower-right, upper-left,
+    /// upper-right): the same texels as `ImageData::texel` at the four corners, the other
+    /// three addressed from the first by the tile layout, the storage's format chosen once for
+    /// all lanes.
     #[inline(always)]
     fn quads(
         &self,
